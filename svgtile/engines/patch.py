@@ -1,0 +1,425 @@
+"""Patch-based geometric texture synthesis (AlMeraj, Kaplan & Asente 2013).
+
+Start from a Tiling of the exemplar and remove the order that betrays it:
+
+1. :func:`grid` — copies of the exemplar on a square or hexagonal grid of step ``r(1 − σ)``, each
+   rotated by θ ~ U[−M, M] about its centre while every motif is turned back by −θ (§3.2);
+2. :func:`vary_orientations` — optionally, new orientations drawn from each kind's arc (§3.5);
+3. :func:`svgtile.conflicts.resolve` — overlapping pairs lose one motif, preferring distance-rule
+   violators (§3.3), and the distance rule of §3.1 is then enforced;
+4. :func:`adjust_density` — windows the size of the input region are brought to the exemplar's
+   density ρ by random removal or by pasting discs of the exemplar into the largest empty disc
+   (§3.4).
+
+Every random choice is a hash of the run's key and world-anchored integer coordinates (grid cell,
+motif, density window; see :mod:`svgtile.cellrng`), so the texture at a place does not depend on
+how far the output region extends.
+
+Deviations from the paper, each to make the result hold for any region and exemplar:
+
+* orientations are varied *before* overlap resolution, so motifs turned by §3.5 cannot overlap;
+* when none of the tried exemplar discs can be pasted whole (§3.4), the largest subset of the best
+  one that keeps the rule is pasted, so density repair always makes progress;
+* windows alternate between four half-window offsets, so the seams of one window grid are the
+  centres of the next.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from .. import cellrng
+from ..analysis import Stats, analyze, footprint_areas
+from ..arrangement import Arrangement
+from ..conflicts import cross_conflicts, cull, find_conflicts, resolve
+from ..errors import ParameterError
+from ..exemplar import Exemplar
+from ..footprint import motif_radius, rotation, world_footprints
+from ..region import BOUNDARY_MODES, Region
+
+Progress = Callable[[str, float], None]
+
+# hash streams: one per independent random choice
+_ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
+
+#: Decimals of positions and angles in the output; the final check runs on rounded values.
+DECIMALS = 4
+
+
+@dataclass(frozen=True)
+class PatchParams:
+    """Parameters of the patch engine.
+
+    Attributes
+    ----------
+    grid : "square" or "hex"
+        Layout of the exemplar copies (§3.2).
+    overlap : float in [0, 0.5]
+        σ, the fraction by which neighbouring copies overlap (§3.2).
+    max_rotation : float in [0, 180], degrees
+        M, copies are rotated by θ ~ U[−M, M] (§3.2).
+    vary_orientation : bool
+        Draw each motif's orientation from its kind's exemplar arc (§3.5).
+    boundary : one of ``inside``, ``centroid``, ``clip``, ``none``
+        How motifs meet the output region's boundary (see :mod:`svgtile.region`).
+    density_tolerance : float
+        Windows whose density is within ρ(1 ± tolerance) are left alone (§3.4).
+    density_rounds : int
+        At most this many density-adjustment rounds.
+    disc_tries : int
+        Exemplar discs tried per sparse window and round (§3.4).
+    """
+
+    grid: str = "square"
+    overlap: float = 0.3
+    max_rotation: float = 30.0
+    vary_orientation: bool = False
+    boundary: str = "clip"
+    density_tolerance: float = 0.05
+    density_rounds: int = 12
+    disc_tries: int = 6
+
+    def __post_init__(self) -> None:
+        if self.grid not in ("square", "hex"):
+            raise ParameterError(f"--grid must be square or hex, not {self.grid!r}")
+        if not 0.0 <= self.overlap <= 0.5:
+            raise ParameterError(f"--overlap must be between 0 and 0.5, not {self.overlap:g}")
+        if not 0.0 <= self.max_rotation <= 180.0:
+            raise ParameterError(f"--max-rotation must be between 0 and 180 degrees, not {self.max_rotation:g}")
+        if self.boundary not in BOUNDARY_MODES:
+            raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {self.boundary!r}")
+        if not 0.0 < self.density_tolerance < 1.0:
+            raise ParameterError("density tolerance must be between 0 and 1")
+
+
+def synthesize(
+    exemplar: Exemplar,
+    region: Region,
+    *,
+    rng: np.random.Generator,
+    stats: Stats | None = None,
+    progress: Progress | None = None,
+    **params,
+) -> Arrangement:
+    """Fill ``region`` with a texture like ``exemplar`` (almeraj2013 §3).
+
+    Parameters
+    ----------
+    exemplar : the parsed exemplar
+    region : the output region
+    rng : the only source of randomness; one 63-bit key is drawn from it
+    stats : the exemplar's analysis, if already computed
+    progress : called as ``progress(stage, fraction)``
+    **params : fields of :class:`PatchParams`
+
+    Returns
+    -------
+    Arrangement with no overlaps and no distance-rule violations, filtered by the boundary mode.
+    """
+    p = PatchParams(**params)
+    stats = stats or analyze(exemplar)
+    report = progress or (lambda stage, fraction: None)
+    key = cellrng.root_key(rng)
+    protos = exemplar.prototypes
+
+    report("grid", 0.0)
+    arr, cell = grid(exemplar, region, key=key, grid_kind=p.grid, overlap=p.overlap, max_rotation=p.max_rotation)
+    if p.vary_orientation:
+        arr = vary_orientations(arr, stats, _uniform(key, _ORIENT, cell))
+    geoms = world_footprints(arr, protos)
+    inside = region.keep(geoms, arr.xy, p.boundary)
+    arr, cell, geoms = arr.take(inside), cell[inside], geoms[inside]
+
+    report("overlaps", 0.2)
+    keep = resolve(arr, protos, stats.distance, _uniform(key, _PRIORITY, cell), geoms)
+    arr, cell, geoms = arr.take(keep), cell[keep], geoms[keep]
+
+    arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
+    arr = _finish(arr, exemplar, stats, key)
+    report("done", 1.0)
+    return arr
+
+
+# ----------------------------------------------------------------------------- §3.2
+
+
+def grid(
+    exemplar: Exemplar, region: Region, *, key: int, grid_kind: str, overlap: float, max_rotation: float
+) -> tuple[Arrangement, np.ndarray]:
+    """Overlapping, rotated copies of the exemplar covering the region (almeraj2013 §3.2).
+
+    Copies sit at ``(a·sx, b·sy)`` in world coordinates, ``sx = w(1 − σ)``, ``sy = h(1 − σ)`` for
+    an input region of bounding size ``w × h``; the hexagonal layout shifts odd rows by ``sx/2``
+    and packs rows ``√3/2`` closer.  Copy ``(a, b)`` is rotated by θ = M(2u − 1), u a hash of the
+    cell, about its centre; each motif keeps its exemplar orientation (it is turned by −θ).
+
+    Returns
+    -------
+    arrangement : Arrangement of every copied motif near the region.
+    cell : (n, 3) int array, (a, b, index of the motif in the exemplar) for each motif.
+    """
+    x0, y0, x1, y1 = exemplar.region.bounds
+    w, h = x1 - x0, y1 - y0
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    sx = w * (1.0 - overlap)
+    sy = h * (1.0 - overlap) * (math.sqrt(3.0) / 2.0 if grid_kind == "hex" else 1.0)
+    motifs = exemplar.motifs
+    local = motifs.xy - centre
+    reach = float(np.hypot(local[:, 0], local[:, 1]).max() + motif_radius(motifs, exemplar.prototypes).max())
+
+    X0, Y0, X1, Y1 = region.bounds
+    b = np.arange(math.floor((Y0 - reach) / sy), math.ceil((Y1 + reach) / sy) + 1)
+    a = np.arange(math.floor((X0 - reach) / sx) - 1, math.ceil((X1 + reach) / sx) + 2)
+    A, B = np.meshgrid(a, b)
+    A, B = A.ravel(), B.ravel()
+    shift = (B % 2) * 0.5 if grid_kind == "hex" else 0.0
+    cx, cy = (A + shift) * sx, B * sy
+    near = (cx > X0 - reach - sx) & (cx < X1 + reach + sx) & (cy > Y0 - reach) & (cy < Y1 + reach)
+    A, B, cx, cy = A[near], B[near], cx[near], cy[near]
+
+    theta = max_rotation * (2.0 * cellrng.uniform(key, _ROTATE, A, B) - 1.0)
+    rot = rotation(theta)  # (c, 2, 2)
+    xy = np.einsum("cij,mj->cmi", rot, local) + np.stack([cx, cy], -1)[:, None, :]
+    c, m = len(A), len(motifs)
+    arr = Arrangement(
+        np.tile(motifs.kind, c), xy.reshape(-1, 2), np.tile(motifs.angle, c), np.tile(motifs.scale, c)
+    )
+    cell = np.stack([np.repeat(A, m), np.repeat(B, m), np.tile(np.arange(m), c)], -1)
+    radius = motif_radius(arr, exemplar.prototypes)
+    touch = (
+        (arr.xy[:, 0] + radius > X0) & (arr.xy[:, 0] - radius < X1)
+        & (arr.xy[:, 1] + radius > Y0) & (arr.xy[:, 1] - radius < Y1)
+    )  # fmt: skip
+    return arr.take(touch), cell[touch]
+
+
+# ----------------------------------------------------------------------------- §3.5
+
+
+def vary_orientations(arr: Arrangement, stats: Stats, u: np.ndarray) -> Arrangement:
+    """New orientations, uniform in each kind's exemplar arc (almeraj2013 §3.5).
+
+    A motif's position is its centroid, so changing its angle rotates it about its centroid.
+
+    Parameters
+    ----------
+    u : (n,) floats in [0, 1), one per motif.
+    """
+    angle = stats.arc_start[arr.kind] + u * stats.arc_width[arr.kind]
+    return arr.with_angle((angle + 180.0) % 360.0 - 180.0)
+
+
+# ----------------------------------------------------------------------------- §3.4
+
+
+def adjust_density(
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
+    key: int, progress: Progress,
+) -> Arrangement:  # fmt: skip
+    """Bring every exemplar-sized window to density ρ (almeraj2013 §3.4).
+
+    Windows the size of the input region's bounding box tile the plane from the world origin,
+    shifted by half a window every other round.  A window denser than ρ(1 + tol) loses random
+    motifs (rule violators and motifs of over-represented kinds first) until it is just above ρ;
+    a window sparser than ρ(1 − tol) receives the motifs of a disc of the exemplar, congruent to
+    the window's largest empty disc and placed at random over the exemplar, if they break neither
+    the overlap nor the distance rule.  Rounds stop when all windows are within tolerance for a
+    full cycle of offsets, or after ``p.density_rounds`` rounds.
+    """
+    x0, y0, x1, y1 = exemplar.region.bounds
+    size = np.array([x1 - x0, y1 - y0])
+    offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
+    protos = exemplar.prototypes
+    quiet = 0
+    for rnd in range(p.density_rounds):
+        progress("density", 0.3 + 0.7 * rnd / p.density_rounds)
+        windows = _windows(region, size, offsets[rnd % 4])
+        if windows is None:
+            break
+        origin, ids, area = windows
+        win = _window_of(arr.xy, origin, size, ids)
+        covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+        density = covered / area
+        dense = density > stats.density * (1 + p.density_tolerance)
+        sparse = density < stats.density * (1 - p.density_tolerance)
+        if not dense.any() and not sparse.any():
+            quiet += 1
+            if quiet >= 4:
+                break
+            continue
+        quiet = 0
+        if dense.any():
+            arr = _thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd)
+        if sparse.any():
+            arr = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)
+    return arr
+
+
+def _windows(region: Region, size: np.ndarray, offset: np.ndarray):
+    """Windows meeting the region: (origin, (w, 2) integer ids, (w,) area inside the region)."""
+    X0, Y0, X1, Y1 = region.bounds
+    ia = np.arange(math.floor((X0 - offset[0]) / size[0]), math.ceil((X1 - offset[0]) / size[0]))
+    ib = np.arange(math.floor((Y0 - offset[1]) / size[1]), math.ceil((Y1 - offset[1]) / size[1]))
+    IA, IB = (v.ravel() for v in np.meshgrid(ia, ib))
+    lo = offset + np.stack([IA, IB], -1) * size
+    boxes = shapely.box(lo[:, 0], lo[:, 1], lo[:, 0] + size[0], lo[:, 1] + size[1])
+    area = shapely.area(shapely.intersection(boxes, region.shape))
+    # a window mostly outside the region measures its border, not its density
+    full = area >= 0.5 * size[0] * size[1]
+    if not full.any():
+        return None
+    return offset, np.stack([IA, IB], -1)[full], area[full]
+
+
+def _window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """(n,) index into ``ids`` of the window holding each point, or -1."""
+    cell = np.floor((xy - origin) / size).astype(np.int64)
+    lo = ids.min(axis=0)
+    span = ids.max(axis=0) - lo + 1
+    table = np.full(span[0] * span[1], -1, dtype=np.int64)
+    table[(ids[:, 0] - lo[0]) * span[1] + (ids[:, 1] - lo[1])] = np.arange(len(ids))
+    rel = cell - lo
+    ok = (rel >= 0).all(axis=1) & (rel < span).all(axis=1)
+    out = np.full(len(xy), -1, dtype=np.int64)
+    out[ok] = table[rel[ok, 0] * span[1] + rel[ok, 1]]
+    return out
+
+
+def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> Arrangement:
+    """Remove random motifs from dense windows until each is just above its target area."""
+    area = footprint_areas(arr, protos)
+    cand = np.flatnonzero((win >= 0) & dense[np.maximum(win, 0)])
+    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
+    surplus = (freq - stats.frequency)[arr.kind[cand]]
+    u = cellrng.uniform(key, _REMOVE, rnd, _cell_key(arr.xy[cand]))
+    order = np.lexsort((u - surplus, win[cand]))  # per window, over-represented kinds first
+    cand = cand[order]
+    w = win[cand]
+    covered = np.bincount(w, weights=area[cand], minlength=len(dense))
+    starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
+    csum = np.cumsum(area[cand])
+    removed = csum - np.repeat(csum[starts] - area[cand][starts], np.diff(np.r_[starts, len(w)]))
+    remove = covered[w] - removed >= target[w]  # a prefix of each window: stops just above ρ
+    keep = np.ones(len(arr), dtype=bool)
+    keep[cand[remove]] = False
+    return arr.take(keep)
+
+
+def _cell_key(xy: np.ndarray) -> np.ndarray:
+    """A world-anchored integer per position (to derive per-motif randomness from)."""
+    q = np.round(xy * 1e3).astype(np.int64)
+    return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
+
+
+def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int) -> Arrangement:
+    """Paste exemplar discs into the largest empty disc of each sparse window."""
+    protos = exemplar.prototypes
+    centre, radius = _largest_empty_discs(arr, protos, region, origin, size, ids)
+    min_r = min(pr.radius for pr in protos)
+    ok = radius > min_r
+    if not ok.any():
+        return arr
+    ids, centre, radius = ids[ok], centre[ok], radius[ok]
+
+    ex = exemplar.motifs
+    x0, y0, x1, y1 = exemplar.region.bounds
+    wins, tries = len(ids), p.disc_tries
+    wid = np.repeat(np.arange(wins), tries)
+    tid = np.tile(np.arange(tries), wins)
+    u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
+    r = radius[wid]
+    lo = np.stack([x0 + np.minimum(r, (x1 - x0) / 2), y0 + np.minimum(r, (y1 - y0) / 2)], -1)
+    hi = np.stack([x1 - np.minimum(r, (x1 - x0) / 2), y1 - np.minimum(r, (y1 - y0) / 2)], -1)
+    source = lo + u * (hi - lo)  # (t, 2) disc centres over the exemplar
+
+    tree = cKDTree(ex.xy)
+    hits = tree.query_ball_point(source, r)
+    counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
+    if counts.sum() == 0:
+        return arr
+    t_of = np.repeat(np.arange(len(hits)), counts)
+    e_of = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits if h])
+    theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
+    rot = rotation(theta[t_of])
+    offset = np.einsum("nij,nj->ni", rot, ex.xy[e_of] - source[t_of])
+    new = Arrangement(ex.kind[e_of], centre[wid[t_of]] + offset, ex.angle[e_of], ex.scale[e_of])
+    if p.vary_orientation:
+        new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
+    new_geoms = world_footprints(new, protos)
+    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, world_footprints(arr, protos))
+    outside = ~region.keep(new_geoms, new.xy, p.boundary)
+
+    # choose per window: the first try pasted whole, else the try with the most valid area
+    area = footprint_areas(new, protos)
+    good_area = np.bincount(t_of, weights=np.where(bad | outside, 0.0, area), minlength=len(hits))
+    n_bad = np.bincount(t_of, weights=bad.astype(float), minlength=len(hits))
+    whole = (n_bad == 0) & (good_area > 0)
+    score = np.where(whole, 1e12 - tid, good_area)  # whole tries first, earlier tries first
+    best = np.full(wins, -1)
+    order = np.lexsort((score, wid))
+    last = np.r_[np.flatnonzero(np.diff(wid[order])), len(order) - 1]
+    best[wid[order][last]] = order[last]
+    chosen = best[wid[t_of]] == t_of
+    take = chosen & ~bad & ~outside & (good_area[t_of] > 0)
+    new, new_geoms = new.take(take), new_geoms[take]
+    if len(new) == 0:
+        return arr
+    # pastes from neighbouring windows may meet: break those conflicts too
+    prio = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), prio)
+    return Arrangement.concat([arr, new.take(keep)])
+
+
+def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples: int = 24):
+    """Centre and radius of (approximately) the largest empty disc in each window.
+
+    Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
+    of its distance to every footprint (distance to the nearest centroids minus their bounding
+    radius, and the window's edges), so the returned disc is empty.
+    """
+    g = (np.arange(samples) + 0.5) / samples
+    gx, gy = (v.ravel() for v in np.meshgrid(g, g))
+    lo = origin + ids * size  # (w, 2)
+    pts = lo[:, None, :] + np.stack([gx, gy], -1)[None, :, :] * size  # (w, s, 2)
+    pts = pts.reshape(-1, 2)
+    owner = np.repeat(np.arange(len(ids)), len(gx))
+    edge = np.minimum(
+        np.minimum(pts[:, 0] - lo[owner, 0], lo[owner, 0] + size[0] - pts[:, 0]),
+        np.minimum(pts[:, 1] - lo[owner, 1], lo[owner, 1] + size[1] - pts[:, 1]),
+    )
+    clear = edge.copy()
+    if len(arr):
+        radius = motif_radius(arr, protos)
+        k = min(8, len(arr))
+        dist, idx = cKDTree(arr.xy).query(pts, k=k)
+        dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
+        bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
+        clear = np.minimum(clear, bound)
+    clear[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+    order = np.lexsort((clear, owner))
+    last = np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]
+    best = order[last]
+    return pts[best], np.maximum(clear[best], 0.0)
+
+
+# ----------------------------------------------------------------------------- final check
+
+
+def _finish(arr: Arrangement, exemplar: Exemplar, stats: Stats, key: int) -> Arrangement:
+    """Round to the output precision and re-check, so the written file obeys every rule."""
+    arr = Arrangement(arr.kind, np.round(arr.xy, DECIMALS), np.round(arr.angle, DECIMALS), arr.scale)
+    order = np.lexsort((arr.xy[:, 0], arr.xy[:, 1]))
+    arr = arr.take(order)
+    prio = cellrng.uniform(key, _PRIORITY, -1, _cell_key(arr.xy))
+    keep = cull(len(arr), find_conflicts(arr, exemplar.prototypes, stats.distance), prio)
+    return arr.take(keep)
+
+
+def _uniform(key: int, stream: int, cell: np.ndarray) -> np.ndarray:
+    return cellrng.uniform(key, stream, cell[:, 0], cell[:, 1], cell[:, 2])
