@@ -54,6 +54,12 @@ class Arrangement:
     def with_angle(self, angle: np.ndarray) -> Arrangement:
         return Arrangement(self.kind, self.xy, angle, self.scale)
 
+    def quantized(self, decimals: int = 4) -> Arrangement:
+        """Rounded to the output's precision, so what is checked is exactly what is written."""
+        return Arrangement(
+            self.kind, np.round(self.xy, decimals), np.round(self.angle, decimals), np.round(self.scale, decimals)
+        )
+
     @staticmethod
     def concat(parts: list[Arrangement]) -> Arrangement:
         parts = [p for p in parts if len(p)]

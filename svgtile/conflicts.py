@@ -67,9 +67,13 @@ def find_conflicts(
         geoms = world_footprints(arr, protos)
     eps = slack(protos)
     i, j = near_pairs(arr.xy, motif_radius(arr, protos), distance + eps, arr.kind)
-    dist = shapely.distance(geoms[i], geoms[j])
+    # pairs whose inscribed discs overlap surely share area: no exact distance needed
+    inner = motif_radius(arr, protos, inner=True)
+    sure = np.hypot(*(arr.xy[i] - arr.xy[j]).T) < inner[i] + inner[j]
+    dist = np.zeros(len(i))
+    dist[~sure] = shapely.distance(geoms[i[~sure]], geoms[j[~sure]])
     violation = dist < distance[arr.kind[i], arr.kind[j]] - eps
-    overlap = overlapping(geoms, i, j, dist)
+    overlap = sure | overlapping(geoms, i, j, np.where(sure, 1.0, dist))
     keep = violation | overlap
     return Conflicts(i[keep], j[keep], dist[keep], overlap[keep], violation[keep])
 

@@ -45,10 +45,15 @@ from ..region import BOUNDARY_MODES, Region
 
 Progress = Callable[[str, float], None]
 
+
 # hash streams: one per independent random choice
 _ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
 
-#: Decimals of positions and angles in the output; the final check runs on rounded values.
+#: How strongly density thinning favours removing kinds the texture has too many of.
+KIND_BALANCE = 4.0
+
+#: Decimals of positions, angles and scales in the output.  Motifs are rounded when they are
+#: created, so every check runs on exactly what is written.
 DECIMALS = 4
 
 
@@ -81,8 +86,8 @@ class PatchParams:
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"
-    density_tolerance: float = 0.05
-    density_rounds: int = 12
+    density_tolerance: float = 0.1
+    density_rounds: int = 8
     disc_tries: int = 6
 
     def __post_init__(self) -> None:
@@ -140,8 +145,8 @@ def synthesize(
     keep = resolve(arr, protos, stats.distance, _uniform(key, _PRIORITY, cell), geoms)
     arr, cell, geoms = arr.take(keep), cell[keep], geoms[keep]
 
-    arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
-    arr = _finish(arr, exemplar, stats, key)
+    arr = adjust_density(arr, geoms, exemplar, stats, region, p, key=key, progress=report)
+    arr = _finish(arr)
     report("done", 1.0)
     return arr
 
@@ -185,11 +190,11 @@ def grid(
 
     theta = max_rotation * (2.0 * cellrng.uniform(key, _ROTATE, A, B) - 1.0)
     rot = rotation(theta)  # (c, 2, 2)
-    xy = np.einsum("cij,mj->cmi", rot, local) + np.stack([cx, cy], -1)[:, None, :]
+    xy = np.matmul(rot, local.T).transpose(0, 2, 1) + np.stack([cx, cy], -1)[:, None, :]
     c, m = len(A), len(motifs)
     arr = Arrangement(
         np.tile(motifs.kind, c), xy.reshape(-1, 2), np.tile(motifs.angle, c), np.tile(motifs.scale, c)
-    )
+    ).quantized(DECIMALS)
     cell = np.stack([np.repeat(A, m), np.repeat(B, m), np.tile(np.arange(m), c)], -1)
     radius = motif_radius(arr, exemplar.prototypes)
     touch = (
@@ -212,14 +217,14 @@ def vary_orientations(arr: Arrangement, stats: Stats, u: np.ndarray) -> Arrangem
     u : (n,) floats in [0, 1), one per motif.
     """
     angle = stats.arc_start[arr.kind] + u * stats.arc_width[arr.kind]
-    return arr.with_angle((angle + 180.0) % 360.0 - 180.0)
+    return arr.with_angle((angle + 180.0) % 360.0 - 180.0).quantized(DECIMALS)
 
 
 # ----------------------------------------------------------------------------- §3.4
 
 
 def adjust_density(
-    arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
+    arr: Arrangement, geoms: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
     key: int, progress: Progress,
 ) -> Arrangement:  # fmt: skip
     """Bring every exemplar-sized window to density ρ (almeraj2013 §3.4).
@@ -231,6 +236,8 @@ def adjust_density(
     the window's largest empty disc and placed at random over the exemplar, if they break neither
     the overlap nor the distance rule.  Rounds stop when all windows are within tolerance for a
     full cycle of offsets, or after ``p.density_rounds`` rounds.
+
+    ``geoms`` are the world footprints of ``arr``; they are carried along, not rebuilt.
     """
     x0, y0, x1, y1 = exemplar.region.bounds
     size = np.array([x1 - x0, y1 - y0])
@@ -255,9 +262,11 @@ def adjust_density(
             continue
         quiet = 0
         if dense.any():
-            arr = _thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd)
+            keep = _thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd)
+            arr, geoms = arr.take(keep), geoms[keep]
         if sparse.any():
-            arr = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)
+            new, new_geoms = _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)
+            arr, geoms = Arrangement.concat([arr, new]), np.concatenate([geoms, new_geoms])
     return arr
 
 
@@ -291,14 +300,20 @@ def _window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.nda
     return out
 
 
-def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> Arrangement:
-    """Remove random motifs from dense windows until each is just above its target area."""
+def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> np.ndarray:
+    """Remove random motifs from dense windows until each is just above its target area.
+
+    Returns the (n,) mask of motifs kept.
+    """
     area = footprint_areas(arr, protos)
     cand = np.flatnonzero((win >= 0) & dense[np.maximum(win, 0)])
+    # weighted random order (Efraimidis & Spirakis 2006): kinds over-represented against the
+    # exemplar's frequencies are removed first, which repairs the kind mix culling skewed
     freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
-    surplus = (freq - stats.frequency)[arr.kind[cand]]
+    weight = (np.maximum(freq, 1e-9) / np.maximum(stats.frequency, 1e-9)) ** KIND_BALANCE
     u = cellrng.uniform(key, _REMOVE, rnd, _cell_key(arr.xy[cand]))
-    order = np.lexsort((u - surplus, win[cand]))  # per window, over-represented kinds first
+    rank = np.log(np.maximum(u, 1e-300)) / weight[arr.kind[cand]]
+    order = np.lexsort((-rank, win[cand]))  # per window, highest rank first
     cand = cand[order]
     w = win[cand]
     covered = np.bincount(w, weights=area[cand], minlength=len(dense))
@@ -308,7 +323,7 @@ def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> Arra
     remove = covered[w] - removed >= target[w]  # a prefix of each window: stops just above ρ
     keep = np.ones(len(arr), dtype=bool)
     keep[cand[remove]] = False
-    return arr.take(keep)
+    return keep
 
 
 def _cell_key(xy: np.ndarray) -> np.ndarray:
@@ -317,14 +332,18 @@ def _cell_key(xy: np.ndarray) -> np.ndarray:
     return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
 
 
-def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int) -> Arrangement:
-    """Paste exemplar discs into the largest empty disc of each sparse window."""
+def _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int):
+    """Paste exemplar discs into the largest empty disc of each sparse window.
+
+    Returns the pasted motifs and their footprints (to be added to ``arr`` and ``geoms``).
+    """
     protos = exemplar.prototypes
     centre, radius = _largest_empty_discs(arr, protos, region, origin, size, ids)
     min_r = min(pr.radius for pr in protos)
     ok = radius > min_r
+    nothing = (Arrangement.empty(), np.empty(0, dtype=object))
     if not ok.any():
-        return arr
+        return nothing
     ids, centre, radius = ids[ok], centre[ok], radius[ok]
 
     ex = exemplar.motifs
@@ -342,17 +361,17 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: 
     hits = tree.query_ball_point(source, r)
     counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
     if counts.sum() == 0:
-        return arr
+        return nothing
     t_of = np.repeat(np.arange(len(hits)), counts)
     e_of = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits if h])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
     rot = rotation(theta[t_of])
-    offset = np.einsum("nij,nj->ni", rot, ex.xy[e_of] - source[t_of])
-    new = Arrangement(ex.kind[e_of], centre[wid[t_of]] + offset, ex.angle[e_of], ex.scale[e_of])
+    offset = np.matmul(rot, (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
+    new = Arrangement(ex.kind[e_of], centre[wid[t_of]] + offset, ex.angle[e_of], ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
         new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
     new_geoms = world_footprints(new, protos)
-    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, world_footprints(arr, protos))
+    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, geoms)
     outside = ~region.keep(new_geoms, new.xy, p.boundary)
 
     # choose per window: the first try pasted whole, else the try with the most valid area
@@ -369,14 +388,14 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: 
     take = chosen & ~bad & ~outside & (good_area[t_of] > 0)
     new, new_geoms = new.take(take), new_geoms[take]
     if len(new) == 0:
-        return arr
+        return nothing
     # pastes from neighbouring windows may meet: break those conflicts too
     prio = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
     keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), prio)
-    return Arrangement.concat([arr, new.take(keep)])
+    return new.take(keep), new_geoms[keep]
 
 
-def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples: int = 24):
+def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples: int = 16):
     """Centre and radius of (approximately) the largest empty disc in each window.
 
     Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
@@ -396,7 +415,7 @@ def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples
     clear = edge.copy()
     if len(arr):
         radius = motif_radius(arr, protos)
-        k = min(8, len(arr))
+        k = min(6, len(arr))
         dist, idx = cKDTree(arr.xy).query(pts, k=k)
         dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
         bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
@@ -411,14 +430,9 @@ def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples
 # ----------------------------------------------------------------------------- final check
 
 
-def _finish(arr: Arrangement, exemplar: Exemplar, stats: Stats, key: int) -> Arrangement:
-    """Round to the output precision and re-check, so the written file obeys every rule."""
-    arr = Arrangement(arr.kind, np.round(arr.xy, DECIMALS), np.round(arr.angle, DECIMALS), arr.scale)
-    order = np.lexsort((arr.xy[:, 0], arr.xy[:, 1]))
-    arr = arr.take(order)
-    prio = cellrng.uniform(key, _PRIORITY, -1, _cell_key(arr.xy))
-    keep = cull(len(arr), find_conflicts(arr, exemplar.prototypes, stats.distance), prio)
-    return arr.take(keep)
+def _finish(arr: Arrangement) -> Arrangement:
+    """Motifs in reading order (rows, then columns): a stable, diff-friendly output."""
+    return arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
 
 
 def _uniform(key: int, stream: int, cell: np.ndarray) -> np.ndarray:
