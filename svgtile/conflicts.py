@@ -18,7 +18,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from .arrangement import Arrangement
-from .footprint import Prototype, motif_radius, near_pairs, overlapping, world_footprints
+from .footprint import Prototype, motif_radius, near_pairs, world_footprints
 
 #: Slack on the distance rule, relative to the largest motif radius: distances are compared after
 #: output rounding, and GEOS distances carry float noise.
@@ -32,14 +32,12 @@ class Conflicts:
     Attributes
     ----------
     i, j : (p,) int arrays, ``i < j``
-    distance : (p,) float array, footprint distance of each pair, user units
     overlap : (p,) bool array, footprints share area
     violation : (p,) bool array, distance below ``d_ij`` (overlaps included when ``d_ij > 0``)
     """
 
     i: np.ndarray
     j: np.ndarray
-    distance: np.ndarray
     overlap: np.ndarray
     violation: np.ndarray
 
@@ -49,6 +47,11 @@ class Conflicts:
 
 def slack(protos: list[Prototype]) -> float:
     return RULE_SLACK * max(p.radius for p in protos)
+
+
+#: Conflicts are searched band by band of about this many motifs, so that only one band's
+#: footprints are in memory at a time; the pairs found are exactly those of a single pass.
+BAND_MOTIFS = 150_000
 
 
 def find_conflicts(
@@ -61,34 +64,75 @@ def find_conflicts(
     arr : Arrangement
     protos : kind prototypes
     distance : (k, k) float array, the ``d_ij`` matrix
-    geoms : (n,) world footprints of ``arr`` if already built
+    geoms : (n,) world footprints of ``arr`` if already built; otherwise they are built band by
+        band (horizontal bands of :data:`BAND_MOTIFS` motifs plus a halo as wide as the largest
+        possible conflict), and a pair is reported by the band of its lower motif only.
     """
-    if geoms is None:
-        geoms = world_footprints(arr, protos)
+    if geoms is not None or len(arr) <= BAND_MOTIFS:
+        return _conflicts(arr, protos, distance, geoms)
+    reach = 2 * motif_radius(arr, protos).max() + distance.max() + 2 * slack(protos)
+    y = arr.xy[:, 1]
+    edges = np.quantile(y, np.linspace(0, 1, len(arr) // BAND_MOTIFS + 2)[1:-1])
+    band = np.searchsorted(edges, y, side="right")
+    bounds = np.r_[-np.inf, edges, np.inf]
+    parts = []
+    for b in range(len(edges) + 1):
+        sel = np.flatnonzero((y >= bounds[b] - reach) & (y < bounds[b + 1] + reach))
+        c = _conflicts(arr.take(sel), protos, distance, None)
+        gi, gj = sel[c.i], sel[c.j]
+        mine = np.minimum(band[gi], band[gj]) == b
+        parts.append(Conflicts(gi[mine], gj[mine], c.overlap[mine], c.violation[mine]))
+    return Conflicts(*(np.concatenate([getattr(p, f) for p in parts]) for f in ("i", "j", "overlap", "violation")))
+
+
+def _conflicts(arr, protos, distance, geoms) -> Conflicts:
+    """:func:`find_conflicts` in one pass."""
     eps = slack(protos)
     i, j = near_pairs(arr.xy, motif_radius(arr, protos), distance + eps, arr.kind)
-    # pairs whose inscribed discs overlap surely share area: no exact distance needed
+    swap = i > j
+    i[swap], j[swap] = j[swap], i[swap]
+    # pairs whose inscribed discs overlap surely share area: no footprint needed
     inner = motif_radius(arr, protos, inner=True)
     sure = np.hypot(*(arr.xy[i] - arr.xy[j]).T) < inner[i] + inner[j]
-    dist = np.zeros(len(i))
-    dist[~sure] = shapely.distance(geoms[i[~sure]], geoms[j[~sure]])
-    violation = dist < distance[arr.kind[i], arr.kind[j]] - eps
-    overlap = sure | overlapping(geoms, i, j, np.where(sure, 1.0, dist))
+    need = np.unique(np.concatenate([i[~sure], j[~sure]]))
+    if geoms is None:
+        geoms = np.empty(len(arr), dtype=object)
+        geoms[need] = world_footprints(arr.take(need), protos)
+    close, share = _test_pairs(geoms[i[~sure]], geoms[j[~sure]], distance[arr.kind[i], arr.kind[j]][~sure] - eps)
+    violation, overlap = sure.copy(), sure.copy()
+    violation[~sure], overlap[~sure] = close, share
     keep = violation | overlap
-    return Conflicts(i[keep], j[keep], dist[keep], overlap[keep], violation[keep])
+    return Conflicts(i[keep], j[keep], overlap[keep], violation[keep])
+
+
+def _test_pairs(a: np.ndarray, b: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exact tests of footprint pairs: (closer than ``reach``, sharing area), each (p,) bool."""
+    positive = reach > 0
+    close = np.zeros(len(a), dtype=bool)
+    close[positive] = shapely.dwithin(a[positive], b[positive], reach[positive])
+    check = close | ~positive
+    share = np.zeros(len(a), dtype=bool)
+    share[check] = shapely.intersects(a[check], b[check])
+    if share.any():
+        share[share] = ~shapely.touches(a[share], b[share])
+    return close & positive, share
 
 
 def cross_conflicts(
     new: Arrangement, old: Arrangement, protos: list[Prototype], distance: np.ndarray,
-    new_geoms: np.ndarray, old_geoms: np.ndarray,
+    new_geoms: np.ndarray, tree: cKDTree | None = None,
 ) -> np.ndarray:  # fmt: skip
-    """(len(new),) bool: does each new motif conflict with any motif of ``old``?"""
+    """(len(new),) bool: does each new motif conflict with any motif of ``old``?
+
+    ``tree`` is a k-d tree of ``old.xy`` if one is at hand; footprints of ``old`` are built only
+    for the motifs near a new one.
+    """
     bad = np.zeros(len(new), dtype=bool)
     if len(new) == 0 or len(old) == 0:
         return bad
     eps = slack(protos)
     r_new, r_old = motif_radius(new, protos), motif_radius(old, protos)
-    tree = cKDTree(old.xy)
+    tree = tree or cKDTree(old.xy)
     hits = tree.query_ball_point(new.xy, r_new + r_old.max() + distance.max() + eps)
     lengths = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
     if lengths.sum() == 0:
@@ -99,12 +143,10 @@ def cross_conflicts(
     gap = np.hypot(*(new.xy[a] - old.xy[b]).T) - r_new[a] - r_old[b]
     near = gap < d_rule + eps
     a, b, d_rule = a[near], b[near], d_rule[near]
-    dist = shapely.distance(new_geoms[a], old_geoms[b])
-    hit = dist < d_rule - eps
-    zero = (dist <= 0) & ~hit
-    if zero.any():
-        hit[zero] = ~shapely.touches(new_geoms[a[zero]], old_geoms[b[zero]])
-    np.logical_or.at(bad, a[hit], True)
+    used, b_local = np.unique(b, return_inverse=True)
+    old_geoms = world_footprints(old.take(used), protos)
+    close, share = _test_pairs(new_geoms[a], old_geoms[b_local], d_rule - eps)
+    np.logical_or.at(bad, a[close | share], True)
     return bad
 
 
@@ -164,4 +206,4 @@ def resolve(
 
 
 def _subset(c: Conflicts, mask: np.ndarray) -> Conflicts:
-    return Conflicts(c.i[mask], c.j[mask], c.distance[mask], c.overlap[mask], c.violation[mask])
+    return Conflicts(c.i[mask], c.j[mask], c.overlap[mask], c.violation[mask])

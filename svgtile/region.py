@@ -15,7 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from .arrangement import Arrangement
 from .errors import RegionError
+from .footprint import Prototype, motif_radius, world_footprints
 
 BOUNDARY_MODES = ("inside", "centroid", "clip", "none")
 
@@ -50,22 +52,35 @@ class Region:
     def area(self) -> float:
         return float(self.shape.area)
 
-    def keep(self, geoms: np.ndarray, xy: np.ndarray, mode: str) -> np.ndarray:
+    def keep(
+        self, arr: Arrangement, protos: list[Prototype], mode: str, geoms: np.ndarray | None = None
+    ) -> np.ndarray:
         """(n,) bool: which motifs the boundary mode keeps.
+
+        Footprints are only built (unless given as ``geoms``) for motifs whose bounding disc
+        meets the boundary; the others are decided by their centroid alone.
 
         Parameters
         ----------
-        geoms : (n,) world footprints
-        xy : (n, 2) centroids
+        arr : the motifs
+        protos : kind prototypes
         mode : one of :data:`BOUNDARY_MODES`
+        geoms : (n,) world footprints of ``arr``, optional
         """
-        if mode == "inside":
-            return shapely.contains(self.shape, geoms)
-        if mode == "centroid":
-            return shapely.contains_xy(self.shape, xy[:, 0], xy[:, 1])
-        if mode in ("clip", "none"):
-            return shapely.intersects(self.shape, geoms)
-        raise ValueError(f"unknown boundary mode {mode!r}")
+        if mode not in BOUNDARY_MODES:
+            raise ValueError(f"unknown boundary mode {mode!r}")
+        x, y = arr.xy[:, 0], arr.xy[:, 1]
+        if mode == "centroid" or len(arr) == 0:
+            return shapely.contains_xy(self.shape, x, y)
+        r = float(motif_radius(arr, protos).max())
+        surely_in = shapely.contains_xy(shapely.buffer(self.shape, -r), x, y)
+        surely_out = ~shapely.contains_xy(shapely.buffer(self.shape, r), x, y)
+        unsure = np.flatnonzero(~surely_in & ~surely_out)
+        found = geoms[unsure] if geoms is not None else world_footprints(arr.take(unsure), protos)
+        test = shapely.contains if mode == "inside" else shapely.intersects
+        result = surely_in.copy()
+        result[unsure] = test(self.shape, found)
+        return result
 
     def interior(self, margin: float) -> shapely.Geometry:
         """The region shrunk by ``margin`` (where border effects cannot reach)."""

@@ -137,15 +137,13 @@ def synthesize(
     arr, cell = grid(exemplar, region, key=key, grid_kind=p.grid, overlap=p.overlap, max_rotation=p.max_rotation)
     if p.vary_orientation:
         arr = vary_orientations(arr, stats, _uniform(key, _ORIENT, cell))
-    geoms = world_footprints(arr, protos)
-    inside = region.keep(geoms, arr.xy, p.boundary)
-    arr, cell, geoms = arr.take(inside), cell[inside], geoms[inside]
+    inside = region.keep(arr, protos, p.boundary)
+    arr, cell = arr.take(inside), cell[inside]
 
     report("overlaps", 0.2)
-    keep = resolve(arr, protos, stats.distance, _uniform(key, _PRIORITY, cell), geoms)
-    arr, cell, geoms = arr.take(keep), cell[keep], geoms[keep]
+    arr = arr.take(resolve(arr, protos, stats.distance, _uniform(key, _PRIORITY, cell)))
 
-    arr = adjust_density(arr, geoms, exemplar, stats, region, p, key=key, progress=report)
+    arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
     arr = _finish(arr)
     report("done", 1.0)
     return arr
@@ -224,7 +222,7 @@ def vary_orientations(arr: Arrangement, stats: Stats, u: np.ndarray) -> Arrangem
 
 
 def adjust_density(
-    arr: Arrangement, geoms: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
     key: int, progress: Progress,
 ) -> Arrangement:  # fmt: skip
     """Bring every exemplar-sized window to density ρ (almeraj2013 §3.4).
@@ -236,8 +234,6 @@ def adjust_density(
     the window's largest empty disc and placed at random over the exemplar, if they break neither
     the overlap nor the distance rule.  Rounds stop when all windows are within tolerance for a
     full cycle of offsets, or after ``p.density_rounds`` rounds.
-
-    ``geoms`` are the world footprints of ``arr``; they are carried along, not rebuilt.
     """
     x0, y0, x1, y1 = exemplar.region.bounds
     size = np.array([x1 - x0, y1 - y0])
@@ -262,11 +258,11 @@ def adjust_density(
             continue
         quiet = 0
         if dense.any():
-            keep = _thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd)
-            arr, geoms = arr.take(keep), geoms[keep]
+            arr = arr.take(_thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd))
         if sparse.any():
-            new, new_geoms = _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)
-            arr, geoms = Arrangement.concat([arr, new]), np.concatenate([geoms, new_geoms])
+            arr = Arrangement.concat(
+                [arr, _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)]
+            )
     return arr
 
 
@@ -332,16 +328,14 @@ def _cell_key(xy: np.ndarray) -> np.ndarray:
     return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
 
 
-def _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int):
-    """Paste exemplar discs into the largest empty disc of each sparse window.
-
-    Returns the pasted motifs and their footprints (to be added to ``arr`` and ``geoms``).
-    """
+def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int) -> Arrangement:
+    """The motifs to paste into the largest empty disc of each sparse window."""
     protos = exemplar.prototypes
-    centre, radius = _largest_empty_discs(arr, protos, region, origin, size, ids)
+    tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False) if len(arr) else None
+    centre, radius = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
     min_r = min(pr.radius for pr in protos)
     ok = radius > min_r
-    nothing = (Arrangement.empty(), np.empty(0, dtype=object))
+    nothing = Arrangement.empty()
     if not ok.any():
         return nothing
     ids, centre, radius = ids[ok], centre[ok], radius[ok]
@@ -357,8 +351,7 @@ def _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids, *, key: int
     hi = np.stack([x1 - np.minimum(r, (x1 - x0) / 2), y1 - np.minimum(r, (y1 - y0) / 2)], -1)
     source = lo + u * (hi - lo)  # (t, 2) disc centres over the exemplar
 
-    tree = cKDTree(ex.xy)
-    hits = tree.query_ball_point(source, r)
+    hits = cKDTree(ex.xy).query_ball_point(source, r)
     counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
     if counts.sum() == 0:
         return nothing
@@ -371,8 +364,8 @@ def _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids, *, key: int
     if p.vary_orientation:
         new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
     new_geoms = world_footprints(new, protos)
-    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, geoms)
-    outside = ~region.keep(new_geoms, new.xy, p.boundary)
+    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, tree)
+    outside = ~region.keep(new, protos, p.boundary, new_geoms)
 
     # choose per window: the first try pasted whole, else the try with the most valid area
     area = footprint_areas(new, protos)
@@ -392,10 +385,10 @@ def _fill(arr, geoms, exemplar, stats, region, p, origin, size, ids, *, key: int
     # pastes from neighbouring windows may meet: break those conflicts too
     prio = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
     keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), prio)
-    return new.take(keep), new_geoms[keep]
+    return new.take(keep)
 
 
-def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples: int = 16):
+def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 16):
     """Centre and radius of (approximately) the largest empty disc in each window.
 
     Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
@@ -416,7 +409,7 @@ def _largest_empty_discs(arr, protos, region: Region, origin, size, ids, samples
     if len(arr):
         radius = motif_radius(arr, protos)
         k = min(6, len(arr))
-        dist, idx = cKDTree(arr.xy).query(pts, k=k)
+        dist, idx = tree.query(pts, k=k)
         dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
         bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
         clear = np.minimum(clear, bound)
