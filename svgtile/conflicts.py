@@ -20,9 +20,9 @@ from scipy.spatial import cKDTree
 from .arrangement import Arrangement
 from .footprint import Prototype, motif_radius, near_pairs, world_footprints
 
-#: Slack on the distance rule, relative to the largest motif radius: distances are compared after
-#: output rounding, and GEOS distances carry float noise.
-RULE_SLACK = 1e-6
+#: Slack on the distance rule, user units: positions are rounded to 1e-4 units for output, so
+#: two motifs exactly d_ij apart in the exemplar may come up to ~1.5e-4 closer in a copy.
+RULE_SLACK = 2e-4
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,7 +46,8 @@ class Conflicts:
 
 
 def slack(protos: list[Prototype]) -> float:
-    return RULE_SLACK * max(p.radius for p in protos)
+    """Tolerance of the distance rule (output rounding of positions and angles), user units."""
+    return RULE_SLACK + 1e-6 * max(p.radius for p in protos)
 
 
 #: Conflicts are searched band by band of about this many motifs, so that only one band's
@@ -151,13 +152,19 @@ def cross_conflicts(
 
 
 def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray | None = None) -> np.ndarray:
-    """Remove motifs until no pair of ``conflicts`` has both ends kept.
+    """Remove motifs until no pair of ``conflicts`` has both ends kept, removing as few as it can.
+
+    The kept set is the greedy maximal independent set of the conflict graph taken in order of
+    increasing score: a motif is kept unless a lower-scored kept motif conflicts with it.  It is
+    computed in parallel rounds (Luby 1986): every undecided motif that scores below all its
+    undecided neighbours is kept and its neighbours are removed.  Every removed motif thus has a
+    kept neighbour it conflicted with — nothing is removed in vain.
 
     Parameters
     ----------
     n : number of motifs.
     conflicts : the pairs to break.
-    priority : (n,) float array in [0, 1); among equals the higher priority is removed first.
+    priority : (n,) float array; the higher is removed first.
     prefer : (n,) float array ≥ 0, optional; a motif with a larger value is removed first
         (e.g. 1 for motifs that violate the distance rule, almeraj2013 §3.3).
 
@@ -165,44 +172,59 @@ def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray 
     -------
     (n,) bool array: the motifs kept.
     """
+    if prefer is not None:  # prefer dominates: one unit of it outweighs any spread of priority
+        priority = priority + prefer * (np.ptp(priority) + 1.0 if len(priority) else 1.0)
+    score = np.argsort(np.argsort(priority, kind="stable"), kind="stable")  # unique ranks: no ties
     keep = np.ones(n, dtype=bool)
+    undecided = np.zeros(n, dtype=bool)
     i, j = conflicts.i, conflicts.j
-    score = priority + (0.0 if prefer is None else 2.0 * prefer)
-    score = np.argsort(np.argsort(score, kind="stable"), kind="stable")  # unique ranks: no ties
+    undecided[i] = undecided[j] = True
     while len(i):
-        live = keep[i] & keep[j]
+        lowest = np.full(n, n)
+        np.minimum.at(lowest, i, score[j])
+        np.minimum.at(lowest, j, score[i])
+        chosen = undecided & (score < lowest)
+        undecided &= ~chosen
+        loser = np.zeros(n, dtype=bool)
+        loser[j[chosen[i]]] = loser[i[chosen[j]]] = True
+        keep &= ~loser
+        undecided &= ~loser
+        live = undecided[i] & undecided[j]
         i, j = i[live], j[live]
-        if len(i) == 0:
-            break
-        best_neighbour = np.full(n, -1)
-        np.maximum.at(best_neighbour, i, score[j])
-        np.maximum.at(best_neighbour, j, score[i])
-        involved = np.zeros(n, dtype=bool)
-        involved[i] = involved[j] = True
-        keep &= ~(involved & (score > best_neighbour))
     return keep
 
 
 def resolve(
-    arr: Arrangement, protos: list[Prototype], distance: np.ndarray, priority: np.ndarray,
-    geoms: np.ndarray | None = None,
+    arr: Arrangement, protos: list[Prototype], distance: np.ndarray, priority: np.ndarray, *,
+    frequency: np.ndarray | None = None, balance_rounds: int = 4,
 ) -> np.ndarray:  # fmt: skip
     """Overlap resolution then the distance rule (almeraj2013 §3.3, §3.1); returns the kept mask.
 
     First every overlapping pair loses one motif, preferring a motif that violates the distance
-    rule against its non-overlapping neighbours; then the remaining violations are broken,
-    removing first the motifs with the most violations.
+    rule against its non-overlapping neighbours; then the remaining violations are broken.
+
+    Large motifs meet more conflicts than small ones, so plain culling skews the kind mix.  Given
+    the exemplar's kind ``frequency``, the culling is re-run ``balance_rounds`` times with a
+    per-kind shift of the removal order, each time moving the kept frequencies towards the
+    exemplar's (the conflicts are found once; re-culling is cheap).
     """
-    found = find_conflicts(arr, protos, distance, geoms)
+    found = find_conflicts(arr, protos, distance)
     n = len(arr)
     violator = np.zeros(n)
     side = found.violation & ~found.overlap
     violator[found.i[side]] = violator[found.j[side]] = 1.0
     over = _subset(found, found.overlap)
-    keep = cull(n, over, priority, violator)
-    rest = _subset(found, found.violation & keep[found.i] & keep[found.j])
-    degree = np.bincount(np.concatenate([rest.i, rest.j]), minlength=n).astype(np.float64)
-    return keep & cull(n, rest, priority, degree)
+    k = len(protos)
+    shift = np.zeros(k)
+    for _ in range(balance_rounds if frequency is not None else 1):
+        score = priority + shift[arr.kind]
+        keep = cull(n, over, score, violator)
+        keep &= cull(n, _subset(found, found.violation & keep[found.i] & keep[found.j]), score)
+        if frequency is None or not keep.any():
+            break
+        kept = np.bincount(arr.kind[keep], minlength=k) / keep.sum()
+        shift = np.clip(shift + 0.5 * np.log(np.maximum(kept, 1e-6) / np.maximum(frequency, 1e-6)), -1.0, 1.0)
+    return keep
 
 
 def _subset(c: Conflicts, mask: np.ndarray) -> Conflicts:

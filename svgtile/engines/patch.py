@@ -73,12 +73,15 @@ class PatchParams:
         Draw each motif's orientation from its kind's exemplar arc (§3.5).
     boundary : one of ``inside``, ``centroid``, ``clip``, ``none``
         How motifs meet the output region's boundary (see :mod:`svgtile.region`).
+    coherence : float in [0, 1]
+        Weight, against chance, of removing the motif farther from its own copy's centre when
+        two conflict (§3.3): copies stay whole near their centres and meet along seams.
     density_tolerance : float
         Windows whose density is within ρ(1 ± tolerance) are left alone (§3.4).
     density_rounds : int
         At most this many density-adjustment rounds.
     disc_tries : int
-        Exemplar discs tried per sparse window and round (§3.4).
+        Exemplar placements tried per sparse window and round (§3.4).
     """
 
     grid: str = "square"
@@ -86,6 +89,7 @@ class PatchParams:
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"
+    coherence: float = 0.5
     density_tolerance: float = 0.1
     density_rounds: int = 8
     disc_tries: int = 6
@@ -99,6 +103,8 @@ class PatchParams:
             raise ParameterError(f"--max-rotation must be between 0 and 180 degrees, not {self.max_rotation:g}")
         if self.boundary not in BOUNDARY_MODES:
             raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {self.boundary!r}")
+        if not 0.0 <= self.coherence <= 1.0:
+            raise ParameterError(f"coherence must be between 0 and 1, not {self.coherence:g}")
         if not 0.0 < self.density_tolerance < 1.0:
             raise ParameterError("density tolerance must be between 0 and 1")
 
@@ -141,7 +147,8 @@ def synthesize(
     arr, cell = arr.take(inside), cell[inside]
 
     report("overlaps", 0.2)
-    arr = arr.take(resolve(arr, protos, stats.distance, _uniform(key, _PRIORITY, cell)))
+    priority = p.coherence * _from_centre(exemplar)[cell[:, 2]] + (1 - p.coherence) * _uniform(key, _PRIORITY, cell)
+    arr = arr.take(resolve(arr, protos, stats.distance, priority, frequency=stats.frequency))
 
     arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
     arr = _finish(arr)
@@ -260,9 +267,11 @@ def adjust_density(
         if dense.any():
             arr = arr.take(_thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd))
         if sparse.any():
-            arr = Arrangement.concat(
-                [arr, _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], key=key, rnd=rnd)]
-            )
+            win = _window_of(arr.xy, origin, size, ids)
+            covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+            deficit = (stats.density * area - covered)[sparse]
+            new = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], deficit, key=key, rnd=rnd)
+            arr = Arrangement.concat([arr, new])
     return arr
 
 
@@ -328,64 +337,67 @@ def _cell_key(xy: np.ndarray) -> np.ndarray:
     return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
 
 
-def _fill(arr, exemplar, stats, region, p, origin, size, ids, *, key: int, rnd: int) -> Arrangement:
-    """The motifs to paste into the largest empty disc of each sparse window."""
+def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: int, rnd: int) -> Arrangement:
+    """The motifs to insert into each sparse window (almeraj2013 §3.4, "too sparse").
+
+    For each window, the largest empty disc is found and a congruent disc is placed at random
+    over the exemplar, as in the paper; the exemplar is then superimposed so that the two discs
+    coincide (turned by θ ~ U[−M, M], motifs turned back, as for the grid copies).  Its motifs
+    inside the window are the candidates: those in the empty disc first (the paper's insertion),
+    then the rest, which fill the window's smaller holes in the same pass.  A candidate is
+    rejected if it would overlap or break the distance rule (motif by motif, so one bad motif at
+    the rim does not waste the whole disc); of the rest, a conflict-free set is taken, favouring
+    kinds the texture lacks, until the window's ``deficit`` of footprint area is met.
+    ``p.disc_tries`` placements are tried per window.
+    """
     protos = exemplar.prototypes
     tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False) if len(arr) else None
     centre, radius = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
-    min_r = min(pr.radius for pr in protos)
-    ok = radius > min_r
-    nothing = Arrangement.empty()
-    if not ok.any():
-        return nothing
-    ids, centre, radius = ids[ok], centre[ok], radius[ok]
 
     ex = exemplar.motifs
     x0, y0, x1, y1 = exemplar.region.bounds
-    wins, tries = len(ids), p.disc_tries
+    wins, tries, m = len(ids), p.disc_tries, len(ex)
     wid = np.repeat(np.arange(wins), tries)
     tid = np.tile(np.arange(tries), wins)
     u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
-    r = radius[wid]
-    lo = np.stack([x0 + np.minimum(r, (x1 - x0) / 2), y0 + np.minimum(r, (y1 - y0) / 2)], -1)
-    hi = np.stack([x1 - np.minimum(r, (x1 - x0) / 2), y1 - np.minimum(r, (y1 - y0) / 2)], -1)
-    source = lo + u * (hi - lo)  # (t, 2) disc centres over the exemplar
-
-    hits = cKDTree(ex.xy).query_ball_point(source, r)
-    counts = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
-    if counts.sum() == 0:
-        return nothing
-    t_of = np.repeat(np.arange(len(hits)), counts)
-    e_of = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits if h])
+    r = np.minimum(radius[wid, None], np.array([(x1 - x0) / 2, (y1 - y0) / 2]))
+    source = np.array([x0, y0]) + r + u * (np.array([x1 - x0, y1 - y0]) - 2 * r)  # disc centres over the exemplar
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
-    rot = rotation(theta[t_of])
-    offset = np.matmul(rot, (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
-    new = Arrangement(ex.kind[e_of], centre[wid[t_of]] + offset, ex.angle[e_of], ex.scale[e_of]).quantized(DECIMALS)
+
+    # every exemplar motif of every placement, then those whose centroid falls in the window
+    t_of = np.repeat(np.arange(len(wid)), m)
+    e_of = np.tile(np.arange(m), len(wid))
+    offset = np.matmul(rotation(theta)[t_of], (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
+    xy = centre[wid[t_of]] + offset
+    lo = origin + ids[wid[t_of]] * size
+    inside = ((xy >= lo) & (xy < lo + size)).all(axis=1)
+    t_of, e_of, xy = t_of[inside], e_of[inside], xy[inside]
+    new = Arrangement(ex.kind[e_of], xy, ex.angle[e_of], ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
         new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
-    new_geoms = world_footprints(new, protos)
-    bad = cross_conflicts(new, arr, protos, stats.distance, new_geoms, tree)
-    outside = ~region.keep(new, protos, p.boundary, new_geoms)
-
-    # choose per window: the first try pasted whole, else the try with the most valid area
-    area = footprint_areas(new, protos)
-    good_area = np.bincount(t_of, weights=np.where(bad | outside, 0.0, area), minlength=len(hits))
-    n_bad = np.bincount(t_of, weights=bad.astype(float), minlength=len(hits))
-    whole = (n_bad == 0) & (good_area > 0)
-    score = np.where(whole, 1e12 - tid, good_area)  # whole tries first, earlier tries first
-    best = np.full(wins, -1)
-    order = np.lexsort((score, wid))
-    last = np.r_[np.flatnonzero(np.diff(wid[order])), len(order) - 1]
-    best[wid[order][last]] = order[last]
-    chosen = best[wid[t_of]] == t_of
-    take = chosen & ~bad & ~outside & (good_area[t_of] > 0)
-    new, new_geoms = new.take(take), new_geoms[take]
     if len(new) == 0:
-        return nothing
-    # pastes from neighbouring windows may meet: break those conflicts too
-    prio = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
-    keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), prio)
-    return new.take(keep)
+        return new
+    new_geoms = world_footprints(new, protos)
+    ok = ~cross_conflicts(new, arr, protos, stats.distance, new_geoms, tree)
+    ok &= region.keep(new, protos, p.boundary, new_geoms)
+    new, new_geoms, t_of = new.take(ok), new_geoms[ok], t_of[ok]
+
+    # a conflict-free subset: motifs of the empty disc first, then kinds the texture lacks
+    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
+    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))
+    in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
+    score = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy)) + np.clip(lack[new.kind], -1, 1) - 2.0 * in_disc
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), score)
+    new, score, w = new.take(keep), score[keep], wid[t_of[keep]]
+
+    # per window, in score order, until its deficit of covered area is met
+    order = np.lexsort((score, w))
+    new, w = new.take(order), w[order]
+    area = footprint_areas(new, protos)
+    csum = np.cumsum(area)
+    starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1] if len(w) else np.zeros(0, np.int64)
+    before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
+    return new.take(before < deficit[w])
 
 
 def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 16):
@@ -426,6 +438,13 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
 def _finish(arr: Arrangement) -> Arrangement:
     """Motifs in reading order (rows, then columns): a stable, diff-friendly output."""
     return arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
+
+
+def _from_centre(exemplar: Exemplar) -> np.ndarray:
+    """(m,) distance of each exemplar motif from the input region's centre, scaled to [0, 1]."""
+    x0, y0, x1, y1 = exemplar.region.bounds
+    d = np.hypot(exemplar.motifs.xy[:, 0] - (x0 + x1) / 2, exemplar.motifs.xy[:, 1] - (y0 + y1) / 2)
+    return d / max(float(d.max()), 1e-12)
 
 
 def _uniform(key: int, stream: int, cell: np.ndarray) -> np.ndarray:
