@@ -94,7 +94,7 @@ def _conflicts(arr, protos, distance, geoms) -> Conflicts:
     i[swap], j[swap] = j[swap], i[swap]
     # pairs whose inscribed discs overlap surely share area: no footprint needed
     inner = motif_radius(arr, protos, inner=True)
-    sure = np.hypot(*(arr.xy[i] - arr.xy[j]).T) < inner[i] + inner[j]
+    sure = (inner[i] > 0) & (inner[j] > 0) & (np.hypot(*(arr.xy[i] - arr.xy[j]).T) < inner[i] + inner[j])
     need = np.unique(np.concatenate([i[~sure], j[~sure]]))
     if geoms is None:
         geoms = np.empty(len(arr), dtype=object)
@@ -121,34 +121,58 @@ def _test_pairs(a: np.ndarray, b: np.ndarray, reach: np.ndarray) -> tuple[np.nda
 
 def cross_conflicts(
     new: Arrangement, old: Arrangement, protos: list[Prototype], distance: np.ndarray,
-    new_geoms: np.ndarray, tree: cKDTree | None = None,
+    tree: cKDTree | None = None,
 ) -> np.ndarray:  # fmt: skip
-    """(len(new),) bool: does each new motif conflict with any motif of ``old``?
-
-    ``tree`` is a k-d tree of ``old.xy`` if one is at hand; footprints of ``old`` are built only
-    for the motifs near a new one.
-    """
+    """(len(new),) bool: does each new motif conflict with any motif of ``old``?"""
+    a, _ = cross_pairs(new, old, protos, distance, tree, complete=False)
     bad = np.zeros(len(new), dtype=bool)
+    bad[a] = True
+    return bad
+
+
+def cross_pairs(
+    new: Arrangement, old: Arrangement, protos: list[Prototype], distance: np.ndarray,
+    tree: cKDTree | None = None, *, complete: bool = True,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Conflicting pairs ``(a, b)``: motif ``new[a]`` overlaps or is too close to ``old[b]``.
+
+    ``tree`` is a k-d tree of ``old.xy`` if one is at hand.  Footprints are built only for the
+    pairs that bounding and inscribed discs cannot decide.  With ``complete=False`` a new motif
+    already known to conflict is not tested further (enough to tell which new motifs conflict).
+    """
+    none = np.zeros(0, np.int64)
     if len(new) == 0 or len(old) == 0:
-        return bad
+        return none, none
     eps = slack(protos)
     r_new, r_old = motif_radius(new, protos), motif_radius(old, protos)
     tree = tree or cKDTree(old.xy)
-    hits = tree.query_ball_point(new.xy, r_new + r_old.max() + distance.max() + eps)
-    lengths = np.fromiter((len(h) for h in hits), dtype=np.int64, count=len(hits))
-    if lengths.sum() == 0:
-        return bad
-    a = np.repeat(np.arange(len(new)), lengths)
-    b = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits if h])
-    d_rule = distance[new.kind[a], old.kind[b]]
-    gap = np.hypot(*(new.xy[a] - old.xy[b]).T) - r_new[a] - r_old[b]
-    near = gap < d_rule + eps
-    a, b, d_rule = a[near], b[near], d_rule[near]
-    used, b_local = np.unique(b, return_inverse=True)
-    old_geoms = world_footprints(old.take(used), protos)
-    close, share = _test_pairs(new_geoms[a], old_geoms[b_local], d_rule - eps)
-    np.logical_or.at(bad, a[close | share], True)
-    return bad
+    reach = r_new.max() + r_old.max() + distance.max() + eps
+    pairs = cKDTree(new.xy).sparse_distance_matrix(tree, reach, output_type="ndarray")
+    a, b, centre = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64), pairs["v"]
+    d_rule = distance[new.kind[a], old.kind[b]] - eps
+    near = centre - r_new[a] - r_old[b] < d_rule + 2 * eps
+    a, b, centre, d_rule = a[near], b[near], centre[near], d_rule[near]
+    # inscribed discs give an upper bound of the footprint distance: below the rule, surely bad
+    # (valid only when both centroids lie inside their footprints, i.e. both radii are positive)
+    in_a, in_b = motif_radius(new, protos, inner=True)[a], motif_radius(old, protos, inner=True)[b]
+    sure = (in_a > 0) & (in_b > 0) & (centre - in_a - in_b < np.maximum(d_rule, 0.0))
+    test = ~sure
+    if not complete:
+        known = np.zeros(len(new), dtype=bool)
+        known[a[sure]] = True
+        test &= ~known[a]
+    ta, tb = a[test], b[test]
+    hit = np.zeros(len(ta), dtype=bool)
+    if len(ta):
+        used_a, a_local = np.unique(ta, return_inverse=True)
+        used_b, b_local = np.unique(tb, return_inverse=True)
+        close, share = _test_pairs(
+            world_footprints(new.take(used_a), protos)[a_local],
+            world_footprints(old.take(used_b), protos)[b_local],
+            d_rule[test],
+        )
+        hit = close | share
+    return np.r_[a[sure], ta[hit]], np.r_[b[sure], tb[hit]]
 
 
 def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray | None = None) -> np.ndarray:

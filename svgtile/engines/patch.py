@@ -37,7 +37,7 @@ from scipy.spatial import cKDTree
 from .. import cellrng
 from ..analysis import Stats, analyze, footprint_areas
 from ..arrangement import Arrangement
-from ..conflicts import cross_conflicts, cull, find_conflicts, resolve
+from ..conflicts import cross_pairs, cull, find_conflicts, resolve
 from ..errors import ParameterError
 from ..exemplar import Exemplar
 from ..footprint import motif_radius, rotation, world_footprints
@@ -51,6 +51,12 @@ _ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
 
 #: How strongly density thinning favours removing kinds the texture has too many of.
 KIND_BALANCE = 4.0
+
+#: How strongly density filling favours kinds the texture lacks (against chance, which weighs 1).
+LACK_WEIGHT = 3.0
+
+#: At most this many motifs may be displaced by one motif of a lacking kind (§3.4 insertion).
+DISPLACE_MAX = 5
 
 #: Decimals of positions, angles and scales in the output.  Motifs are rounded when they are
 #: created, so every check runs on exactly what is written.
@@ -270,8 +276,8 @@ def adjust_density(
             win = _window_of(arr.xy, origin, size, ids)
             covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
             deficit = (stats.density * area - covered)[sparse]
-            new = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], deficit, key=key, rnd=rnd)
-            arr = Arrangement.concat([arr, new])
+            new, removed = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], deficit, key=key, rnd=rnd)
+            arr = Arrangement.concat([arr.take(~removed), new])
     return arr
 
 
@@ -337,7 +343,7 @@ def _cell_key(xy: np.ndarray) -> np.ndarray:
     return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
 
 
-def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: int, rnd: int) -> Arrangement:
+def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: int, rnd: int):
     """The motifs to insert into each sparse window (almeraj2013 §3.4, "too sparse").
 
     For each window, the largest empty disc is found and a congruent disc is placed at random
@@ -348,7 +354,13 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     rejected if it would overlap or break the distance rule (motif by motif, so one bad motif at
     the rim does not waste the whole disc); of the rest, a conflict-free set is taken, favouring
     kinds the texture lacks, until the window's ``deficit`` of footprint area is met.
-    ``p.disc_tries`` placements are tried per window.
+    ``p.disc_tries`` placements are tried per window; every other one is centred on a motif of
+    the kind the texture lacks most, which may displace a few motifs (see :func:`_displacement`).
+
+    Returns
+    -------
+    new : Arrangement of the motifs to insert
+    removed : (len(arr),) bool, the motifs they displace
     """
     protos = exemplar.prototypes
     tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False) if len(arr) else None
@@ -362,6 +374,13 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
     r = np.minimum(radius[wid, None], np.array([(x1 - x0) / 2, (y1 - y0) / 2]))
     source = np.array([x0, y0]) + r + u * (np.array([x1 - x0, y1 - y0]) - 2 * r)  # disc centres over the exemplar
+    # every other try centres the exemplar on a motif of the kind the texture lacks most, so the
+    # largest empty disc receives the motif hardest to place (usually the largest)
+    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
+    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))
+    lacking = np.flatnonzero(ex.kind == int(np.argmin(np.where(stats.frequency > 0, lack, np.inf))))
+    pick = lacking[(u[:, 0] * len(lacking)).astype(np.int64) % len(lacking)]
+    source = np.where((tid % 2 == 1)[:, None], ex.xy[pick], source)
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
 
     # every exemplar motif of every placement, then those whose centroid falls in the window
@@ -376,28 +395,80 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     if p.vary_orientation:
         new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
     if len(new) == 0:
-        return new
-    new_geoms = world_footprints(new, protos)
-    ok = ~cross_conflicts(new, arr, protos, stats.distance, new_geoms, tree)
-    ok &= region.keep(new, protos, p.boundary, new_geoms)
-    new, new_geoms, t_of = new.take(ok), new_geoms[ok], t_of[ok]
-
-    # a conflict-free subset: motifs of the empty disc first, then kinds the texture lacks
-    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
-    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))
+        return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
-    score = cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy)) + np.clip(lack[new.kind], -1, 1) - 2.0 * in_disc
-    keep = cull(len(new), find_conflicts(new, protos, stats.distance, new_geoms), score)
-    new, score, w = new.take(keep), score[keep], wid[t_of[keep]]
+    bad_a, bad_b = cross_pairs(new, arr, protos, stats.distance, tree, complete=False)
+    ok = np.ones(len(new), dtype=bool)
+    ok[bad_a] = False
+    ok &= region.keep(new, protos, p.boundary)
+    displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, in_disc & ~ok & (tid[t_of] % 2 == 1), wid[t_of])
+    ok |= displace
+
+    # a conflict-free subset: displacing motifs, then motifs of the empty disc, then kinds the
+    # texture lacks
+    orig = np.flatnonzero(ok)
+    new, t_of, in_disc, displace = new.take(ok), t_of[ok], in_disc[ok], displace[ok]
+    score = (
+        cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
+        + LACK_WEIGHT * (np.clip(lack[new.kind], -1, 1) - 2.0 * in_disc)
+        - 8.0 * LACK_WEIGHT * displace
+    )
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance), score)
+    new, score, w, orig, displace = new.take(keep), score[keep], wid[t_of[keep]], orig[keep], displace[keep]
 
     # per window, in score order, until its deficit of covered area is met
     order = np.lexsort((score, w))
-    new, w = new.take(order), w[order]
+    new, w, orig, displace = new.take(order), w[order], orig[order], displace[order]
     area = footprint_areas(new, protos)
     csum = np.cumsum(area)
     starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1] if len(w) else np.zeros(0, np.int64)
     before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
-    return new.take(before < deficit[w])
+    take = (before < deficit[w]) | displace
+    removed = np.isin(victim_of, orig[take & displace]) & (victim_of >= 0)
+    return new.take(take), removed
+
+
+def _displacement(new, arr, stats, protos, tree, lack, candidate, window):
+    """Which candidates may take their place by removing the few motifs in their way.
+
+    A kind hard to place (large, with wide distances) finds no empty disc big enough once
+    culling has packed the small kinds around it, so the texture lacks it for good.  A candidate
+    of the kind the texture lacks most, centred in a window's largest empty disc, may displace up
+    to DISPLACE_MAX conflicting motifs of kinds the texture has enough of and whose area together is
+    smaller than its own — one per window and round.
+
+    Returns
+    -------
+    displace : (len(new),) bool, the candidates that displace
+    victim_of : (len(arr),) int, the candidate displacing each motif, or -1
+    """
+    displace = np.zeros(len(new), dtype=bool)
+    victim_of = np.full(len(arr), -1, dtype=np.int64)
+    idx = np.flatnonzero(candidate)
+    if len(idx) == 0:
+        return displace, victim_of
+    a, b = cross_pairs(new.take(idx), arr, protos, stats.distance, tree)
+    area_new = footprint_areas(new, protos)[idx]
+    area_old = footprint_areas(arr, protos)
+    count = np.bincount(a, minlength=len(idx))
+    cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
+    scarce = np.bincount(a, weights=(lack[arr.kind[b]] < 0).astype(float), minlength=len(idx))
+    good = (count <= DISPLACE_MAX) & (cost < area_new) & (scarce == 0) & (count > 0)
+    # one per window: the first good candidate; and no motif displaced twice
+    first = np.full(window.max() + 1, -1)
+    for c in idx[good][::-1]:  # a loop over windows' few candidates, not over motifs
+        first[window[c]] = c
+    chosen = first[first >= 0]
+    local = {int(c): k for k, c in enumerate(idx)}
+    sel = np.isin(a, [local[int(c)] for c in chosen])
+    owners = np.unique(a[sel])
+    for k in owners:
+        victims = b[a == k]
+        if (victim_of[victims] >= 0).any():
+            continue
+        victim_of[victims] = idx[k]
+        displace[idx[k]] = True
+    return displace, victim_of
 
 
 def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 16):
