@@ -18,7 +18,6 @@ from scipy.spatial import cKDTree
 
 from .arrangement import Arrangement
 
-
 #: Outline tolerance of prototypes, relative to the motif's radius (see Prototype.from_geometry).
 SIMPLIFY = 0.025
 

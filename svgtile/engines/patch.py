@@ -37,10 +37,10 @@ from scipy.spatial import cKDTree
 from .. import cellrng
 from ..analysis import Stats, analyze, footprint_areas
 from ..arrangement import Arrangement
-from ..conflicts import cross_pairs, cull, find_conflicts, resolve
+from ..conflicts import cross_conflicts, cross_pairs, cull, find_conflicts, resolve
 from ..errors import ParameterError
 from ..exemplar import Exemplar
-from ..footprint import motif_radius, rotation, world_footprints
+from ..footprint import motif_radius, rotation
 from ..region import BOUNDARY_MODES, Region
 
 Progress = Callable[[str, float], None]
@@ -397,9 +397,7 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     if len(new) == 0:
         return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
-    bad_a, bad_b = cross_pairs(new, arr, protos, stats.distance, tree, complete=False)
-    ok = np.ones(len(new), dtype=bool)
-    ok[bad_a] = False
+    ok = ~cross_conflicts(new, arr, protos, stats.distance, tree)
     ok &= region.keep(new, protos, p.boundary)
     displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, in_disc & ~ok & (tid[t_of] % 2 == 1), wid[t_of])
     ok |= displace
