@@ -146,9 +146,15 @@ def cross_pairs(
     eps = slack(protos)
     r_new, r_old = motif_radius(new, protos), motif_radius(old, protos)
     tree = tree or cKDTree(old.xy)
-    reach = r_new.max() + r_old.max() + distance.max() + eps
-    pairs = cKDTree(new.xy).sparse_distance_matrix(tree, reach, output_type="ndarray")
-    a, b, centre = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64), pairs["v"]
+    # one neighbour query per kind of new motif, each with the reach that kind can need
+    parts = []
+    r_kind = np.array([p.radius for p in protos])
+    for k in np.unique(new.kind):
+        idx = np.flatnonzero(new.kind == k)
+        reach = r_new[idx].max() + float((r_kind * old.scale.max() + distance[k]).max()) + eps
+        pairs = cKDTree(new.xy[idx]).sparse_distance_matrix(tree, reach, output_type="ndarray")
+        parts.append((idx[pairs["i"]], pairs["j"].astype(np.int64), pairs["v"]))
+    a, b, centre = (np.concatenate(x) for x in zip(*parts, strict=True))
     d_rule = distance[new.kind[a], old.kind[b]] - eps
     near = centre - r_new[a] - r_old[b] < d_rule + 2 * eps
     a, b, centre, d_rule = a[near], b[near], centre[near], d_rule[near]

@@ -397,6 +397,14 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     if len(new) == 0:
         return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
+    if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
+        near, idx = tree.query(new.xy, k=1)
+        inner = np.array([pr.inner for pr in protos])
+        a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
+        bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
+        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(stats.distance[new.kind, arr.kind[idx]], 0))
+        clash &= ~in_disc  # those may still displace (see _displacement)
+        new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     ok = ~cross_conflicts(new, arr, protos, stats.distance, tree)
     ok &= region.keep(new, protos, p.boundary)
     displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, in_disc & ~ok & (tid[t_of] % 2 == 1), wid[t_of])
@@ -469,7 +477,7 @@ def _displacement(new, arr, stats, protos, tree, lack, candidate, window):
     return displace, victim_of
 
 
-def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 16):
+def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 12):
     """Centre and radius of (approximately) the largest empty disc in each window.
 
     Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
