@@ -405,10 +405,11 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
         clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(stats.distance[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
-    ok = ~cross_conflicts(new, arr, protos, stats.distance, tree)
-    ok &= region.keep(new, protos, p.boundary)
-    displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, in_disc & ~ok & (tid[t_of] % 2 == 1), wid[t_of])
-    ok |= displace
+    free = ~cross_conflicts(new, arr, protos, stats.distance, tree)
+    inside = region.keep(new, protos, p.boundary)
+    candidate = in_disc & ~free & inside & (tid[t_of] % 2 == 1)
+    displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, candidate, wid[t_of])
+    ok = (free & inside) | displace
 
     # a conflict-free subset: displacing motifs, then motifs of the empty disc, then kinds the
     # texture lacks
