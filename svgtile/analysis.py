@@ -79,9 +79,11 @@ def distance_matrix(arr: Arrangement, protos: list[Prototype]) -> tuple[np.ndarr
     """The symmetric matrix ``d_ij`` of almeraj2013 §3.1, exactly.
 
     ``d_ij`` is the minimum footprint distance over all pairs of an instance of kind i and a
-    different instance of kind j.  Candidate pairs come from :func:`near_pairs` with a reach that
-    doubles until every kind pair that has instances found a pair within it; a pair found within
-    the reach is the true minimum, since every closer pair passes the bounding-disc filter.
+    different instance of kind j.  Neighbours (bounding discs closer than the largest motif
+    radius) are measured first; this settles every kind pair found closer than that reach and
+    counts the overlaps.  The kind pairs left, whose instances are far apart, are settled by
+    branch and bound (:func:`_far_minimum`), so a sparse exemplar with many kinds does not cost a
+    distance for every pair of motifs.
 
     A kind pair the exemplar cannot measure (a kind with one instance has no i–i pair) falls back
     to the smaller of the two kinds' smallest measured distances to any kind, and to 0 when
@@ -99,26 +101,136 @@ def distance_matrix(arr: Arrangement, protos: list[Prototype]) -> tuple[np.ndarr
     counts = np.bincount(arr.kind, minlength=k)
     possible = np.outer(counts, counts) - np.diag(counts) > 0
     distance = np.full((k, k), np.inf)
-    span = float(np.ptp(arr.xy, axis=0).max()) if len(arr) else 0.0
     reach = max(float(radius.max(initial=0.0)), 1e-9)
-    overlaps = 0
-    while True:
-        i, j = near_pairs(arr.xy, radius, reach)
-        dist = shapely.distance(geoms[i], geoms[j])
-        found = dist < reach
-        ki, kj = arr.kind[i][found], arr.kind[j][found]
-        np.minimum.at(distance, (ki, kj), dist[found])
-        np.minimum.at(distance, (kj, ki), dist[found])
-        if np.isfinite(distance[possible]).all() or reach > 2 * (span + 2 * radius.max(initial=0.0)):
-            overlaps = int(overlapping(geoms, i, j, dist).sum())
-            break
-        reach *= 2
+    i, j = near_pairs(arr.xy, radius, reach)
+    dist = shapely.distance(geoms[i], geoms[j])
+    overlaps = int(overlapping(geoms, i, j, dist).sum())
+    ki, kj = arr.kind[i], arr.kind[j]
+    np.minimum.at(distance, (ki, kj), dist)
+    np.minimum.at(distance, (kj, ki), dist)
+    # a minimum below the reach is exact: every closer pair passed the bounding-disc filter
+    todo = np.triu(possible & ~(distance < reach))
+    if todo.any():
+        a, b = np.nonzero(todo)
+        best = _far_minimum(arr, protos, geoms, radius, a, b, distance[a, b], reach)
+        distance[a, b] = distance[b, a] = best
     measured = np.isfinite(distance)
     row_min = np.where(measured, distance, np.inf).min(axis=1)
     fallback = np.minimum.outer(row_min, row_min)
     fallback[~np.isfinite(fallback)] = 0.0
     distance = np.where(measured, distance, fallback)
     return distance, measured, overlaps
+
+
+#: Most motif pairs :func:`_kind_pairs` holds in memory at once.
+_CHUNK = 1 << 22
+
+
+def _far_minimum(
+    arr: Arrangement,
+    protos: list[Prototype],
+    geoms: np.ndarray,
+    radius: np.ndarray,
+    ka: np.ndarray,
+    kb: np.ndarray,
+    upper: np.ndarray,
+    reach: float,
+) -> np.ndarray:
+    """Exact minimum footprint distance for the kind pairs ``(ka[t], kb[t])``.
+
+    Branch and bound over the motif pairs of those kinds: the distance of a pair is at least its
+    bounding-disc gap ``|xy_i - xy_j| - r_i - r_j`` and at most the distance between one point of
+    each footprint.  Kind pairs without an upper bound get one from those points; then only motif
+    pairs whose gap is below their kind pair's bound are measured, smallest gaps first, while the
+    bound tightens, until no such pair is left.  Candidates of kind pairs with a small bound come
+    from the k-d tree (:func:`near_pairs`), the others from a scan of their motifs' pairs.
+
+    Parameters
+    ----------
+    ka, kb : (t,) int arrays, kind pairs.
+    upper : (t,) float array, a known upper bound of each (``inf`` if none).
+    reach : float, user units; bounds up to a few times this count as small.
+
+    Returns
+    -------
+    (t,) float array; ``inf`` where the kinds have no such pair.
+    """
+    k = len(protos)
+    best = np.asarray(upper, dtype=np.float64).copy()
+
+    def ids(select: np.ndarray) -> np.ndarray:
+        """(k, k) index into ``best`` of the selected kind pairs, -1 elsewhere."""
+        out = np.full((k, k), -1, dtype=np.int64)
+        t = np.flatnonzero(select)
+        out[ka[t], kb[t]] = out[kb[t], ka[t]] = t
+        return out
+
+    unbounded = ~np.isfinite(best)
+    if unbounded.any():
+        inside = np.array([shapely.get_coordinates(shapely.point_on_surface(p.geometry()))[0] for p in protos])
+        turn = np.radians(arr.angle)
+        c, s = np.cos(turn) * arr.scale, np.sin(turn) * arr.scale
+        loc = inside[arr.kind]
+        point = arr.xy + np.stack([c * loc[:, 0] - s * loc[:, 1], s * loc[:, 0] + c * loc[:, 1]], axis=1)
+        # widen a k-d tree search while it stays local, then scan what is left
+        span = float(np.ptp(arr.xy, axis=0).max())
+        grow = 2 * reach
+        while unbounded.any() and grow <= span / 2:
+            sub = np.flatnonzero((ids(unbounded) >= 0).any(axis=1)[arr.kind])
+            bound = np.where(ids(unbounded) >= 0, grow, -np.inf)
+            i, j = near_pairs(arr.xy[sub], radius[sub], bound, arr.kind[sub])
+            i, j = sub[i], sub[j]
+            t = ids(unbounded)[arr.kind[i], arr.kind[j]]
+            np.minimum.at(best, t[t >= 0], np.hypot(*(point[i] - point[j]).T)[t >= 0])
+            unbounded = ~np.isfinite(best)
+            grow *= 2
+        if unbounded.any():
+            for i, j, t in _kind_pairs(arr.kind, ids(unbounded)):
+                np.minimum.at(best, t, np.hypot(*(point[i] - point[j]).T))
+    small = best <= 4 * reach
+    found = []
+    if small.any():
+        bound = np.full((k, k), -np.inf)
+        bound[ka[small], kb[small]] = bound[kb[small], ka[small]] = best[small]
+        i, j = near_pairs(arr.xy, radius, bound, arr.kind)
+        found.append((i, j, ids(small)[arr.kind[i], arr.kind[j]]))
+    if (~small).any():
+        found.extend(_kind_pairs(arr.kind, ids(~small)))
+    i, j, t = (np.concatenate(p) for p in zip(*found, strict=True))
+    gap = np.hypot(*(arr.xy[i] - arr.xy[j]).T) - radius[i] - radius[j]
+    keep = gap < best[t]
+    order = np.lexsort((gap[keep], t[keep]))
+    i, j, t, gap = i[keep][order], j[keep][order], t[keep][order], gap[keep][order]
+    done = np.zeros(len(i), dtype=bool)
+    batch = 1
+    while True:
+        live = np.flatnonzero(~done & (gap < best[t]))
+        if len(live) == 0:
+            return best
+        # the `batch` smallest gaps of every kind pair still open
+        first = np.r_[True, t[live[1:]] != t[live[:-1]]]
+        start = np.maximum.accumulate(np.where(first, np.arange(len(live)), 0))
+        take = live[np.arange(len(live)) - start < batch]
+        np.minimum.at(best, t[take], shapely.distance(geoms[i[take]], geoms[j[take]]))
+        done[take] = True
+        batch *= 2
+
+
+def _kind_pairs(kind: np.ndarray, ids: np.ndarray):
+    """Motif pairs ``i < j`` whose kind pair has ``ids[kind_i, kind_j] >= 0``, in chunks.
+
+    Yields ``(i, j, ids[kind_i, kind_j])`` int arrays; scans the pairs of the motifs whose kind
+    takes part, ``_CHUNK`` at a time.
+    """
+    involved = np.flatnonzero((ids >= 0).any(axis=1)[kind])
+    rows = max(1, _CHUNK // max(len(involved), 1))
+    for start in range(0, len(involved), rows):
+        block = involved[start : start + rows]
+        i = np.repeat(block, len(involved))
+        j = np.tile(involved, len(block))
+        t = ids[kind[i], kind[j]]
+        keep = (i < j) & (t >= 0)
+        yield i[keep], j[keep], t[keep]
 
 
 def orientation_arcs(angle: np.ndarray, kind: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -148,7 +260,12 @@ def orientation_arcs(angle: np.ndarray, kind: np.ndarray, k: int) -> tuple[np.nd
     return start, width
 
 
-def in_arcs(angle: np.ndarray, kind: np.ndarray, stats: Stats, tol: float = 1e-6) -> np.ndarray:
-    """(n,) bool: does each motif's orientation lie in its kind's arc?"""
+#: Degrees an orientation may lie outside its arc and still count as in it: angles are written with
+#: 4 decimals, so an exemplar angle at the end of an arc may come back 5e-5 outside.
+ARC_TOLERANCE = 1e-4
+
+
+def in_arcs(angle: np.ndarray, kind: np.ndarray, stats: Stats, tol: float = ARC_TOLERANCE) -> np.ndarray:
+    """(n,) bool: does each motif's orientation lie in its kind's arc, within ``tol`` degrees?"""
     offset = np.mod(angle - stats.arc_start[kind] + tol, 360.0)
     return offset <= stats.arc_width[kind] + 2 * tol

@@ -17,6 +17,9 @@ Two kinds of exemplar are read:
 
 The input region is the element with ``id="region"``, else the root ``viewBox``, else
 ``width``/``height``, else the motifs' bounds.  Nothing outside the file is ever fetched.
+
+Work is done once per kind: a referenced element's footprint is computed once per inherited style
+and viewport, and each ``<use>`` only contributes its matrix.
 """
 
 from __future__ import annotations
@@ -26,12 +29,11 @@ import math
 import re
 import warnings
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import shapely
-import shapely.affinity
 import svgelements as se
 
 from .arrangement import Arrangement
@@ -59,10 +61,19 @@ INITIAL = {
 
 #: Relative tolerance for deciding that two plain motifs are the same shape up to rotation.
 SHAPE_TOLERANCE = 0.03
-#: Chord tolerance for flattening curves, as a fraction of the element's size.
-FLATNESS = 0.002
+#: Chord tolerance for flattening curves, as a fraction of the element's size (a circle loses
+#: about 0.2 % of its area).
+FLATNESS = 0.0005
+#: The same for the input region, whose area sets the density.
+REGION_FLATNESS = 1e-5
 #: Decimals kept for a kind's local origin, so output transforms reproduce it exactly.
 ORIGIN_DECIMALS = 4
+#: Most points one footprint may have: a guard against ``<use>`` fan-out ("billion laughs").
+MAX_COORDINATES = 200_000
+#: Deepest chain of ``<use>`` references followed.
+MAX_USE_DEPTH = 32
+#: Presentation properties that are not inherited but change how a plain motif looks.
+OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,6 +99,9 @@ class Kind:
         Linear part that is not rotation or uniform scale (identity for most kinds).
     use_attrs : tuple of (name, value)
         Attributes the output ``<use>`` must carry (viewport size, inherited style).
+    footprint : shapely (Multi)Polygon or None
+        The exact footprint in the local frame (the prototype is a simplified cover of it, see
+        :meth:`Prototype.from_geometry`).
     """
 
     name: str
@@ -96,6 +110,7 @@ class Kind:
     offset: np.ndarray
     residual: np.ndarray
     use_attrs: tuple[tuple[str, str], ...] = ()
+    footprint: shapely.Geometry | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,14 +170,22 @@ def parse_exemplar(data: bytes | str, *, source: str = "<exemplar>") -> Exemplar
         data = data.encode()
     try:
         root = ET.fromstring(data)
-    except ET.ParseError as exc:
-        raise ExemplarError(f"not a well-formed XML file ({exc})", source=source) from None
+    except (ET.ParseError, ValueError, LookupError) as exc:  # LookupError: unknown encoding
+        raise ExemplarError(f"not a well-formed XML file ({_oneline(exc)})", source=source) from None
     if _local(root.tag) != "svg" or _ns(root.tag) not in ("", SVG_NS):
         raise ExemplarError(f"not an SVG document (root element is <{_local(root.tag)}>)", source=source)
-    return _Reader(root, source).read()
+    try:
+        return _Reader(root, source).read()
+    except RecursionError:
+        raise ExemplarError("elements are nested too deeply", source=source) from None
 
 
 # ----------------------------------------------------------------------------- helpers
+
+
+def _oneline(text: object) -> str:
+    """``text`` as one line (messages must fit the CLI's single line)."""
+    return " ".join(str(text).split())
 
 
 def _local(tag: str) -> str:
@@ -178,20 +201,22 @@ def _is_svg(el: ET.Element) -> bool:
 
 
 def _href(el: ET.Element) -> str | None:
-    """The element's ``href`` or ``xlink:href`` (SVG 2 ``href`` wins), or None."""
+    """The element's ``href`` or ``xlink:href`` (SVG 2 ``href`` wins), or None.
+
+    ElementTree resolves prefixes, so an ad-hoc prefix bound to the xlink namespace (jsdotpattern
+    writes ``NS1:href`` with ``xmlns:NS1``) arrives as ``{xlink}href`` too; an ``href`` in any
+    other namespace is not a reference.
+    """
     for key in ("href", f"{{{XLINK_NS}}}href"):
         if key in el.attrib:
             return el.attrib[key].strip()
-    for key, value in el.attrib.items():  # prefixes declared ad hoc still resolve to xlink
-        if key.endswith("}href"):
-            return value.strip()
     return None
 
 
 def _style(el: ET.Element, parent: dict[str, str]) -> dict[str, str]:
     """Effective presentation properties of ``el`` given its parent's (CSS cascade, simplified)."""
     own: dict[str, str] = {}
-    for key in (*INHERITED, "display", "opacity"):
+    for key in (*INHERITED, "display", *OWN_LOOK):
         if key in el.attrib:
             own[key] = el.attrib[key].strip()
     for decl in el.attrib.get("style", "").split(";"):
@@ -201,6 +226,11 @@ def _style(el: ET.Element, parent: dict[str, str]) -> dict[str, str]:
     style = {k: v for k, v in parent.items() if k in INHERITED}
     style.update({k: v for k, v in own.items() if v != "inherit"})
     return style
+
+
+def _inherited(style: dict[str, str]) -> tuple[tuple[str, str], ...]:
+    """The inherited properties of ``style`` that differ from their initial values, sorted."""
+    return tuple(sorted((k, v) for k, v in style.items() if k in INHERITED and INITIAL.get(k) != v))
 
 
 def _hidden(style: dict[str, str]) -> bool:
@@ -216,12 +246,31 @@ def _painted(value: str | None) -> bool:
 
 
 def _number(text: str | None, default: float) -> float:
+    """An absolute length or number in user units; ``default`` if missing, relative or unreadable."""
     if text is None:
         return default
     try:
-        return float(se.Length(text.strip()).value(ppi=96, relative_length=100.0))
-    except (ValueError, TypeError, AttributeError):
+        return _absolute_length(text)
+    except ValueError:
         return default
+
+
+_LENGTH = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([a-zA-Z%]*)\s*$")
+_RELATIVE_UNITS = {"%", "em", "ex", "ch", "rem", "vw", "vh", "vmin", "vmax", "vi", "vb", "cap", "ic", "lh", "rlh"}
+_UNITS = {"": 1.0, "px": 1.0, "mm": 96 / 25.4, "cm": 96 / 2.54, "q": 96 / 101.6, "in": 96.0, "pt": 96 / 72, "pc": 16.0}
+
+
+def _absolute_length(text: str) -> float:
+    """A geometry length in user units; relative units (%, em, ex) and junk raise ValueError."""
+    match = _LENGTH.match(text)
+    if match is None:
+        raise ValueError(f"unreadable length {text.strip()!r}")
+    number, unit = match.groups()
+    if unit.lower() in _RELATIVE_UNITS:
+        raise ValueError(f"length {text.strip()!r} is relative (svgtile resolves only absolute units)")
+    if unit.lower() not in _UNITS:
+        raise ValueError(f"unreadable length {text.strip()!r}")
+    return float(number) * _UNITS[unit.lower()]
 
 
 def _matrix(text: str | None) -> np.ndarray:
@@ -234,6 +283,12 @@ def _matrix(text: str | None) -> np.ndarray:
 
 def _translate(x: float, y: float) -> np.ndarray:
     return np.array([[1.0, 0.0, x], [0.0, 1.0, y], [0.0, 0.0, 1.0]])
+
+
+def _linear(lin: np.ndarray) -> np.ndarray:
+    m = np.eye(3)
+    m[:2, :2] = lin
+    return m
 
 
 def _apply(m: np.ndarray, geom: shapely.Geometry) -> shapely.Geometry:
@@ -249,25 +304,31 @@ def _matrix_attr(m: np.ndarray) -> str:
     return "matrix({})".format(" ".join(_fmt(v) for v in (m[0, 0], m[1, 0], m[0, 1], m[1, 1], m[0, 2], m[1, 2])))
 
 
+def _rendered(el: ET.Element) -> bool:
+    """Can ``el`` draw as part of its parent (the input region never does)?"""
+    return _is_svg(el) and _local(el.tag) not in NOT_RENDERED and el.attrib.get("id") != "region"
+
+
 def _drawable(el: ET.Element) -> list[ET.Element]:
-    """Children of ``el`` that may draw something (the input region is not a motif)."""
-    return [
-        c for c in el
-        if _is_svg(c) and _local(c.tag) not in NOT_RENDERED and c.attrib.get("id") != "region"
-    ]  # fmt: skip
+    """Children of ``el`` that may draw something."""
+    return [c for c in el if _rendered(c)]
 
 
 def _holds_motifs(group: ET.Element, *, alone: bool) -> bool:
     """Is ``group`` a container of motifs rather than a motif itself?
 
     Yes for Inkscape layers, for groups holding ``<use>`` instances, and for a group that is the
-    only drawable child of its container yet holds several shapes (an exporter's wrapper).
+    only drawable child of its container yet holds several shapes or another group (an exporter's
+    wrapper, possibly nested).
     """
     if group.attrib.get(f"{{{INKSCAPE_NS}}}groupmode") == "layer":
         return True
     if any(_local(e.tag) == "use" for e in group.iter()):
         return True
-    return alone and len(_drawable(group)) > 1
+    if not alone:
+        return False
+    children = _drawable(group)
+    return len(children) > 1 or (len(children) == 1 and _local(children[0].tag) in CONTAINERS)
 
 
 def _describe(el: ET.Element) -> str:
@@ -275,81 +336,119 @@ def _describe(el: ET.Element) -> str:
     return f"<{_local(el.tag)} id={ident!r}>" if ident else f"<{_local(el.tag)}>"
 
 
+def _short(ref: str, limit: int = 80) -> str:
+    return ref if len(ref) <= limit else ref[: limit - 1] + "…"
+
+
 # ----------------------------------------------------------------------------- geometry
+
+_GEOMETRY = {
+    "rect": (se.Rect, ("x", "y", "width", "height", "rx", "ry")),
+    "circle": (se.Circle, ("cx", "cy", "r")),
+    "ellipse": (se.Ellipse, ("cx", "cy", "rx", "ry")),
+    "line": (se.SimpleLine, ("x1", "y1", "x2", "y2")),
+}
 
 
 def _se_shape(el: ET.Element) -> se.Shape | None:
-    """The svgelements shape for a basic shape element (None when it renders nothing)."""
-    tag, a = _local(el.tag), {k: v for k, v in el.attrib.items() if "}" not in k}
-    a.pop("transform", None)  # composed by the walker
-    a.pop("style", None)
+    """The svgelements shape for a basic shape element, without its transform (None: no shape).
+
+    Lengths are converted here, so svgelements never guesses a unit; a relative length raises
+    ValueError.
+    """
+    tag = _local(el.tag)
     if tag == "path":
-        return se.Path(a.get("d", ""))
-    if tag == "rect":
-        return se.Rect(a)
-    if tag == "circle":
-        return se.Circle(a)
-    if tag == "ellipse":
-        return se.Ellipse(a)
-    if tag == "line":
-        return se.SimpleLine(a)
-    if tag == "polyline":
-        return se.Polyline(a)
-    if tag == "polygon":
-        return se.Polygon(a)
-    return None
+        return se.Path(el.attrib.get("d", ""))
+    if tag in ("polyline", "polygon"):
+        return (se.Polyline if tag == "polyline" else se.Polygon)({"points": el.attrib.get("points", "")})
+    if tag not in _GEOMETRY:
+        return None
+    cls, names = _GEOMETRY[tag]
+    attrs = {}
+    for name in names:
+        text = el.attrib.get(name)
+        if text is not None and text.strip() not in ("", "auto"):
+            attrs[name] = repr(_absolute_length(text))
+    return cls(attrs)
 
 
-def _segments(seg: se.PathSegment, tol: float) -> int:
-    """How many chords flatten ``seg`` within ``tol`` (Wang's bound for Béziers)."""
-    pts = lambda *ps: [np.array([p.x, p.y]) for p in ps]  # noqa: E731
+def _control_points(seg: se.PathSegment) -> list[tuple[float, float]]:
+    """Points whose hull contains ``seg`` (to size the flattening tolerance without evaluating it)."""
+    if isinstance(seg, se.Arc):
+        r = max(abs(seg.rx), abs(seg.ry))
+        c = seg.center
+        return [(c.x - r, c.y - r), (c.x + r, c.y + r)]
+    names = ("start", "control", "control1", "control2", "end")
+    return [(p.x, p.y) for p in (getattr(seg, n, None) for n in names) if p is not None]
+
+
+def _sample(seg: se.PathSegment, tol: float) -> np.ndarray:
+    """Points of a curved segment after its start, within ``tol`` of it ((k, 2), last = end)."""
     if isinstance(seg, se.CubicBezier):
-        p0, p1, p2, p3 = pts(seg.start, seg.control1, seg.control2, seg.end)
-        m = max(np.linalg.norm(p0 - 2 * p1 + p2), np.linalg.norm(p1 - 2 * p2 + p3))
-        n = math.sqrt(0.75 * m / tol)
+        p = np.array([[q.x, q.y] for q in (seg.start, seg.control1, seg.control2, seg.end)])
+        bend = max(math.hypot(*(p[0] - 2 * p[1] + p[2])), math.hypot(*(p[1] - 2 * p[2] + p[3])))
+        n = math.sqrt(0.75 * bend / tol)  # Wang's bound
     elif isinstance(seg, se.QuadraticBezier):
-        p0, p1, p2 = pts(seg.start, seg.control, seg.end)
-        n = math.sqrt(0.25 * np.linalg.norm(p0 - 2 * p1 + p2) / tol)
+        p = np.array([[q.x, q.y] for q in (seg.start, seg.control, seg.end)])
+        n = math.sqrt(0.25 * math.hypot(*(p[0] - 2 * p[1] + p[2])) / tol)
     elif isinstance(seg, se.Arc):
         r = max(abs(seg.rx), abs(seg.ry), tol)
         step = 2 * math.acos(max(-1.0, 1 - tol / r))
         n = abs(seg.sweep) / max(step, 1e-3)
     else:
-        n = 1
-    return int(min(256, max(1, math.ceil(n))))
+        n = 16
+    n = int(min(256, max(1, math.ceil(n))))
+    t = np.linspace(0.0, 1.0, n + 1)[1:, None]
+    s = 1.0 - t
+    if isinstance(seg, se.CubicBezier):
+        pts = s**3 * p[0] + 3 * s * s * t * p[1] + 3 * s * t * t * p[2] + t**3 * p[3]
+    elif isinstance(seg, se.QuadraticBezier):
+        pts = s * s * p[0] + 2 * s * t * p[1] + t * t * p[2]
+    else:
+        pts = np.asarray(seg.npoint(t[:, 0]), dtype=np.float64).reshape(-1, 2)
+    pts[-1] = (seg.end.x, seg.end.y)
+    return pts
 
 
-def _flatten(path: se.Path) -> list[tuple[np.ndarray, bool]]:
-    """Subpaths of ``path`` as ``((k, 2) points, closed)`` polylines."""
-    bbox = path.bbox()
-    size = 0.0 if bbox is None else math.hypot(bbox[2] - bbox[0], bbox[3] - bbox[1])
-    tol = max(size * FLATNESS, 1e-9)
+def _flatten(path: se.Path, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
+    """Subpaths of ``path`` as ``((k, 2) points, closed)`` polylines.
+
+    A subpath that is only a moveto draws nothing (not even a cap) and is dropped; ``M x y Z`` and
+    ``M x y L x y`` are kept, as one-point polylines, because their caps draw.
+    """
+    segments = list(path)
+    hull = [p for seg in segments for p in _control_points(seg)]
+    if not hull:
+        return []
+    hull_array = np.array(hull, dtype=np.float64)
+    size = float(np.hypot(*(hull_array.max(axis=0) - hull_array.min(axis=0))))
+    tol = max(size * flatness, 1e-9)
     out: list[tuple[np.ndarray, bool]] = []
-    pts: list[tuple[float, float]] = []
-    start = None
+    pts: list[np.ndarray] = []
+    drawn = False
 
     def flush(closed: bool) -> None:
-        if pts:
-            out.append((np.array(pts, dtype=np.float64), closed))
+        if pts and drawn:
+            out.append((np.vstack(pts), closed))
 
-    for seg in path:
+    for seg in segments:
         if isinstance(seg, se.Move):
             flush(False)
-            pts, start = [(seg.end.x, seg.end.y)], (seg.end.x, seg.end.y)
+            pts, drawn = [np.array([[seg.end.x, seg.end.y]])], False
             continue
-        if not pts and seg.start is not None:  # drawing resumes after a close
-            pts = [(seg.start.x, seg.start.y)]
-            start = pts[0]
+        if seg.start is None:
+            raise ValueError("path data must begin with a moveto")
+        if not pts:  # drawing resumes after a close
+            pts = [np.array([[seg.start.x, seg.start.y]])]
+        drawn = True
         if isinstance(seg, se.Close):
             flush(True)
-            pts = []
+            pts, drawn = [], False
         elif isinstance(seg, se.Line):
-            pts.append((seg.end.x, seg.end.y))
+            pts.append(np.array([[seg.end.x, seg.end.y]]))
         elif seg.end is not None:
-            n = _segments(seg, tol)
-            pts.extend(map(tuple, seg.npoint(np.linspace(0, 1, n + 1)[1:])))
+            pts.append(_sample(seg, tol))
     flush(False)
-    del start
     return out
 
 
@@ -357,13 +456,25 @@ _CAPS = {"round": "round", "square": "square", "butt": "flat"}
 _JOINS = {"round": "round", "bevel": "bevel", "miter": "mitre", "miter-clip": "mitre", "arcs": "mitre"}
 
 
-def _leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapely.Geometry | None:
-    """Footprint of one shape element in its own user space (before its transform)."""
+def _subpaths(el: ET.Element, source: str, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
+    """Flattened subpaths of a shape element in its own user space; bad data is an ExemplarError."""
     try:
         shape = _se_shape(el)
-        subpaths = _flatten(se.Path(shape)) if shape is not None else []
-    except Exception as exc:  # svgelements raises bare ValueErrors/IndexErrors on bad data
-        raise ExemplarError(f"cannot read the geometry of {_describe(el)} ({exc or type(exc).__name__})", source=source) from None
+        return _flatten(se.Path(shape), flatness) if shape is not None else []
+    except Exception as exc:  # svgelements raises bare ValueErrors/TypeErrors on bad data
+        detail = "malformed path data" if _local(el.tag) == "path" else _oneline(exc) or type(exc).__name__
+        raise ExemplarError(f"cannot read the geometry of {_describe(el)} ({detail})", source=source) from None
+
+
+def _leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapely.Geometry | None:
+    """Footprint of one shape element in its own user space (before its transform).
+
+    The interior of every closed subpath (filled or not) and of every filled one, plus the stroke
+    band of half the stroke width with its caps and joins (a subpath that returns to its start
+    without ``Z`` gets its interior when holes are filled).  A zero-length subpath is a dot with
+    round caps and a square with square caps.
+    """
+    subpaths = _subpaths(el, source)
     filled = _painted(style.get("fill", INITIAL["fill"]))
     width = _number(style.get("stroke-width"), 1.0)
     stroked = _painted(style.get("stroke", INITIAL["stroke"])) and width > 0
@@ -377,9 +488,9 @@ def _leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shape
             parts.append(shapely.make_valid(shapely.Polygon(pts)))
         if not stroked:
             continue
-        if distinct == 1:  # a zero-length subpath: a dot with round caps, a square with square caps
+        if distinct == 1:
             if cap == "round":
-                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=8))
+                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=16))
             elif cap == "square":
                 x, y = pts[0]
                 parts.append(shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2))
@@ -387,16 +498,26 @@ def _leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shape
         line = np.vstack([pts, pts[:1]]) if closed else pts
         parts.append(
             shapely.LineString(line).buffer(
-                width / 2, quad_segs=8, cap_style=cap, join_style=join, mitre_limit=max(limit, 1.0)
+                width / 2, quad_segs=16, cap_style=cap, join_style=join, mitre_limit=max(limit, 1.0)
             )
         )
     parts = [p for p in parts if not p.is_empty and p.area > 0]
     return shapely.union_all(parts) if parts else None
 
 
+def _polygons(geom: shapely.Geometry) -> list[shapely.Polygon]:
+    """The polygons of ``geom`` at any depth of collection."""
+    out = []
+    for part in shapely.get_parts(geom):
+        if isinstance(part, shapely.Polygon):
+            out.append(part)
+        elif isinstance(part, (shapely.MultiPolygon, shapely.GeometryCollection)):
+            out.extend(_polygons(part))
+    return out
+
+
 def _fill_holes(geom: shapely.Geometry) -> shapely.Geometry:
-    polys = [shapely.Polygon(p.exterior) for p in shapely.get_parts(geom) if isinstance(p, shapely.Polygon)]
-    return shapely.union_all(polys)
+    return shapely.union_all([shapely.Polygon(p.exterior) for p in _polygons(geom) if not p.is_empty])
 
 
 # ----------------------------------------------------------------------------- the reader
@@ -405,10 +526,44 @@ def _fill_holes(geom: shapely.Geometry) -> shapely.Geometry:
 @dataclass
 class _Instance:
     key: tuple  # what makes two instances the same kind (before plain-shape matching)
-    world: shapely.Geometry  # footprint in world coordinates
-    matrix: np.ndarray  # 3x3, kind content frame -> world
+    geom: shapely.Geometry  # footprint in the instance frame, holes filled
+    matrix: np.ndarray  # 3x3, instance frame -> world
     element: ET.Element
-    style: dict[str, str]
+    style: dict[str, str]  # effective style of the element's parent (plain) or of the <use>
+
+    @property
+    def world(self) -> shapely.Geometry:
+        return _apply(self.matrix, self.geom)
+
+
+@dataclass
+class _Shape:
+    """A centred footprint with what plain-shape matching compares."""
+
+    geom: shapely.Geometry
+    coords: np.ndarray  # (v, 2) outline points
+    r: np.ndarray  # (v,) their distances from the origin
+    area: float
+    radius: float
+    axis: float | None  # principal axis, degrees (None: no clear axis)
+
+    @classmethod
+    def of(cls, geom: shapely.Geometry) -> _Shape:
+        coords = shapely.get_coordinates(geom)
+        r = np.hypot(coords[:, 0], coords[:, 1])
+        return cls(geom, coords, r, float(geom.area), float(r.max()), _principal_axis(geom))
+
+
+@dataclass
+class _PlainKinds:
+    """The plain kinds found so far, with arrays for a quick first filter."""
+
+    kind: list[int] = field(default_factory=list)
+    rep: list[_Instance] = field(default_factory=list)
+    shape: list[_Shape] = field(default_factory=list)
+    paint: list[tuple] = field(default_factory=list)
+    area: list[float] = field(default_factory=list)
+    radius: list[float] = field(default_factory=list)
 
 
 class _Reader:
@@ -422,17 +577,24 @@ class _Reader:
             if ident is not None and ident not in self.ids:
                 self.ids[ident] = el
         self.warnings: list[str] = []
-        self.content_cache: dict[tuple, shapely.Geometry | None] = {}
+        self.warned: set[str] = set()
+        self.raw_cache: dict[tuple, shapely.Geometry | None] = {}  # referenced content, own frame
+        self.kind_cache: dict[tuple, shapely.Geometry | None] = {}  # <use> footprint, use frame
 
     def error(self, message: str) -> ExemplarError:
-        return ExemplarError(message, source=self.source)
+        return ExemplarError(_oneline(message), source=self.source)
+
+    def warn(self, message: str) -> None:
+        if message not in self.warned:
+            self.warned.add(message)
+            self.warnings.append(_oneline(message))
 
     # -- document walk -------------------------------------------------------------------
 
     def read(self) -> Exemplar:
         self._refuse_external_references()
         if any(_local(el.tag) == "style" and (el.text or "").strip() for el in self.root.iter()):
-            self.warnings.append("CSS <style> sheets are not applied; use presentation attributes or style=")
+            self.warn("CSS <style> sheets are not applied; use presentation attributes or style=")
         instances: list[_Instance] = []
         self._walk(self.root, np.eye(3), _style(self.root, INITIAL), instances)
         if not instances:
@@ -443,15 +605,22 @@ class _Reader:
         if not centroid_in.any():
             raise self.error("no motif lies inside the input region")
         if not centroid_in.all():
-            self.warnings.append(f"{int((~centroid_in).sum())} motif(s) outside the input region are ignored")
+            self.warn(f"{int((~centroid_in).sum())} motif(s) outside the input region are ignored")
             arrangement = arrangement.take(centroid_in)
         return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings))
 
     def _refuse_external_references(self) -> None:
+        """A ``<use>`` may only reference this file (other hrefs are links, images … and never drawn)."""
         for el in self.root.iter():
+            if not (_is_svg(el) and _local(el.tag) == "use"):
+                continue
             ref = _href(el)
-            if ref and not ref.startswith("#") and not ref.startswith("data:"):
-                raise self.error(f"{_describe(el)} refers to {ref!r} outside this file; svgtile never fetches external files")
+            if ref and not ref.startswith("#"):
+                if ref.startswith("data:"):
+                    raise self.error(f"{_describe(el)} refers to a data: URL; only references to ids in this file are supported")
+                raise self.error(
+                    f"{_describe(el)} refers to {_short(ref)!r} outside this file; svgtile never fetches external files"
+                )
 
     def _walk(self, el: ET.Element, m: np.ndarray, style: dict[str, str], out: list[_Instance]) -> None:
         """Collect motif instances below ``el`` (a container whose children may be motifs)."""
@@ -463,7 +632,9 @@ class _Reader:
                 continue
             cm = m @ _matrix(child.attrib.get("transform"))
             if tag == "use":
-                out.append(self._use_instance(child, cm, cstyle))
+                inst = self._use_instance(child, cm, cstyle)
+                if inst is not None:
+                    out.append(inst)
             elif tag == "svg":
                 if "viewBox" in child.attrib:
                     raise self.error(f"nested {_describe(child)} with a viewBox is not supported; flatten it first")
@@ -476,37 +647,76 @@ class _Reader:
                 if inst is not None:
                     out.append(inst)
             elif tag in ("text", "image"):
-                self.warnings.append(f"{_describe(child)} is ignored (only shapes and <use> are motifs)")
+                self.warn(f"{_describe(child)} is ignored (only shapes and <use> are motifs)")
 
     # -- instances -----------------------------------------------------------------------
 
     def _plain_instance(self, el: ET.Element, parent_m: np.ndarray, parent_style: dict[str, str]) -> _Instance | None:
         """A top-level shape or group drawn in place."""
+        if abs(np.linalg.det(parent_m[:2, :2])) < 1e-12:
+            return None
         geom = self._content(el, parent_style, np.eye(3), stack=())
         if geom is None:
             return None
-        world = _apply(parent_m, geom)
-        if world.is_empty or world.area <= 0:
+        geom = _fill_holes(geom)
+        if geom.is_empty or geom.area <= 0:
             return None
-        return _Instance(("plain",), _fill_holes(world), parent_m, el, parent_style)
+        return _Instance(("plain", _paint_key(el, parent_style)), geom, parent_m, el, parent_style)
 
-    def _use_instance(self, use: ET.Element, m: np.ndarray, style: dict[str, str]) -> _Instance:
+    def _target(self, use: ET.Element) -> tuple[str, ET.Element]:
         ref = _href(use)
-        target = self.ids.get(ref[1:]) if ref else None
+        if not ref:
+            raise self.error(f"{_describe(use)} has no href")
+        target = self.ids.get(ref[1:])
         if target is None:
-            raise self.error(f"{_describe(use)} refers to {ref!r}, which is not in the file")
+            raise self.error(f"{_describe(use)} refers to {_short(ref)!r}, which is not in the file")
+        return ref, target
+
+    def _use_instance(self, use: ET.Element, m: np.ndarray, style: dict[str, str]) -> _Instance | None:
+        """A ``<use>`` motif: its footprint in the ``<use>``'s frame (after x/y), once per kind.
+
+        The frame is the one the output ``<use>`` draws in: a symbol's viewBox mapping is applied by
+        the ``width``/``height`` the output ``<use>`` carries, so it is part of the footprint, not
+        of the instance matrix.
+        """
+        ref, target = self._target(use)
         x, y = _number(use.attrib.get("x"), 0.0), _number(use.attrib.get("y"), 0.0)
         m = m @ _translate(x, y)
+        if abs(np.linalg.det(m[:2, :2])) < 1e-12:
+            self.warn(f"{_describe(use)} is scaled to nothing; ignored")
+            return None
         view, use_attrs = self._viewport(use, target)
-        inherited = tuple(sorted((k, v) for k, v in style.items() if k in INHERITED and INITIAL.get(k) != v))
-        cache_key = (ref, use_attrs, inherited)
-        if cache_key not in self.content_cache:
-            self.content_cache[cache_key] = self._content(target, style, view, stack=(ref,))
-        geom = self.content_cache[cache_key]
+        inherited = _inherited(style)
+        key = (ref, use_attrs, inherited)
+        if key not in self.kind_cache:
+            raw = self._referenced(ref, target, style, stack=())
+            geom = None if raw is None else _fill_holes(_apply(view, raw))
+            self.kind_cache[key] = geom if geom is not None and geom.area > 0 else None
+            if geom is not None and _local(target.tag) == "symbol":
+                self._check_overflow(target, geom)
+        geom = self.kind_cache[key]
         if geom is None:
-            raise self.error(f"{_describe(use)} refers to {ref!r}, which draws nothing")
-        world = _fill_holes(_apply(m, geom))
-        return _Instance(("use", ref[1:], use_attrs, inherited), world, m @ view, use, style)
+            self.warn(f"<use> elements referring to {_short(ref)!r} draw nothing svgtile can measure; ignored")
+            return None
+        return _Instance(("use", ref[1:], use_attrs, inherited), geom, m, use, style)
+
+    def _check_overflow(self, symbol: ET.Element, geom: shapely.Geometry) -> None:
+        overflow = _style(symbol, {}).get("overflow", symbol.attrib.get("overflow", "hidden"))
+        x0, y0, _, _ = geom.bounds
+        if overflow.strip() not in ("visible", "auto") and min(x0, y0) < -1e-9:
+            self.warn(
+                f"{_describe(symbol)} draws at negative coordinates but has overflow hidden (the SVG "
+                'default), so viewers clip it; add overflow="visible"'
+            )
+
+    def _referenced(self, ref: str, target: ET.Element, style: dict[str, str], stack: tuple[str, ...]) -> shapely.Geometry | None:
+        """Footprint of a referenced element in its own frame, computed once per inherited style."""
+        if ref in stack or len(stack) >= MAX_USE_DEPTH:
+            raise self.error(f"{_describe(target)} is referenced recursively (through {' → '.join((*stack, ref))})")
+        key = (ref, _inherited(style))
+        if key not in self.raw_cache:
+            self.raw_cache[key] = self._content(target, style, np.eye(3), (*stack, ref))
+        return self.raw_cache[key]
 
     def _viewport(self, use: ET.Element, target: ET.Element) -> tuple[np.ndarray, tuple[tuple[str, str], ...]]:
         """Matrix from a symbol's viewBox to the ``<use>`` viewport, and the attributes that make it."""
@@ -531,12 +741,16 @@ class _Reader:
         width, height = _number(w, 0), _number(h, 0)
         if vw <= 0 or vh <= 0 or width <= 0 or height <= 0:
             raise self.error(f"{_describe(target)} has an empty viewBox or viewport")
-        par = (target.attrib.get("preserveAspectRatio") or "xMidYMid meet").split()
+        par = (target.attrib.get("preserveAspectRatio") or "").split()
+        if par and par[0] == "defer":
+            par = par[1:]
+        align = par[0] if par else "xMidYMid"
+        if align != "none" and not re.fullmatch(r"x(Min|Mid|Max)Y(Min|Mid|Max)", align):
+            align, par = "xMidYMid", []  # an invalid value means the default
         sx, sy = width / vw, height / vh
         tx = ty = 0.0
-        if par[0] != "none":
+        if align != "none":
             s = max(sx, sy) if len(par) > 1 and par[1] == "slice" else min(sx, sy)
-            align = par[0]
             fx = {"xMin": 0.0, "xMid": 0.5, "xMax": 1.0}[align[:4]]
             fy = {"YMin": 0.0, "YMid": 0.5, "YMax": 1.0}[align[4:]]
             tx, ty = fx * (width - vw * s), fy * (height - vh * s)
@@ -556,18 +770,20 @@ class _Reader:
             geom = _leaf_footprint(el, est, self.source)
             return None if geom is None else _apply(m, geom)
         if tag == "use":
-            ref = _href(el)
-            target = self.ids.get(ref[1:]) if ref else None
-            if target is None:
-                raise self.error(f"{_describe(el)} refers to {ref!r}, which is not in the file")
-            if ref in stack or len(stack) > 32:
-                raise self.error(f"{_describe(el)} refers to {ref!r} recursively")
+            ref, target = self._target(el)
             view, _ = self._viewport(el, target)
             offset = _translate(_number(el.attrib.get("x"), 0), _number(el.attrib.get("y"), 0))
-            return self._content(target, est, m @ offset @ view, (*stack, ref))
+            raw = self._referenced(ref, target, est, stack)
+            return None if raw is None else _apply(m @ offset @ view, raw)
+        if tag == "svg" and el is not self.root:
+            if "viewBox" in el.attrib:
+                raise self.error(f"nested {_describe(el)} with a viewBox is not supported; flatten it first")
+            m = m @ _translate(_number(el.attrib.get("x"), 0), _number(el.attrib.get("y"), 0))
         if tag in (*CONTAINERS, "symbol", "svg"):
-            parts = [self._content(c, est, m, stack) for c in el if _is_svg(c) and _local(c.tag) not in NOT_RENDERED]
+            parts = [self._content(c, est, m, stack) for c in el if _rendered(c)]
             parts = [p for p in parts if p is not None and not p.is_empty]
+            if sum(shapely.get_num_coordinates(p) for p in parts) > MAX_COORDINATES:
+                raise self.error(f"{_describe(el)} is too complex (over {MAX_COORDINATES} outline points)")
             return shapely.union_all(parts) if parts else None
         return None
 
@@ -578,64 +794,66 @@ class _Reader:
         kinds: list[Kind] = []
         kind_of_key: dict[tuple, int] = {}
         rows: list[tuple[int, float, float, float, float]] = []
-        plain_reps: list[tuple[int, _Instance]] = []
+        plain = _PlainKinds()
         for inst in instances:
             if inst.key[0] == "use":
                 k, angle, scale, xy = self._use_kind(inst, kinds, kind_of_key)
             else:
-                k, angle, scale, xy = self._plain_kind(inst, kinds, plain_reps)
+                k, angle, scale, xy = self._plain_kind(inst, kinds, plain)
             rows.append((k, xy[0], xy[1], angle, scale))
         table = np.array(rows, dtype=np.float64)
         arrangement = Arrangement(table[:, 0].astype(np.int64), table[:, 1:3], table[:, 3], table[:, 4])
-        defs = self._defs(kinds, plain_reps)
+        defs = self._defs(kinds, list(zip(plain.kind, plain.rep, strict=True)))
         return kinds, arrangement, defs
 
     def _use_kind(self, inst: _Instance, kinds: list[Kind], kind_of_key: dict[tuple, int]):
+        """Split the instance matrix into translation · rotation · uniform scale · residual."""
         lin = inst.matrix[:2, :2]
-        det = float(np.linalg.det(lin))
-        if abs(det) < 1e-12:
-            raise self.error(f"{_describe(inst.element)} is scaled to nothing")
+        scale = math.sqrt(abs(float(np.linalg.det(lin))))
         angle = math.degrees(math.atan2(lin[1, 0], lin[0, 0]))
-        scale = math.sqrt(abs(det))
         rot = np.array([[math.cos(math.radians(angle)), -math.sin(math.radians(angle))],
                         [math.sin(math.radians(angle)), math.cos(math.radians(angle))]])  # fmt: skip
         residual = rot.T @ lin / scale
         if np.allclose(residual, np.eye(2), atol=1e-6):
             residual = np.eye(2)
         key = (*inst.key, tuple(np.round(residual, 6).ravel()))
-        # content footprint in the residual frame: world footprint mapped back by (scale · R)^-1
-        inv = np.eye(3)
-        inv[:2, :2] = rot.T / scale
-        inv[:2, 2] = -inv[:2, :2] @ inst.matrix[:2, 2]
         if key not in kind_of_key:
-            local = _apply(inv, inst.world)
+            # the footprint in the residual frame: the instance frame mapped by the residual only
+            local = _apply(_linear(residual), inst.geom)
             c = np.round(np.array(local.centroid.coords[0]), ORIGIN_DECIMALS)
-            proto = Prototype.from_geometry(shapely.transform(local, lambda p: p - c))
+            exact = shapely.transform(local, lambda p: p - c)
             _, ref, use_attrs, inherited = inst.key
             variants = sum(1 for k in kinds if k.href == ref)
             name = ref if variants == 0 else f"{ref}~{variants}"
             kind_of_key[key] = len(kinds)
-            kinds.append(Kind(name, ref, proto, -c, residual, use_attrs + inherited))
+            kinds.append(Kind(name, ref, Prototype.from_geometry(exact), -c, residual, use_attrs + inherited, exact))
         k = kind_of_key[key]
         xy = inst.matrix[:2, 2] + scale * rot @ (-kinds[k].offset)
         return k, angle, scale, xy
 
-    def _plain_kind(self, inst: _Instance, kinds: list[Kind], reps: list[tuple[int, _Instance]]):
+    def _plain_kind(self, inst: _Instance, kinds: list[Kind], plain: _PlainKinds):
+        """The kind of a plain motif: the first earlier one of the same paint and shape up to rotation."""
         world = inst.world
         c = np.round(np.array(world.centroid.coords[0]), ORIGIN_DECIMALS)
-        local = shapely.transform(world, lambda p: p - c)
-        paint = _paint_key(inst.element, inst.style)
-        for k, rep in reps:
-            if rep.key[1:] != paint:
-                continue
-            angle = _match_rotation(kinds[k].prototype, local)
-            if angle is not None:
-                return k, angle, 1.0, c
+        shape = _Shape.of(shapely.transform(world, lambda p: p - c))
+        paint = inst.key[1]
+        if plain.kind:
+            area, radius = np.asarray(plain.area), np.asarray(plain.radius)
+            similar = (np.abs(area - shape.area) <= 2 * SHAPE_TOLERANCE * area) & (
+                np.abs(radius - shape.radius) <= SHAPE_TOLERANCE * radius
+            )
+            for i in np.flatnonzero(similar):
+                if plain.paint[i] != paint:
+                    continue
+                angle = _match_rotation(plain.shape[i], shape)
+                if angle is not None:
+                    return plain.kind[i], angle, 1.0, c
         k = len(kinds)
-        ident = f"svgtile-kind-{len(reps) + 1}"
-        proto = Prototype.from_geometry(local)
-        kinds.append(Kind(ident, ident, proto, -c, np.eye(2)))
-        reps.append((k, _Instance(("plain", *paint), world, inst.matrix, inst.element, inst.style)))
+        ident = f"svgtile-kind-{len(plain.kind) + 1}"
+        kinds.append(Kind(ident, ident, Prototype.from_geometry(shape.geom), -c, np.eye(2), (), shape.geom))
+        for name, value in (("kind", k), ("rep", inst), ("shape", shape), ("paint", paint),
+                            ("area", shape.area), ("radius", shape.radius)):  # fmt: skip
+            getattr(plain, name).append(value)
         return k, 0.0, 1.0, c
 
     def _defs(self, kinds: list[Kind], reps: list[tuple[int, _Instance]]) -> list[ET.Element]:
@@ -682,13 +900,21 @@ class _Reader:
                 x, y, w, h = (float(v) for v in re.split(r"[\s,]+", box.strip()))
             except ValueError:
                 raise self.error(f"unreadable root viewBox {box!r}") from None
-            return self._checked_region(shapely.box(x, y, x + w, y + h), "the root viewBox")
+            return self._checked_region(shapely.box(x, y, x + max(w, 0), y + max(h, 0)), "the root viewBox")
         w, h = self.root.attrib.get("width"), self.root.attrib.get("height")
         if w and h and "%" not in w + h:
-            return self._checked_region(shapely.box(0, 0, _number(w, 0), _number(h, 0)), "the root width/height")
-        radius = np.array([k.prototype.radius for k in kinds])[arrangement.kind] * arrangement.scale
-        lo = (arrangement.xy - radius[:, None]).min(axis=0)
-        hi = (arrangement.xy + radius[:, None]).max(axis=0)
+            width, height = max(_number(w, 0), 0), max(_number(h, 0), 0)
+            return self._checked_region(shapely.box(0, 0, width, height), "the root width/height")
+        lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+        for k, kind in enumerate(kinds):  # the exact footprints' bounds, in bulk per kind
+            arr = arrangement.take(arrangement.kind == k)
+            turn = np.radians(arr.angle)
+            c, s = np.cos(turn) * arr.scale, np.sin(turn) * arr.scale
+            pts = shapely.get_coordinates(kind.footprint)
+            x = c[:, None] * pts[:, 0] - s[:, None] * pts[:, 1] + arr.xy[:, :1]
+            y = s[:, None] * pts[:, 0] + c[:, None] * pts[:, 1] + arr.xy[:, 1:]
+            lo = np.minimum(lo, [x.min(initial=np.inf), y.min(initial=np.inf)])
+            hi = np.maximum(hi, [x.max(initial=-np.inf), y.max(initial=-np.inf)])
         return self._checked_region(shapely.box(*lo, *hi), "the motifs' bounds")
 
     def _region_element(self, el: ET.Element) -> shapely.Polygon:
@@ -696,18 +922,18 @@ class _Reader:
         if tag not in ("rect", "circle", "ellipse", "polygon", "path"):
             raise self.error(f"{_describe(el)} cannot be the input region (use rect, circle, ellipse, polygon or path)")
         m = np.eye(3)
-        chain = self._ancestors(el)
-        for node in chain:
+        for node in self._ancestors(el):
             m = m @ _matrix(node.attrib.get("transform"))
-        try:
-            subpaths = _flatten(se.Path(_se_shape(el)))
-        except Exception:
-            raise self.error(f"cannot read the geometry of {_describe(el)}") from None
-        rings = [shapely.make_valid(shapely.Polygon(p)) for p, _ in subpaths if len(np.unique(p, axis=0)) >= 3]
+        rings = [
+            shapely.make_valid(shapely.Polygon(p))
+            for p, _ in _subpaths(el, self.source, REGION_FLATNESS)
+            if len(np.unique(p, axis=0)) >= 3
+        ]
         geom = shapely.union_all(rings) if rings else shapely.Polygon()
         return self._checked_region(_apply(m, geom), _describe(el))
 
     def _ancestors(self, el: ET.Element) -> list[ET.Element]:
+        """``el`` and its ancestors, root first."""
         parents = {c: p for p in self.root.iter() for c in p}
         chain = [el]
         while chain[-1] in parents:
@@ -715,9 +941,7 @@ class _Reader:
         return chain[::-1]
 
     def _checked_region(self, geom: shapely.Geometry, what: str) -> shapely.Polygon:
-        geom = shapely.union_all(
-            [p for p in shapely.get_parts(shapely.make_valid(geom)) if isinstance(p, shapely.Polygon)]
-        )
+        geom = shapely.union_all(_polygons(shapely.make_valid(geom)))
         if geom.is_empty or geom.area <= 0:
             raise self.error(f"the input region ({what}) has no area")
         if isinstance(geom, shapely.MultiPolygon):
@@ -725,47 +949,73 @@ class _Reader:
         return geom
 
 
-def _paint_key(el: ET.Element, style: dict[str, str]) -> tuple:
-    """What besides shape tells two plain motifs apart: the paint of every leaf."""
-    keys = []
-    for node in el.iter():
+def _paint_key(el: ET.Element, parent_style: dict[str, str]) -> tuple:
+    """What besides shape tells two plain motifs apart: the effective paint of every leaf and the
+    opacity, clip, mask and filter of every element, styles cascaded from ``el``'s parent."""
+    keys = set()
+    todo = [(el, parent_style)]
+    while todo:
+        node, inherited = todo.pop()
+        style = _style(node, inherited)
+        look = tuple((k, style[k]) for k in OWN_LOOK if k in style)
         if _local(node.tag) in SHAPES:
-            s = _style(node, style)
-            keys.append((s.get("fill", "black"), s.get("stroke", "none"), s.get("stroke-width", "1")))
-    return tuple(sorted(set(keys)))
+            keys.add((_inherited(style), look))
+        elif look:
+            keys.add(((), look))
+        todo.extend((c, style) for c in node if _rendered(c))
+    return tuple(sorted(keys))
 
 
-def _match_rotation(proto: Prototype, local: shapely.Geometry) -> float | None:
-    """Angle (degrees) rotating ``proto`` onto ``local`` (both centred), or None if not congruent.
+def _principal_axis(geom: shapely.Geometry) -> float | None:
+    """Direction (degrees, mod 180) of the major principal axis of ``geom`` about the origin, or
+    None when the second moments are nearly isotropic (no axis to align)."""
+    sxx = syy = sxy = 0.0
+    for poly in _polygons(geom):
+        xy = shapely.get_coordinates(poly.exterior)
+        x0, y0, x1, y1 = xy[:-1, 0], xy[:-1, 1], xy[1:, 0], xy[1:, 1]
+        cross = x0 * y1 - x1 * y0
+        sign = 1.0 if cross.sum() > 0 else -1.0  # ring orientation
+        sxx += sign * float(np.sum(cross * (x0 * x0 + x0 * x1 + x1 * x1))) / 12
+        syy += sign * float(np.sum(cross * (y0 * y0 + y0 * y1 + y1 * y1))) / 12
+        sxy += sign * float(np.sum(cross * (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0))) / 24
+    if math.hypot(sxx - syy, 2 * sxy) < 0.05 * (sxx + syy):
+        return None
+    return math.degrees(0.5 * math.atan2(2 * sxy, sxx - syy))
 
-    Candidates: no rotation first (so symmetric motifs keep angle 0), then every pairing of the
-    farthest outline points of both shapes, each verified by the Hausdorff distance.
+
+def _rotated(geom: shapely.Geometry, angle: float) -> shapely.Geometry:
+    c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+    return shapely.transform(geom, lambda p: p @ np.array([[c, s], [-s, c]]))
+
+
+def _match_rotation(ref: _Shape, shape: _Shape) -> float | None:
+    """Angle (degrees) rotating ``ref`` onto ``shape`` (both centred), or None if not congruent.
+
+    Candidates: no rotation (kept on ties, so symmetric motifs get angle 0), the alignment of the
+    principal axes both ways, and the shape's farthest point onto each of the reference's far
+    points; the best is accepted if its Hausdorff distance is within the tolerance.
     """
-    ref = proto.geometry()
-    tol = SHAPE_TOLERANCE * proto.radius
-    if abs(local.area - proto.area) > 2 * SHAPE_TOLERANCE * proto.area:
+    tol = SHAPE_TOLERANCE * ref.radius
+    exact = 1e-6 * ref.radius
+    candidates = [0.0]
+    if ref.axis is not None and shape.axis is not None:
+        turn = shape.axis - ref.axis
+        candidates += [turn, turn + 180.0]
+    p = shape.coords[int(np.argmax(shape.r))]
+    far = ref.coords[ref.r >= ref.radius - tol]
+    if len(far) > 24:
+        far = far[np.linspace(0, len(far) - 1, 24).astype(int)]
+    candidates += list(np.degrees(math.atan2(p[1], p[0]) - np.arctan2(far[:, 1], far[:, 0])))
+    best_d, best_angle = math.inf, 0.0
+    for angle in candidates:
+        d = shapely.hausdorff_distance(_rotated(ref.geom, angle), shape.geom)
+        if d < best_d - exact:
+            best_d, best_angle = d, float(angle)
+        if best_d <= exact:
+            break
+    if best_d > tol:
         return None
-    pts = shapely.get_coordinates(local)
-    r = np.hypot(pts[:, 0], pts[:, 1])
-    if abs(r.max() - proto.radius) > tol:
-        return None
-    if shapely.hausdorff_distance(ref, local) <= tol:
-        return 0.0
-    ref_pts = np.concatenate(proto.rings)
-    ref_r = np.hypot(ref_pts[:, 0], ref_pts[:, 1])
-    far = pts[r >= r.max() - tol][:8]
-    ref_far = ref_pts[ref_r >= ref_r.max() - tol][:8]
-    best = None
-    for p in far:
-        for q in ref_far:
-            angle = math.degrees(math.atan2(p[1], p[0]) - math.atan2(q[1], q[0]))
-            rotated = shapely.affinity.rotate(ref, angle, origin=(0, 0))
-            d = shapely.hausdorff_distance(rotated, local)
-            if d <= tol and (best is None or d < best[0]):
-                best = (d, angle)
-    if best is None:
-        return None
-    return (best[1] + 180.0) % 360.0 - 180.0
+    return (best_angle + 180.0) % 360.0 - 180.0
 
 
 def warn_all(exemplar: Exemplar) -> None:

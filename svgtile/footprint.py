@@ -31,7 +31,7 @@ class Prototype:
     rings : tuple of (k, 2) float arrays, user units
         Closed exterior rings (first point repeated last), one per connected part.
     area : float
-        Footprint area at scale 1, square user units.
+        Area of the exact footprint (not of the outline) at scale 1, square user units.
     radius : float
         Largest distance from the origin to the footprint, user units.
     inner : float
@@ -53,7 +53,11 @@ class Prototype:
         test in a texture of a million motifs runs on these outlines.
         """
         pts = shapely.get_coordinates(geom)
-        tol = tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max())
+        exact = shapely.union_all([shapely.Polygon(p.exterior) for p in shapely.get_parts(geom)])
+        # the tolerance follows the motif's size, but a thin motif (a dash) is only as wide as
+        # 2·area/perimeter, and growing it by a share of its length would fatten it
+        thickness = 2.0 * exact.area / max(exact.length, 1e-12)
+        tol = min(tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max()), 1.5 * tolerance * thickness)
         if tol > 0:
             geom = shapely.buffer(shapely.simplify(geom, tol), tol, join_style="mitre", mitre_limit=4.0)
         parts = shapely.get_parts(geom)
@@ -70,7 +74,8 @@ class Prototype:
         inner = float(filled.exterior.distance(origin)) if filled.geom_type == "Polygon" else 0.0
         if not filled.contains(origin):
             inner = 0.0
-        return cls(rings, float(filled.area), float(np.hypot(pts[:, 0], pts[:, 1]).max()), inner)
+        radius = float(np.hypot(pts[:, 0], pts[:, 1]).max())
+        return cls(rings, float(exact.area), radius, inner)
 
     def geometry(self) -> shapely.Geometry:
         """The footprint as one shapely geometry in the local frame."""

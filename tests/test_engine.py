@@ -80,12 +80,12 @@ def test_invariants(path, size, grid_kind):
 
 @pytest.mark.parametrize("path", EXEMPLARS, ids=lambda p: p.stem)
 def test_vary_orientation_stays_in_arcs(path):
-    ex, stats, region, arr = run(path, 400, "square", vary_orientation=True)
+    ex, stats, _region, arr = run(path, 400, "square", vary_orientation=True)
     assert in_arcs(arr.angle, arr.kind, stats).all()
     assert brute_force_conflicts(arr, ex, stats) == (0, 0)
     wide = stats.arc_width[arr.kind] > 10
     if wide.sum() > 20:  # orientations really vary: not just the exemplar's few angles
-        assert len(np.unique(np.round(arr.angle[wide], 2))) > 0.5 * wide.sum()
+        assert len(np.unique(np.round(arr.angle[wide], 4))) > 0.5 * wide.sum()
 
 
 @pytest.mark.parametrize("mode", ["inside", "centroid", "clip", "none"])
@@ -116,7 +116,7 @@ def test_same_seed_same_texture_other_seed_other_texture():
 
 def test_texture_is_anchored_in_world_coordinates():
     """The grid's random choices depend on the cell, not on how far the region extends."""
-    ex, stats = load(EXEMPLARS[0])
+    ex, _stats = load(EXEMPLARS[0])
     small = grid(ex, Region.rectangle(300, 300), key=5, grid_kind="square", overlap=0.3, max_rotation=30)
     large = grid(ex, Region.rectangle(900, 600), key=5, grid_kind="square", overlap=0.3, max_rotation=30)
     index = {tuple(c): xy for c, xy in zip(map(tuple, large[1]), large[0].xy, strict=True)}
@@ -168,7 +168,7 @@ def test_grid_step_is_region_times_one_minus_overlap(kind):
 @pytest.mark.parametrize(
     "params",
     [dict(overlap=-0.1), dict(overlap=0.6), dict(max_rotation=-1), dict(max_rotation=181),
-     dict(grid="triangle"), dict(boundary="outside")],  # fmt: skip
+     dict(grid="triangle"), dict(boundary="outside")],
 )
 def test_parameters_out_of_range_are_refused(params):
     with pytest.raises(ParameterError):
