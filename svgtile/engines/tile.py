@@ -1,0 +1,222 @@
+"""The Tiling strategy: stamped copies of the exemplar (almeraj2013 §1, §3).
+
+AlMeraj et al. (2011) saw people synthesize textures in three ways — Tiling, Structured and
+Random — and found Tiling the most faithful to the exemplar but visibly repetitive; almeraj2013
+§3 calls a pure Tiling "trivial to implement: we need only stamp out regularly spaced copies of
+the exemplar" and builds the patch engine by removing its order.  This engine is that trivial
+Tiling, the baseline against which the patch engine's repetition is measured: σ = 0, no rotation.
+
+Copy ``(a, b)`` is the exemplar translated so that the corner ``(x0, y0)`` of its input region's
+bounding box lands on ``(a·w, b·h)``, ``w × h`` being that box's size: the grid is anchored at
+the world origin, so an output region of exactly ``k × l`` boxes from the origin holds ``k × l``
+whole copies, and a texture at a place does not depend on the output region's extent.  Copies
+step by the bounding box whatever the input region's shape, so a round exemplar leaves the
+corners between its copies empty (``chert-nodules.svg`` tiles at π/4 ≈ 0.79 of its density).
+
+Copies keep the exemplar's motifs exactly.  Where the exemplar's padding is too small, motifs of
+neighbouring copies overlap or break the distance rule across the seams; those conflicts are
+resolved once, on the exemplar itself with periodic boundaries (:func:`periodic_keep`), and the
+same motifs are left out of every copy.  The texture thus stays exactly periodic — resolving the
+stamped texture instead would make copies differ at their seams — and the cost of resolving is
+that of one exemplar, whatever the output size.  Which motif of a conflicting pair leaves is the
+only random choice, a hash of the run's key and the motif's index in the exemplar.
+
+Parameters of the patch engine (``grid``, ``overlap``, ``max_rotation``, ``vary_orientation``)
+are accepted and ignored: the Tiling strategy is defined by a square grid, σ = 0, no rotation and
+the exemplar's own orientations.  Only ``boundary`` is used.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import cellrng
+from ..analysis import Stats, analyze
+from ..arrangement import Arrangement
+from ..conflicts import RULE_SLACK, Conflicts, cull, find_conflicts
+from ..exemplar import Exemplar
+from ..footprint import motif_radius
+from ..region import Region
+from .common import DECIMALS, CommonParams, reading_order
+
+Progress = Callable[[str, float], None]
+
+_PRIORITY = 0  # hash stream: which motif of a conflicting pair leaves the tiling
+
+#: Extra distance, user units, by which motifs of *different* copies must clear the distance rule
+#: when the tile's size or corner is not a multiple of the output precision: copies are then
+#: rounded differently, a pair's distance varies by up to ~1.5e-4 from copy to copy, and this
+#: margin makes the decision taken on one copy hold for all of them.  (On the usual tile whose
+#: numbers have at most four decimals every copy is the same rounded pattern, and a seam exactly
+#: as wide as the distance rule is kept.)
+SEAM_MARGIN = 2 * RULE_SLACK
+
+
+def synthesize(
+    exemplar: Exemplar,
+    region: Region,
+    *,
+    rng: np.random.Generator,
+    stats: Stats | None = None,
+    progress: Progress | None = None,
+    **params,
+) -> Arrangement:
+    """Fill ``region`` with translated copies of the exemplar (the Tiling strategy).
+
+    Parameters
+    ----------
+    exemplar : the parsed exemplar
+    region : the output region
+    rng : one 63-bit key is drawn from it; it only decides which motif of a pair conflicting
+        across a seam leaves the tiling (an exemplar with enough padding gives the same texture
+        for every seed)
+    stats : the exemplar's analysis, if already computed
+    progress : called as ``progress(stage, fraction)``
+    **params : fields of :class:`~svgtile.engines.common.CommonParams`; only ``boundary`` is
+        used (see the module docstring)
+
+    Returns
+    -------
+    Arrangement with no overlaps and no distance-rule violations, filtered by the boundary mode,
+    in reading order.
+    """
+    p = CommonParams(**params)
+    stats = stats or analyze(exemplar)
+    report = progress or (lambda stage, fraction: None)
+    key = cellrng.root_key(rng)
+
+    report("seams", 0.0)
+    keep = periodic_keep(exemplar, stats, key=key)
+    report("tiles", 0.3)
+    arr = stamp(exemplar, region, keep)
+    arr = arr.take(region.keep(arr, exemplar.prototypes, p.boundary))
+    arr = reading_order(arr)
+    report("done", 1.0)
+    return arr
+
+
+def tile_size(exemplar: Exemplar) -> tuple[float, float, float, float]:
+    """``(x0, y0, w, h)``: corner and size of the input region's bounding box, user units."""
+    x0, y0, x1, y1 = exemplar.region.bounds
+    return x0, y0, x1 - x0, y1 - y0
+
+
+def periodic_keep(exemplar: Exemplar, stats: Stats, *, key: int) -> np.ndarray:
+    """(m,) bool: the exemplar motifs every copy keeps, so that the tiling has no conflicts.
+
+    The exemplar is surrounded by as many rings of translated copies as a conflict can reach
+    across; every conflicting pair found in this block, mapped back to exemplar indices, is an
+    edge of the periodic conflict graph (a motif in conflict with its own translate is an edge to
+    itself and always leaves).  The graph is then culled as :func:`svgtile.conflicts.resolve`
+    culls a texture (almeraj2013 §3.3, §3.1): overlapping pairs first, preferring to remove
+    motifs that break the distance rule, then the remaining violations.  Pairs within one copy
+    are the exemplar's own and conflict only if the exemplar overlaps itself.
+    """
+    motifs, protos = exemplar.motifs, exemplar.prototypes
+    m = len(motifs)
+    x0, y0, w, h = tile_size(exemplar)
+    scaled = np.array([x0, y0, w, h]) * 10**DECIMALS
+    margin = 0.0 if np.allclose(scaled, np.round(scaled), rtol=0, atol=1e-6) else SEAM_MARGIN
+    radius = motif_radius(motifs, protos)
+    reach = 2 * float(radius.max()) + float(stats.distance.max()) + margin + 2 * RULE_SLACK
+    na = math.ceil((np.ptp(motifs.xy[:, 0]) + reach) / w)
+    nb = math.ceil((np.ptp(motifs.xy[:, 1]) + reach) / h)
+    da, db = (v.ravel() for v in np.meshgrid(np.arange(-na, na + 1), np.arange(-nb, nb + 1)))
+    block = copies(exemplar, motifs, da, db)
+    copy = np.repeat(np.arange(len(da)), m)
+    index = np.tile(np.arange(m), len(da))
+
+    own = find_conflicts(block, protos, stats.distance)
+    seam = find_conflicts(block, protos, stats.distance + margin) if margin else own
+    same, across = copy[own.i] == copy[own.j], copy[seam.i] != copy[seam.j]
+    i = index[np.r_[own.i[same], seam.i[across]]]
+    j = index[np.r_[own.j[same], seam.j[across]]]
+    overlap = np.r_[own.overlap[same], seam.overlap[across]]
+    violation = np.r_[own.violation[same], seam.violation[across]]
+
+    keep = np.ones(m, dtype=bool)
+    keep[i[i == j]] = False  # a motif that conflicts with its own translate cannot be tiled
+    edge = (i != j) & keep[i] & keep[j]
+    code = np.minimum(i, j)[edge] * m + np.maximum(i, j)[edge]
+    # one edge per motif pair: it may overlap across one seam and only violate across another
+    pair, which = np.unique(code, return_inverse=True)
+    lo, hi = pair // m, pair % m
+    over = np.zeros(len(pair), dtype=bool)
+    bad = np.zeros(len(pair), dtype=bool)
+    np.logical_or.at(over, which, overlap[edge])
+    np.logical_or.at(bad, which, violation[edge])
+
+    priority = cellrng.uniform(key, _PRIORITY, np.arange(m))
+    violator = np.zeros(m)
+    side = bad & ~over
+    violator[lo[side]] = violator[hi[side]] = 1.0
+    keep &= cull(m, Conflicts(lo[over], hi[over], over[over], bad[over]), priority, violator)
+    rest = (bad | over) & keep[lo] & keep[hi]
+    keep &= cull(m, Conflicts(lo[rest], hi[rest], over[rest], bad[rest]), priority)
+    return keep
+
+
+def stamp(exemplar: Exemplar, region: Region, keep: np.ndarray | None = None) -> Arrangement:
+    """Every copy of the (kept) exemplar motifs whose bounding disc meets the region's box.
+
+    Copy ``(a, b)`` translates the exemplar by ``(a·w − x0, b·h − y0)`` (see :func:`copies`).
+
+    Parameters
+    ----------
+    keep : (m,) bool array, the exemplar motifs to copy (all by default)
+
+    Returns
+    -------
+    Arrangement of the copies, copy by copy (not yet filtered by a boundary mode).
+    """
+    motifs = exemplar.motifs if keep is None else exemplar.motifs.take(keep)
+    if len(motifs) == 0:
+        return Arrangement.empty()
+    x0, y0, w, h = tile_size(exemplar)
+    r = motif_radius(motifs, exemplar.prototypes)
+    X0, Y0, X1, Y1 = region.bounds
+    # copy a reaches [a·w − x0 + min(x − r), a·w − x0 + max(x + r)]
+    a = np.arange(
+        math.ceil((X0 + x0 - float((motifs.xy[:, 0] + r).max())) / w),
+        math.floor((X1 + x0 - float((motifs.xy[:, 0] - r).min())) / w) + 1,
+    )
+    b = np.arange(
+        math.ceil((Y0 + y0 - float((motifs.xy[:, 1] + r).max())) / h),
+        math.floor((Y1 + y0 - float((motifs.xy[:, 1] - r).min())) / h) + 1,
+    )
+    A, B = (v.ravel() for v in np.meshgrid(a, b))
+    arr = copies(exemplar, motifs, A, B)
+    rr = np.tile(r, len(A))
+    xy = arr.xy
+    return arr.take((xy[:, 0] + rr > X0) & (xy[:, 0] - rr < X1) & (xy[:, 1] + rr > Y0) & (xy[:, 1] - rr < Y1))
+
+
+def copies(exemplar: Exemplar, motifs: Arrangement, a: np.ndarray, b: np.ndarray) -> Arrangement:
+    """Copies ``(a[t], b[t])`` of ``motifs``, copy by copy, at the output precision.
+
+    Copy ``(a, b)`` translates by ``(a·w − x0, b·h − y0)``.  Positions are rounded before and after
+    the translation, so every copy is the same rounded pattern whenever the translation itself
+    has at most :data:`~svgtile.engines.common.DECIMALS` decimals.
+
+    Parameters
+    ----------
+    motifs : Arrangement of m exemplar motifs
+    a, b : (c,) int arrays
+
+    Returns
+    -------
+    Arrangement of ``c·m`` motifs.
+    """
+    x0, y0, w, h = tile_size(exemplar)
+    shift = np.stack([a * w - x0, b * h - y0], -1)
+    base = motifs.quantized(DECIMALS)
+    c = len(shift)
+    return Arrangement(
+        np.tile(base.kind, c),
+        (base.xy[None, :, :] + shift[:, None, :]).reshape(-1, 2),
+        np.tile(base.angle, c),
+        np.tile(base.scale, c),
+    ).quantized(DECIMALS)
