@@ -42,6 +42,7 @@ from ..errors import ParameterError
 from ..exemplar import Exemplar
 from ..footprint import motif_radius, rotation
 from ..region import BOUNDARY_MODES, Region
+from .common import DECIMALS, reading_order
 
 Progress = Callable[[str, float], None]
 
@@ -58,9 +59,6 @@ LACK_WEIGHT = 3.0
 #: At most this many motifs may be displaced by one motif of a lacking kind (§3.4 insertion).
 DISPLACE_MAX = 5
 
-#: Decimals of positions, angles and scales in the output.  Motifs are rounded when they are
-#: created, so every check runs on exactly what is written.
-DECIMALS = 4
 
 
 @dataclass(frozen=True)
@@ -157,7 +155,7 @@ def synthesize(
     arr = arr.take(resolve(arr, protos, stats.distance, priority, frequency=stats.frequency))
 
     arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
-    arr = _finish(arr)
+    arr = reading_order(arr)
     report("done", 1.0)
     return arr
 
@@ -511,11 +509,6 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
 
 
 # ----------------------------------------------------------------------------- final check
-
-
-def _finish(arr: Arrangement) -> Arrangement:
-    """Motifs in reading order (rows, then columns): a stable, diff-friendly output."""
-    return arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
 
 
 def _from_centre(exemplar: Exemplar) -> np.ndarray:
