@@ -1,5 +1,10 @@
+"""``python -m svgtile``: the same command line as the ``svgtile`` script."""
+
+from __future__ import annotations
+
 import sys
 
 from .cli import main
 
-sys.exit(main())
+if __name__ == "__main__":
+    sys.exit(main())

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import secrets
 import sys
+import warnings
 from pathlib import Path
 
 import click
@@ -17,27 +19,58 @@ from .analysis import Stats, analyze
 from .engines import ENGINES
 from .errors import ParameterError, SvgtileError
 from .exemplar import Exemplar, read_exemplar
-from .output import svg_document, write_text
+from .output import check_output, fmt, same_file, svg_document, write_text
 from .region import BOUNDARY_MODES, Region
 
-#: Above this estimated motif count ``synth`` refuses to run without ``--force``.
+#: Above this estimated motif count ``synth`` refuses to run without ``--force`` (the estimate is
+#: the exemplar's motifs per unit area times the output area).  Two million motifs take about a
+#: minute and a few GB of memory, and make an SVG of some 180 MB that few viewers can open.
 MAX_MOTIFS = 2_000_000
+#: Refused even with ``--force``: no machine holds this many motifs (about 1 kB each) in memory.
+HARD_MAX_MOTIFS = 1e9
+# click >= 8.2 raises this for a bare ``svgtile``; older versions print the help and exit 0
+_NO_ARGS_IS_HELP = getattr(click.exceptions, "NoArgsIsHelpError", ())
 
 
 def _size(text: str) -> tuple[float, float]:
+    """``WIDTHxHEIGHT`` (or one number for a square) in user units, both positive and finite."""
     match = re.fullmatch(r"\s*([0-9.eE+-]+)\s*(?:[xX×]\s*([0-9.eE+-]+))?\s*", text)
     try:
         w = float(match.group(1))
         h = float(match.group(2) or match.group(1))
     except (AttributeError, ValueError):
         raise ParameterError(f"--size must look like 800x600 (user units), not {text!r}") from None
-    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+    if not (w > 0 and h > 0):
         raise ParameterError(f"--size must be positive, not {text!r}")
+    if not (math.isfinite(w) and math.isfinite(h)):
+        raise ParameterError(f"--size {text!r} is too large to represent")
     return w, h
 
 
+class _Stderr:
+    """One-line messages on stderr, aware of the progress line a terminal may be showing."""
+
+    progress_shown = False
+
+    @classmethod
+    def line(cls, message: str) -> None:
+        cls.clear()
+        click.echo(" ".join(message.split("\n")), err=True)
+
+    @classmethod
+    def clear(cls) -> None:
+        if cls.progress_shown:
+            click.echo("\r\033[K", err=True, nl=False)
+            cls.progress_shown = False
+
+
 def _warn(message: str) -> None:
-    click.echo(f"svgtile: warning: {message}", err=True)
+    _Stderr.line(f"svgtile: warning: {message}")
+
+
+def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Python warnings (numpy, shapely …) as one svgtile line instead of two lines of source."""
+    _warn(f"{message} ({category.__name__})")
 
 
 def _load(path: str) -> tuple[Exemplar, Stats]:
@@ -51,14 +84,17 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
 
 
 def _progress():
+    """A ``progress(stage, fraction)`` callback drawing one self-erasing line, when stderr is a
+    terminal; None otherwise (logs and pipes get nothing)."""
     if not sys.stderr.isatty():
         return None
 
     def report(stage: str, fraction: float) -> None:
-        end = "\n" if stage == "done" else ""
+        if stage == "done":
+            _Stderr.clear()
+            return
         click.echo(f"\rsvgtile: {stage:<10} {fraction:4.0%}", err=True, nl=False)
-        if end:
-            click.echo("\r" + " " * 30 + "\r", err=True, nl=False)
+        _Stderr.progress_shown = True
 
     return report
 
@@ -72,9 +108,10 @@ def cli() -> None:
 @cli.command()
 @click.argument("exemplar", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", required=True, help="Output SVG file, or - for standard output.")
-@click.option("--size", required=True, help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600.")
+@click.option("--size", required=True,
+              help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600 (one number: a square).")
 @click.option("--engine", type=click.Choice(sorted(ENGINES)), default="patch", show_default=True,
-              help="Synthesis algorithm (patch: AlMeraj et al. 2013).")
+              help="Synthesis algorithm: patch = copies of the exemplar blended without seams (AlMeraj et al. 2013); tile = plain repeated copies and random = scattered motifs, both for comparison.")
 @click.option("--grid", type=click.Choice(["square", "hex"]), default="square", show_default=True,
               help="Layout of the exemplar copies; hex suits round exemplars.")
 @click.option("--overlap", type=float, default=0.3, show_default=True,
@@ -85,7 +122,7 @@ def cli() -> None:
               help="Give every motif a new orientation, drawn from the range its kind shows in the exemplar.")
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip", show_default=True,
               help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out.")
-@click.option("--seed", type=int, default=None,
+@click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
 def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orientation, boundary, seed, force):
@@ -99,11 +136,15 @@ def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orie
         raise ParameterError(f"--overlap must be between 0 and 0.5, not {overlap:g}")
     if not 0.0 <= max_rotation <= 180.0:
         raise ParameterError(f"--max-rotation must be between 0 and 180 degrees, not {max_rotation:g}")
-    if output != "-" and Path(output).resolve() == Path(exemplar).resolve():
+    if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
+    check_output(output, protect=(exemplar,))  # fail before the work, not after
     ex, stats = _load(exemplar)
     region = Region.rectangle(width, height)
     estimate = stats.count_density * region.area
+    if not estimate <= HARD_MAX_MOTIFS:
+        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
+        raise ParameterError(f"--size {size} would hold {about} motifs, more than svgtile can hold in memory")
     if estimate > MAX_MOTIFS and not force:
         raise ParameterError(
             f"--size {size} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}); use --force to run anyway"
@@ -114,7 +155,10 @@ def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orie
     params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation,
                   vary_orientation=vary_orientation, boundary=boundary)  # fmt: skip
     arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, progress=_progress(), **params)
-    meta = {"engine": engine, "seed": seed, "exemplar": Path(exemplar).name, "size": f"{width:g}x{height:g}",
+    _Stderr.clear()
+    if len(arr) == 0:
+        _warn(f"no motif fits in {size} with --boundary {boundary}; writing an empty texture")
+    meta = {"engine": engine, "seed": seed, "exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}",
             **params, "motifs": len(arr)}  # fmt: skip
     text = svg_document(ex, arr, region, boundary=boundary, params=meta)
     write_text(text, output, protect=(Path(exemplar),))
@@ -128,7 +172,7 @@ def analyze_cmd(exemplar, as_json):
     ex, stats = _load(exemplar)
     report = stats_report(ex, stats)
     if as_json:
-        click.echo(json.dumps(report, indent=2))
+        click.echo(json.dumps(_json_safe(report), indent=2, allow_nan=False))
     else:
         click.echo(format_report(report))
 
@@ -159,7 +203,19 @@ def stats_report(ex: Exemplar, stats: Stats) -> dict:
     }
 
 
+def _json_safe(value):
+    """``value`` with NaN and infinities as None: JSON has no spelling for them."""
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
 def format_report(r: dict) -> str:
+    """The analysis as the table ``svgtile analyze`` prints."""
     x0, y0, x1, y1 = r["region"]["bounds"]
     lines = [
         f"exemplar      {r['exemplar']}",
@@ -186,37 +242,62 @@ def format_report(r: dict) -> str:
     return "\n".join(lines)
 
 
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point: every expected failure is one line on stderr and a non-zero exit."""
-    debug = "--debug" in (argv if argv is not None else sys.argv[1:])
-    args = [a for a in (argv if argv is not None else sys.argv[1:]) if a != "--debug"]
+    """Entry point: every expected failure is one line on stderr and a non-zero exit.
+
+    Exit codes: 0 success (also for help), 1 bad input or unwritable output, 2 bad command line,
+    70 internal error (a bug; ``--debug`` anywhere shows the traceback), 130 interrupted.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    args = [a for a in argv if a != "--debug"]
+    _Stderr.progress_shown = False
     try:
-        cli.main(args=args, prog_name="svgtile", standalone_mode=False)
+        with warnings.catch_warnings():
+            warnings.showwarning = _showwarning
+            # click's own main would print a blank line on ^C and exit on a broken pipe itself
+            with cli.make_context("svgtile", args) as ctx:
+                cli.invoke(ctx)
     except SvgtileError as exc:
-        click.echo(f"svgtile: error: {exc}", err=True)
+        _Stderr.line(f"svgtile: error: {_one_line(exc)}")
         return 1
-    except click.exceptions.Abort:
-        click.echo("svgtile: interrupted", err=True)
-        return 130
-    except click.exceptions.NoArgsIsHelpError as exc:
+    except click.exceptions.Exit as exc:  # --help, --version
+        return exc.exit_code
+    except _NO_ARGS_IS_HELP as exc:  # bare ``svgtile``
         click.echo(exc.ctx.get_help() if exc.ctx else exc.format_message())
         return 0
-    except click.ClickException as exc:
-        click.echo(f"svgtile: error: {exc.format_message()}", err=True)
+    except click.UsageError as exc:
+        hint = f" (see '{exc.ctx.command_path} --help')" if exc.ctx else ""
+        _Stderr.line(f"svgtile: error: {_one_line(exc.format_message())}{hint}")
         return exc.exit_code
-    except KeyboardInterrupt:
-        click.echo("svgtile: interrupted", err=True)
+    except click.ClickException as exc:
+        _Stderr.line(f"svgtile: error: {_one_line(exc.format_message())}")
+        return exc.exit_code
+    except (KeyboardInterrupt, click.exceptions.Abort):
+        _Stderr.line("svgtile: interrupted")
         return 130
+    except BrokenPipeError:  # ``svgtile synth … -o - | head``: the reader left, nothing to report
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, sys.stdout.fileno())  # so the flush at exit cannot fail again
+        except (OSError, AttributeError, ValueError):
+            pass
+        finally:
+            os.close(devnull)
+        return 1
     except MemoryError:
-        click.echo("svgtile: error: out of memory; try a smaller --size", err=True)
+        _Stderr.line("svgtile: error: out of memory; try a smaller --size")
         return 1
     except Exception as exc:  # a bug, not bad input: still one line, traceback on request
         if debug:
             raise
-        click.echo(f"svgtile: internal error: {type(exc).__name__}: {exc} (run with --debug for details)", err=True)
+        _Stderr.line(f"svgtile: internal error: {type(exc).__name__}: {_one_line(exc)} (run with --debug for details)")
         return 70
     return 0
-
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())

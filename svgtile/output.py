@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import copy
 import os
+import re
+import stat
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
@@ -19,21 +21,48 @@ import shapely
 
 from .arrangement import Arrangement
 from .errors import OutputError
-from .exemplar import SVG_NS, XLINK_NS, Exemplar, Kind
+from .exemplar import INKSCAPE_NS, SVG_NS, XLINK_NS, Exemplar, Kind
 from .region import Region
 
 META_NS = "urn:svgtile:run:1"
+SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
 USES_MARK = "svgtile-uses"
+#: Decimals written for every number (positions, angles, scales, sizes).
+DECIMALS = 4
+# Below this magnitude np.round(v, 4) has a short repr with at most 4 decimals and no exponent.
+_FAST_LIMIT = 1e11
+# Characters XML 1.0 forbids (and lone surrogates from undecodable file names).
+_NOT_XML = re.compile("[^\x09\x0A\x0D\x20-\uD7FF\uE000-\uFFFD\U00010000-\U0010FFFF]")
 # ElementTree's namespace registry is process-wide; these are the prefixes any SVG tool expects.
 ET.register_namespace("", SVG_NS)
 ET.register_namespace("xlink", XLINK_NS)
 ET.register_namespace("svgtile", META_NS)
+ET.register_namespace("inkscape", INKSCAPE_NS)
+ET.register_namespace("sodipodi", SODIPODI_NS)
 
 
 def fmt(v: float) -> str:
-    """Fixed number format: four decimals at most, no trailing zeros, no ``-0``."""
-    s = f"{v:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
+    """Fixed number format: four decimals at most, no trailing zeros, no ``-0``.
+
+    >>> fmt(1.0), fmt(-0.00001), fmt(2.50004), fmt(-3.14159)
+    ('1', '0', '2.5', '-3.1416')
+    """
+    return fmt_array(np.array([v]))[0]
+
+
+def fmt_array(values: np.ndarray) -> list[str]:
+    """:func:`fmt` for a whole array at once, (n,) floats to n strings.
+
+    Values are rounded with ``np.round(v, 4)``; the shortest repr of such a float is its decimal
+    value with at most four decimals, so only the ``.0`` of whole numbers needs removing.  Huge or
+    non-finite values (never written in practice) take the slow path.
+    """
+    v = np.round(np.asarray(values, dtype=np.float64).reshape(-1), DECIMALS) + 0.0  # + 0.0: no -0
+    out = [s[:-2] if s[-2:] == ".0" else s for s in map(repr, v.tolist())]
+    for i in np.flatnonzero(~(np.abs(v) < _FAST_LIMIT)).tolist():
+        s = f"{v[i]:.{DECIMALS}f}".rstrip("0").rstrip(".")
+        out[i] = "0" if s in ("-0", "") else s
+    return out
 
 
 def use_transform_suffix(kind: Kind) -> str:
@@ -48,24 +77,26 @@ def use_transform_suffix(kind: Kind) -> str:
 
 
 def use_elements(arr: Arrangement, kinds: tuple[Kind, ...], indent: str = "    ") -> list[str]:
-    """One ``<use>`` line per motif, in the arrangement's order."""
-    heads = []
+    """One ``<use>`` line per motif, in the arrangement's order.
+
+    ``transform="translate(x y) rotate(angle) scale(s) <kind suffix>"``; ``rotate`` is left out
+    for angle 0 and ``scale`` for scale 1 (after formatting).  Columns are formatted in bulk.
+    """
+    heads, tails = [], []
     for kind in kinds:
         attrs = "".join(f' {k}="{_escape(v)}"' for k, v in kind.use_attrs)
+        heads.append(f'{indent}<use xlink:href="#{_escape(kind.href)}"{attrs} transform="translate(')
         suffix = use_transform_suffix(kind)
-        heads.append((f'{indent}<use xlink:href="#{_escape(kind.href)}"{attrs} transform="', suffix))
-    lines = []
-    for k, (x, y), a, s in zip(arr.kind.tolist(), arr.xy.tolist(), arr.angle.tolist(), arr.scale.tolist()):
-        head, suffix = heads[k]
-        t = f"translate({fmt(x)} {fmt(y)})"
-        if (fa := fmt(a)) != "0":
-            t += f" rotate({fa})"
-        if (fs := fmt(s)) != "1":
-            t += f" scale({fs})"
-        if suffix:
-            t += " " + suffix
-        lines.append(f'{head}{t}"/>')
-    return lines
+        tails.append(f' {suffix}"/>' if suffix else '"/>')
+    if len(arr) == 0:
+        return []
+    xs, ys = fmt_array(arr.xy[:, 0]), fmt_array(arr.xy[:, 1])
+    rot = [f") rotate({a}" if a != "0" else "" for a in fmt_array(arr.angle)]
+    scl = [f") scale({s}" if s != "1" else "" for s in fmt_array(arr.scale)]
+    return [
+        f"{heads[k]}{x} {y}{r}{s}){tails[k]}"
+        for k, x, y, r, s in zip(arr.kind.tolist(), xs, ys, rot, scl, strict=True)
+    ]
 
 
 def svg_document(
@@ -79,32 +110,41 @@ def svg_document(
     arr : the motifs
     region : the output region; its bounding box is the document's viewBox
     boundary : ``clip`` adds a clipPath of the region around the motifs
-    params : recorded in ``<metadata>`` (engine, seed, parameters)
+    params : recorded in ``<metadata>`` (engine, seed, parameters), sorted by name
+
+    The motifs go in ``<g id="svgtile">`` and the clip path is ``svgtile-clip``; should the
+    exemplar's copied defs already use such an id, a numbered suffix keeps ids unique.
     """
     x0, y0, x1, y1 = region.bounds
+    width, height, *box = fmt_array(np.array([x1 - x0, y1 - y0, x0, y0]))
     root = ET.Element(
         f"{{{SVG_NS}}}svg",
-        {"width": fmt(x1 - x0), "height": fmt(y1 - y0), "viewBox": " ".join(fmt(v) for v in (x0, y0, x1 - x0, y1 - y0))},
+        {"width": width, "height": height, "viewBox": " ".join((*box, width, height))},
     )
     meta = ET.SubElement(root, f"{{{SVG_NS}}}metadata")
-    ET.SubElement(meta, f"{{{META_NS}}}run", {k: str(v) for k, v in sorted(params.items())})
+    ET.SubElement(meta, f"{{{META_NS}}}run", {k: _xml_chars(str(v)) for k, v in sorted(params.items())})
     defs = ET.SubElement(root, f"{{{SVG_NS}}}defs")
     for el in exemplar.defs:
         defs.append(_in_svg_namespace(copy.deepcopy(el)))
-    group = ET.SubElement(root, f"{{{SVG_NS}}}g", {"id": "svgtile"})
+    taken = {node.get("id") for node in defs.iter()}
+    group = ET.SubElement(root, f"{{{SVG_NS}}}g", {"id": _unique_id("svgtile", taken)})
     if boundary == "clip":
-        clip = ET.SubElement(defs, f"{{{SVG_NS}}}clipPath", {"id": "svgtile-clip"})
+        clip_id = _unique_id("svgtile-clip", taken)
+        clip = ET.SubElement(defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
         ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(region.shape), "clip-rule": "evenodd"})
-        group.set("clip-path", "url(#svgtile-clip)")
+        group.set("clip-path", f"url(#{clip_id})")
     group.append(ET.Comment(USES_MARK))
     ET.indent(root, space="  ")
     text = ET.tostring(root, encoding="unicode")
     head_end = text.index(">")
     if "xmlns:xlink=" not in text[:head_end]:  # the <use> lines below need it even if defs do not
         text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
-    lines = use_elements(arr, exemplar.kinds)
-    body = "\n".join(lines)
-    text = text.replace(f"<!--{USES_MARK}-->", body.lstrip() if body else "")
+    body = "\n".join(use_elements(arr, exemplar.kinds))
+    # the group is the last element, so its marker is the last one in the text
+    before, _, after = text.rpartition(f"<!--{USES_MARK}-->")
+    if not body:  # an empty group: no blank line inside it
+        before = before.rstrip(" ").removesuffix("\n")
+    text = before + body.lstrip() + after
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
 
 
@@ -113,39 +153,116 @@ def path_data(geom: shapely.Geometry) -> str:
     parts = []
     for poly in shapely.get_parts(geom):
         for ring in [poly.exterior, *poly.interiors]:
-            pts = np.asarray(ring.coords)[:-1]
-            parts.append("M" + " L".join(f"{fmt(x)} {fmt(y)}" for x, y in pts) + " Z")
+            xy = fmt_array(np.asarray(ring.coords)[:-1].ravel())
+            parts.append("M" + " L".join(f"{x} {y}" for x, y in zip(xy[::2], xy[1::2], strict=True)) + " Z")
     return " ".join(parts)
 
 
-def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) -> None:
-    """Write ``text`` to ``out`` atomically (``-`` is standard output).
+def check_output(out: str | Path, *, protect: tuple[str | Path, ...] = ()) -> None:
+    """Raise :class:`OutputError` unless ``out`` can be written (``-`` always can).
 
-    Refuses to overwrite any path in ``protect`` (the inputs).  The text goes to a temporary file
-    in the target folder that is renamed into place, so a failure never leaves half a file.
+    ``out`` must not be any path in ``protect`` (under any spelling, symlink or hard link), must
+    not be a folder, and its folder must exist.  Call it before the work to fail early;
+    :func:`write_text` calls it again.
     """
     if str(out) == "-":
-        sys.stdout.write(text)
-        sys.stdout.flush()
         return
     out = Path(out)
     for p in protect:
-        if out.resolve() == Path(p).resolve():
+        if same_file(out, Path(p)):
             raise OutputError("refusing to overwrite an input file", source=str(out))
-    folder = out.parent if str(out.parent) else Path(".")
+    if out.is_dir():
+        raise OutputError("is a folder; give a file name", source=str(out))
+    folder = out.parent
     if not folder.is_dir():
-        raise OutputError(f"folder {str(folder)!r} does not exist", source=str(out))
+        problem = "is a file, not a folder" if folder.exists() else "does not exist"
+        raise OutputError(f"folder {str(folder)!r} {problem}", source=str(out))
+
+
+def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) -> None:
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``out`` atomically (``-`` is standard output).
+
+    Refuses to overwrite any path in ``protect`` (the inputs).  The text goes to a temporary file
+    in the target folder that is flushed to disk and renamed into place, so a failure never
+    leaves half a file, and a file that was there stays untouched.  A new file gets the usual
+    permissions (``0o666`` less the umask); a replaced file keeps its permissions.
+
+    Raises
+    ------
+    OutputError
+        The path is protected or unusable, or writing failed (disk full, no permission …).
+    """
+    data = text.encode("utf-8")
+    if str(out) == "-":
+        stream = sys.stdout
+        binary = getattr(stream, "buffer", None)
+        if binary is None:  # a text-only stream (an embedding application's)
+            stream.write(text)
+        else:  # bytes, so the document is the same as the file on every platform
+            stream.flush()
+            view = memoryview(data)
+            while view:  # a pipe whose reader left may take part and report success
+                written = binary.write(view)
+                if not written:
+                    raise OutputError("standard output takes no more data", source="-")
+                view = view[written:]
+            binary.flush()
+        stream.flush()
+        return
+    check_output(out, protect=protect)
+    out = Path(out)
+    mode = _file_mode(out)
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=folder)
+        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
     except OSError as exc:
-        raise OutputError(f"cannot write here ({exc.strerror})", source=str(out)) from None
+        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
         os.replace(tmp, out)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def same_file(a: str | Path, b: str | Path) -> bool:
+    """Do ``a`` and ``b`` name one file (``./d/../x.svg`` and ``x.svg``, symlinks, hard links)?"""
+    if Path(a).resolve() == Path(b).resolve():
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist
+        return False
+
+
+def _file_mode(out: Path) -> int:
+    """Permissions for the file written at ``out`` (mkstemp's are ``0o600``)."""
+    try:
+        return stat.S_IMODE(os.stat(out).st_mode)
+    except OSError:
+        umask = os.umask(0o022)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
+def _unique_id(base: str, taken: set[str | None]) -> str:
+    ident, n = base, 1
+    while ident in taken:
+        n += 1
+        ident = f"{base}-{n}"
+    taken.add(ident)
+    return ident
+
+
+def _xml_chars(value: str) -> str:
+    """``value`` with characters XML cannot hold replaced by U+FFFD."""
+    return _NOT_XML.sub("\ufffd", value)
 
 
 def _in_svg_namespace(el: ET.Element) -> ET.Element:
