@@ -242,6 +242,11 @@ def format_report(r: dict) -> str:
     return "\n".join(lines)
 
 
+# Commands that live in modules of their own (they import the helpers above, so they come last).
+# One line per module: ``from .cli_NAME import COMMAND as _COMMAND`` then ``cli.add_command(_COMMAND)``.
+# -- end of command registrations --
+
+
 def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split())
 
