@@ -1,8 +1,8 @@
 """Render every bundled exemplar beside a texture synthesized from it, for exemplars/README.md.
 
 Needs the optional renderer: ``pip install -e '.[png]'`` (resvg).  Writes
-``exemplars/previews/NAME.png`` (the exemplar) and ``NAME-texture.png`` (a 400 × 250 texture,
-seed 1, default options) and puts both images under the ``<!-- preview:NAME -->`` line of the
+``exemplars/previews/NAME.png`` (the exemplar) and ``NAME-texture.png`` (a 240 × 150 texture,
+seed 1, default options), both at the same scale so motifs compare at a glance, and puts both images under the ``<!-- preview:NAME -->`` line of the
 README.  Run from the repository root: ``python tools/make_previews.py``.
 """
 
@@ -21,7 +21,9 @@ from svgtile.output import svg_document
 ROOT = Path(__file__).resolve().parents[1]
 EXEMPLARS = ROOT / "exemplars"
 PREVIEWS = EXEMPLARS / "previews"
-SIZE = (400.0, 250.0)
+SIZE = (240.0, 150.0)
+#: Pixels per user unit, the same for exemplar and texture.
+SCALE = 3.0
 
 
 def render(svg: str, width: int) -> bytes:
@@ -37,8 +39,9 @@ def main() -> None:
         region = Region.rectangle(*SIZE)
         arr = synthesize(ex, region, rng=np.random.default_rng(1), stats=analyze(ex))
         text = svg_document(ex, arr, region, boundary="clip", params={"seed": 1})
-        (PREVIEWS / f"{name}.png").write_bytes(render(path.read_text(), 200))
-        (PREVIEWS / f"{name}-texture.png").write_bytes(render(text, 640))
+        x0, _, x1, _ = ex.region.bounds
+        (PREVIEWS / f"{name}.png").write_bytes(render(path.read_text(), round((x1 - x0) * SCALE)))
+        (PREVIEWS / f"{name}-texture.png").write_bytes(render(text, round(SIZE[0] * SCALE)))
         images = (
             f"<!-- preview:{name} -->\n"
             f"![{name} exemplar](previews/{name}.png) ![{name}: {len(arr)} motifs synthesized on "
