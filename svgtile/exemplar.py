@@ -25,6 +25,7 @@ and viewport, and each ``<use>`` only contributes its matrix.
 from __future__ import annotations
 
 import copy
+import io
 import math
 import re
 import warnings
@@ -74,6 +75,8 @@ MAX_COORDINATES = 200_000
 MAX_USE_DEPTH = 32
 #: Presentation properties that are not inherited but change how a plain motif looks.
 OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
+#: Attribute of the region element giving the period of a repeating tile (see Exemplar.period).
+PERIOD_ATTR = "{urn:svgtile:run:1}period"
 
 
 @dataclass(frozen=True, eq=False)
@@ -131,6 +134,10 @@ class Exemplar:
         or the generated symbols of a plain drawing), in a stable order.
     warnings : tuple of str
         Non-fatal problems (overlapping motifs, ignored elements …).
+    period : (2,) tuple of float or None, user units
+        The exemplar is one tile of a pattern that repeats with this horizontal and vertical
+        period (given by ``svgtile:period="W H"`` on the region element, as ``svgtile import``
+        writes it); :func:`svgtile.analysis.analyze` then measures across the tile's edges.
     """
 
     source: str
@@ -139,6 +146,7 @@ class Exemplar:
     region: shapely.Polygon
     defs: tuple[ET.Element, ...]
     warnings: tuple[str, ...] = ()
+    period: tuple[float, float] | None = None
 
     @property
     def prototypes(self) -> list[Prototype]:
@@ -607,7 +615,22 @@ class _Reader:
         if not centroid_in.all():
             self.warn(f"{int((~centroid_in).sum())} motif(s) outside the input region are ignored")
             arrangement = arrangement.take(centroid_in)
-        return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings))
+        period = self._period()
+        return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings), period)
+
+    def _period(self) -> tuple[float, float] | None:
+        """The ``svgtile:period`` of the region element, if any (see :attr:`Exemplar.period`)."""
+        el = self.ids.get("region")
+        text = None if el is None else el.attrib.get(PERIOD_ATTR)
+        if text is None:
+            return None
+        try:
+            w, h = (float(v) for v in re.split(r"[\s,]+", text.strip()))
+        except ValueError:
+            raise self.error(f"unreadable svgtile:period {text!r} (expected two numbers)") from None
+        if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+            raise self.error(f"svgtile:period {text!r} must be two positive numbers")
+        return (w, h)
 
     def _refuse_external_references(self) -> None:
         """A ``<use>`` may only reference this file (other hrefs are links, images … and never drawn)."""
@@ -988,14 +1011,15 @@ def _rotated(geom: shapely.Geometry, angle: float) -> shapely.Geometry:
     return shapely.transform(geom, lambda p: p @ np.array([[c, s], [-s, c]]))
 
 
-def _match_rotation(ref: _Shape, shape: _Shape) -> float | None:
+def _match_rotation(ref: _Shape, shape: _Shape, tolerance: float = SHAPE_TOLERANCE) -> float | None:
     """Angle (degrees) rotating ``ref`` onto ``shape`` (both centred), or None if not congruent.
 
     Candidates: no rotation (kept on ties, so symmetric motifs get angle 0), the alignment of the
     principal axes both ways, and the shape's farthest point onto each of the reference's far
-    points; the best is accepted if its Hausdorff distance is within the tolerance.
+    points; the best is accepted if its Hausdorff distance is within ``tolerance`` × the
+    reference's radius.
     """
-    tol = SHAPE_TOLERANCE * ref.radius
+    tol = tolerance * ref.radius
     exact = 1e-6 * ref.radius
     candidates = [0.0]
     if ref.axis is not None and shape.axis is not None:
@@ -1018,7 +1042,538 @@ def _match_rotation(ref: _Shape, shape: _Shape) -> float | None:
     return (best_angle + 180.0) % 360.0 - 180.0
 
 
+# ----------------------------------------------------------------------------- pattern tiles
+#
+# A pattern tile (FGDC lithology, OSM area fill …) is not an exemplar: one element may hold many
+# motifs and one motif many elements.  :func:`read_tile` flattens it into *pieces* — one per
+# drawn subpath, with its footprint and polyline in tile coordinates — that
+# :mod:`svgtile.tileimport` groups into motifs.
+
+#: Paint properties a piece keeps for redrawing it (stroke-width is converted to tile units).
+PIECE_PAINT = (
+    "fill", "fill-rule", "fill-opacity", "stroke", "stroke-width", "stroke-linecap",
+    "stroke-linejoin", "stroke-miterlimit", "stroke-opacity", "opacity",
+)  # fmt: skip
+
+
+@dataclass(frozen=True, eq=False)
+class TilePieces:
+    """The drawn subpaths of a pattern tile, in the tile's user units.
+
+    Attributes
+    ----------
+    source : str
+    box : (4,) tuple of float
+        The tile ``(x, y, width, height)``: the root viewBox, else ``0 0 width height``.
+    footprint : (n,) object array of shapely geometries
+        Each piece's footprint (interior if closed or filled, plus stroke band; dots are discs).
+    points : list of n (k, 2) float arrays
+        Each piece's flattened subpath in tile coordinates (k = 1 for a dot).
+    closed : (n,) bool array
+    element : (n,) int array
+        Index of the element a piece comes from (its subpaths are redrawn together).
+    paint : list of n tuples of (name, value)
+        The piece's effective paint (:data:`PIECE_PAINT`, stroke width in tile units).
+    frames : list of str
+        Descriptions of dropped frame/background elements equal to the tile.
+    filled_frame : bool
+        One of them is painted (a solid fill or a background colour).
+    warnings : list of str
+    """
+
+    source: str
+    box: tuple[float, float, float, float]
+    footprint: np.ndarray
+    points: list[np.ndarray]
+    closed: np.ndarray
+    element: np.ndarray
+    paint: list[tuple[tuple[str, str], ...]]
+    frames: list[str]
+    filled_frame: bool
+    warnings: list[str]
+
+
+def read_tile(path: str | Path) -> TilePieces:
+    """Read a pattern tile SVG file into pieces (see :func:`parse_tile`)."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+    return parse_tile(data, source=str(path))
+
+
+def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
+    """Flatten a pattern tile into pieces, one per drawn subpath.
+
+    Transforms are applied, styles cascaded (CSS ``style``, presentation attributes, inheritance),
+    ``<use>`` elements expanded; a shape whose footprint is the whole tile (a frame or background
+    rectangle) is dropped and reported in ``frames``.  A subpath that draws nothing (moveto only,
+    neither filled nor stroked) is no piece.
+
+    Raises
+    ------
+    ExemplarError
+        Malformed XML, no tile size, unreadable geometry.
+    """
+    if isinstance(data, str):
+        data = data.encode()
+    try:
+        root = ET.fromstring(data)
+    except (ET.ParseError, ValueError, LookupError) as exc:
+        raise ExemplarError(f"not a well-formed XML file ({_oneline(exc)})", source=source) from None
+    if _local(root.tag) != "svg" or _ns(root.tag) not in ("", SVG_NS):
+        raise ExemplarError(f"not an SVG document (root element is <{_local(root.tag)}>)", source=source)
+    reader = _Reader(root, source)
+    reader._refuse_external_references()
+    box = _tile_box(root, source)
+    walk = _TileWalk(reader, box)
+    try:
+        walk.visit(root, _style(root, INITIAL), np.eye(3), ())
+    except RecursionError:
+        raise ExemplarError("elements are nested too deeply", source=source) from None
+    footprint = np.empty(len(walk.footprint), dtype=object)
+    footprint[:] = walk.footprint
+    return TilePieces(
+        source, box, footprint, walk.points, np.array(walk.closed, dtype=bool),
+        np.array(walk.element, dtype=np.int64), walk.paint, walk.frames, walk.filled_frame,
+        reader.warnings,
+    )  # fmt: skip
+
+
+def _tile_box(root: ET.Element, source: str) -> tuple[float, float, float, float]:
+    box = root.attrib.get("viewBox")
+    if box:
+        try:
+            x, y, w, h = (float(v) for v in re.split(r"[\s,]+", box.strip()))
+        except ValueError:
+            raise ExemplarError(f"unreadable root viewBox {box!r}", source=source) from None
+    else:
+        x = y = 0.0
+        try:
+            w = _absolute_length(root.attrib.get("width", ""))
+            h = _absolute_length(root.attrib.get("height", ""))
+        except ValueError:
+            raise ExemplarError(
+                "the tile size is unknown (the root <svg> has no viewBox and no absolute width/height)",
+                source=source,
+            ) from None
+    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
+        raise ExemplarError(f"the tile ({w:g} x {h:g}) has no area", source=source)
+    return (x, y, w, h)
+
+
+class _TileWalk:
+    """Collects the pieces of a tile (see :func:`parse_tile`)."""
+
+    #: A shape is a frame when its footprint's bounds match the tile's within this share of its size.
+    FRAME_TOLERANCE = 0.01
+
+    def __init__(self, reader: _Reader, box: tuple[float, float, float, float]) -> None:
+        self.reader, self.box = reader, box
+        self.footprint: list[shapely.Geometry] = []
+        self.points: list[np.ndarray] = []
+        self.closed: list[bool] = []
+        self.element: list[int] = []
+        self.paint: list[tuple[tuple[str, str], ...]] = []
+        self.frames: list[str] = []
+        self.filled_frame = False
+        self.elements = 0
+
+    def visit(self, el: ET.Element, style: dict[str, str], m: np.ndarray, stack: tuple[str, ...]) -> None:
+        for child in el:
+            if not _rendered(child):
+                continue
+            tag = _local(child.tag)
+            cstyle = _style(child, style)
+            if _hidden(cstyle):
+                continue
+            cm = m @ _matrix(child.attrib.get("transform"))
+            if "clip-path" in cstyle or "mask" in cstyle:
+                self.reader.warn(f"clip paths and masks are ignored ({_describe(child)}); the tile's edge is the clip")
+            if tag in SHAPES:
+                self.shape(child, cstyle, cm)
+            elif tag in CONTAINERS:
+                self.visit(child, cstyle, cm, stack)
+            elif tag == "svg":
+                if "viewBox" in child.attrib:
+                    raise self.reader.error(f"nested {_describe(child)} with a viewBox is not supported; flatten it first")
+                x, y = _number(child.attrib.get("x"), 0), _number(child.attrib.get("y"), 0)
+                self.visit(child, cstyle, cm @ _translate(x, y), stack)
+            elif tag == "use":
+                ref, target = self.reader._target(child)
+                if ref in stack or len(stack) >= MAX_USE_DEPTH:
+                    raise self.reader.error(f"{_describe(target)} is referenced recursively")
+                view, _ = self.reader._viewport(child, target)
+                x, y = _number(child.attrib.get("x"), 0), _number(child.attrib.get("y"), 0)
+                holder = ET.Element("g")
+                holder.append(target)
+                tm = cm @ _translate(x, y) @ view
+                if _local(target.tag) in ("symbol", "svg"):
+                    self.visit(target, _style(target, cstyle), tm, (*stack, ref))
+                else:
+                    self.visit(holder, cstyle, tm, (*stack, ref))
+            elif tag in ("text", "image"):
+                self.reader.warn(f"{_describe(child)} is ignored (only shapes are motifs)")
+
+    def shape(self, el: ET.Element, style: dict[str, str], m: np.ndarray) -> None:
+        det = float(np.linalg.det(m[:2, :2]))
+        if abs(det) < 1e-12:
+            return
+        filled = _painted(style.get("fill", INITIAL["fill"]))
+        width = _number(style.get("stroke-width"), 1.0)
+        stroked = _painted(style.get("stroke", INITIAL["stroke"])) and width > 0
+        if not (filled or stroked):
+            return  # draws nothing (e.g. a fill:none frame or mapnik_workaround rect)
+        subpaths = _subpaths(el, self.reader.source)
+        if not subpaths:
+            return
+        cap = _CAPS.get(style.get("stroke-linecap", "butt"), "flat")
+        join = _JOINS.get(style.get("stroke-linejoin", "miter"), "mitre")
+        limit = max(_number(style.get("stroke-miterlimit"), 4.0), 1.0)
+        geoms, kept = [], []
+        for pts, closed in subpaths:
+            geom = _subpath_footprint(pts, closed, filled, width if stroked else 0.0, cap, join, limit)
+            if geom is not None:
+                geoms.append(_apply(m, geom))
+                kept.append((pts @ m[:2, :2].T + m[:2, 2], closed))
+        if not geoms:
+            return
+        if self.is_frame(shapely.union_all(geoms)):
+            self.frames.append(_describe(el))
+            self.filled_frame |= filled
+            return
+        paint = {k: style[k] for k in PIECE_PAINT if k in style}
+        paint["fill"] = style.get("fill", INITIAL["fill"])
+        if stroked:
+            paint["stroke-width"] = _fmt(width * math.sqrt(abs(det)))
+        else:
+            for k in ("stroke", "stroke-width", "stroke-linecap", "stroke-linejoin", "stroke-miterlimit", "stroke-opacity"):
+                paint.pop(k, None)
+        key = tuple(sorted(paint.items()))
+        for geom, (pts, closed) in zip(geoms, kept, strict=True):
+            self.footprint.append(geom)
+            self.points.append(pts)
+            self.closed.append(closed)
+            self.element.append(self.elements)
+            self.paint.append(key)
+        self.elements += 1
+
+    def is_frame(self, geom: shapely.Geometry) -> bool:
+        x, y, w, h = self.box
+        tol = self.FRAME_TOLERANCE * max(w, h)
+        x0, y0, x1, y1 = geom.bounds
+        covers = geom.area >= 0.9 * w * h or _fill_holes(geom).area >= 0.9 * w * h
+        return covers and max(abs(x0 - x), abs(y0 - y), abs(x1 - x - w), abs(y1 - y - h)) <= tol
+
+
+def _subpath_footprint(
+    pts: np.ndarray, closed: bool, filled: bool, width: float, cap: str, join: str, limit: float
+) -> shapely.Geometry | None:
+    """Footprint of one flattened subpath in its own user space (as in :func:`_leaf_footprint`).
+
+    ``width`` 0 means not stroked.  A zero-length subpath is a dot of diameter ``width`` with
+    round caps (a square with square caps).  None if it covers no area.
+    """
+    distinct = len(np.unique(np.round(pts, 12), axis=0))
+    parts = []
+    if distinct >= 3 and (closed or filled):
+        parts.append(shapely.make_valid(shapely.Polygon(pts)))
+    if width > 0:
+        if distinct == 1:
+            if cap == "round":
+                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=16))
+            elif cap == "square":
+                x, y = pts[0]
+                parts.append(shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2))
+        else:
+            line = np.vstack([pts, pts[:1]]) if closed else pts
+            parts.append(shapely.LineString(line).buffer(width / 2, quad_segs=16, cap_style=cap, join_style=join, mitre_limit=limit))
+    parts = [p for p in parts if not p.is_empty and p.area > 0]
+    return shapely.union_all(parts) if parts else None
+
+
+def match_kinds(
+    geoms: list[shapely.Geometry], paints: list[tuple], tolerance: float = SHAPE_TOLERANCE
+) -> tuple[np.ndarray, np.ndarray]:
+    """Kinds of centred footprints, identical up to rotation within ``tolerance``.
+
+    The rule of plain exemplars (:meth:`_Reader._plain_kind`): a motif takes the kind of the first
+    earlier one of the same paint whose shape it matches after a rotation: areas within
+    2 × ``tolerance``, radii within ``tolerance`` and Hausdorff distance within ``tolerance`` ×
+    radius.
+
+    Parameters
+    ----------
+    geoms : n footprints, each centred on its centroid
+    paints : n hashable paint keys
+    tolerance : relative shape tolerance
+
+    Returns
+    -------
+    kind : (n,) int array, numbered in order of first appearance
+    angle : (n,) float array, degrees rotating the kind's first motif onto each motif
+    """
+    kind = np.zeros(len(geoms), dtype=np.int64)
+    angle = np.zeros(len(geoms))
+    reps: list[tuple[_Shape, tuple]] = []
+    for n, (geom, paint) in enumerate(zip(geoms, paints, strict=True)):
+        shape = _Shape.of(geom)
+        for k, (ref, ref_paint) in enumerate(reps):
+            if ref_paint != paint:
+                continue
+            if abs(ref.area - shape.area) > 2 * tolerance * ref.area:
+                continue
+            if abs(ref.radius - shape.radius) > tolerance * ref.radius:
+                continue
+            turn = _match_rotation(ref, shape, tolerance)
+            if turn is not None:
+                kind[n], angle[n] = k, turn
+                break
+        else:
+            kind[n] = len(reps)
+            reps.append((shape, paint))
+    return kind, angle
+
+
 def warn_all(exemplar: Exemplar) -> None:
     """Issue the exemplar's warnings through :mod:`warnings` (the CLI shows them on stderr)."""
     for message in exemplar.warnings:
         warnings.warn(f"{exemplar.source}: {message}", stacklevel=2)
+
+
+# ----------------------------------------------------------------------------- map geometry
+#
+# The same flattening serves map regions and avoid zones (issue 5): a map SVG is not an exemplar,
+# but its shapes are read with the helpers above, so svgelements stays in this module.
+
+#: Text without a measurable font is taken as this many user units high (the CSS default).
+DEFAULT_FONT_SIZE = 16.0
+#: Width of an average glyph as a fraction of the font size, for estimated text boxes.
+GLYPH_WIDTH = 0.6
+#: A text line's box reaches this far above and below its baseline, in font sizes.
+ASCENT, DESCENT = 0.8, 0.25
+
+
+def winding_fill(rings: list[np.ndarray], rule: str = "nonzero") -> shapely.Geometry:
+    """The area SVG paints for closed rings under a fill rule, holes included.
+
+    The rings' linework is noded and polygonized into faces; a face is painted when the winding
+    number of its interior point is non-zero (``nonzero``) or odd (``evenodd``), as in SVG 1.1
+    §11.3.  Works for self-intersecting rings and rings drawn in any direction.
+
+    Parameters
+    ----------
+    rings : list of (k, 2) float arrays, user units (closing point optional)
+    rule : "nonzero" or "evenodd"
+
+    Returns
+    -------
+    shapely (Multi)Polygon, possibly empty.
+    """
+    rings = [np.asarray(r, dtype=np.float64) for r in rings if len(np.unique(np.round(r, 12), axis=0)) >= 3]
+    if not rings:
+        return shapely.Polygon()
+    closed = [r if np.array_equal(r[0], r[-1]) else np.vstack([r, r[:1]]) for r in rings]
+    lines = shapely.union_all(shapely.linestrings(np.concatenate(closed), indices=np.repeat(
+        np.arange(len(closed)), [len(r) for r in closed])))
+    faces = np.array(shapely.get_parts(shapely.polygonize(shapely.get_parts(lines))), dtype=object)
+    if len(faces) == 0:
+        return shapely.Polygon()
+    probe = shapely.get_coordinates(shapely.point_on_surface(faces))  # (f, 2)
+    wind = np.zeros(len(faces), dtype=np.int64)
+    for r in closed:  # a loop over rings; faces and edges are vectorised
+        a, b = r[:-1], r[1:]
+        px, py = probe[:, 0, None], probe[:, 1, None]
+        left = (b[:, 0] - a[:, 0]) * (py - a[:, 1]) - (px - a[:, 0]) * (b[:, 1] - a[:, 1])
+        up = (a[:, 1] <= py) & (b[:, 1] > py) & (left > 0)
+        down = (a[:, 1] > py) & (b[:, 1] <= py) & (left < 0)
+        wind += up.sum(axis=1) - down.sum(axis=1)
+    painted = wind % 2 == 1 if rule == "evenodd" else wind != 0
+    return shapely.union_all(faces[painted]) if painted.any() else shapely.Polygon()
+
+
+def _font_size(chain: list[ET.Element]) -> float:
+    """The font size in user units inherited along ``chain`` (root first)."""
+    size = DEFAULT_FONT_SIZE
+    for node in chain:
+        value = node.attrib.get("font-size")
+        for decl in node.attrib.get("style", "").split(";"):
+            if ":" in decl and decl.split(":", 1)[0].strip() == "font-size":
+                value = decl.split(":", 1)[1]
+        if value is not None:
+            try:
+                size = _absolute_length(value)
+            except ValueError:
+                match = _LENGTH.match(value)
+                if match and match.group(2) in ("em", "%"):  # relative to the parent's size
+                    size *= float(match.group(1)) / (100.0 if match.group(2) == "%" else 1.0)
+    return size
+
+
+class SvgShapes:
+    """Shapes of a map SVG as shapely geometry in the root's user units (map regions, avoid zones).
+
+    Reads what :func:`read_exemplar` reads — paths, basic shapes and groups, transforms of the
+    element and its ancestors, inherited style — plus text, as estimated boxes.
+    """
+
+    def __init__(self, data: bytes, source: str, *, comments: bool = False) -> None:
+        """Parse ``data``; with ``comments`` the tree keeps comments and processing instructions
+        (to be written back, as ``svgtile map`` does), and :attr:`namespaces` lists the prefixes
+        the file declares."""
+        try:
+            builder = ET.TreeBuilder(insert_comments=comments, insert_pis=comments)
+            root = ET.fromstring(data, parser=ET.XMLParser(target=builder))
+            self.namespaces = [ns for _, ns in ET.iterparse(io.BytesIO(data), events=("start-ns",))]
+        except (ET.ParseError, ValueError, LookupError) as exc:
+            raise ExemplarError(f"not a well-formed XML file ({_oneline(exc)})", source=source) from None
+        if _local(root.tag) != "svg" or _ns(root.tag) not in ("", SVG_NS):
+            raise ExemplarError(f"not an SVG document (root element is <{_local(root.tag)}>)", source=source)
+        self.root, self.source = root, source
+        self.reader = _Reader(root, source)
+        self.parents = {c: p for p in root.iter() for c in p}
+
+    @classmethod
+    def read(cls, path: str | Path, *, comments: bool = False) -> SvgShapes:
+        path = Path(path)
+        try:
+            data = path.read_bytes()
+        except OSError as exc:
+            raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+        return cls(data, str(path), comments=comments)
+
+    def error(self, message: str) -> ExemplarError:
+        return ExemplarError(_oneline(message), source=self.source)
+
+    def element(self, ident: str) -> ET.Element:
+        el = self.reader.ids.get(ident)
+        if el is None:
+            raise self.error(f"no element with id {_short(ident)!r}")
+        return el
+
+    def chain(self, el: ET.Element) -> list[ET.Element]:
+        """``el`` and its ancestors, root first."""
+        out = [el]
+        while out[-1] in self.parents:
+            out.append(self.parents[out[-1]])
+        return out[::-1]
+
+    def matrix(self, el: ET.Element) -> np.ndarray:
+        """(3, 3) matrix from ``el``'s own user space to the root's (its transform included)."""
+        m = np.eye(3)
+        for node in self.chain(el)[1:]:
+            m = m @ _matrix(node.attrib.get("transform"))
+        return m
+
+    def style(self, el: ET.Element) -> dict[str, str]:
+        """Effective (cascaded) presentation properties of ``el``."""
+        style = INITIAL
+        for node in self.chain(el):
+            style = _style(node, style)
+        return style
+
+    def area(self, el: ET.Element) -> shapely.Geometry:
+        """The area ``el`` (a closed shape or a group of them) encloses, holes by its fill rule.
+
+        Every subpath counts as closed (as when SVG fills it), whatever the fill paint; a group
+        is the union of its shapes.  Hidden elements and text are left out.
+        """
+        tag = _local(el.tag)
+        if tag not in SHAPES and tag not in (*CONTAINERS, "svg"):
+            raise self.error(f"{_describe(el)} cannot be a region (use a closed shape or a group of them)")
+        parent = self.parents.get(el)
+        parent_style = self.style(parent) if parent is not None else INITIAL
+        m = self.matrix(parent) if parent is not None else np.eye(3)
+        geom = self._area(el, parent_style, m)
+        return shapely.Polygon() if geom is None else geom
+
+    def _area(self, el: ET.Element, parent_style: dict[str, str], m: np.ndarray) -> shapely.Geometry | None:
+        style = _style(el, parent_style)
+        if _hidden(style) or not _rendered(el):
+            return None
+        m = m @ _matrix(el.attrib.get("transform"))
+        tag = _local(el.tag)
+        if tag in SHAPES:
+            rings = [pts for pts, _ in _subpaths(el, self.source, REGION_FLATNESS)]
+            geom = winding_fill(rings, style.get("fill-rule", "nonzero").strip())
+            return _apply(m, geom)
+        if tag in (*CONTAINERS, "svg"):
+            parts = [self._area(c, style, m) for c in el]
+            parts = [p for p in parts if p is not None and not p.is_empty]
+            return shapely.union_all(parts) if parts else None
+        return None
+
+    def keep_clear(self, el: ET.Element, margin: float) -> shapely.Geometry:
+        """The zone motifs must keep out of around ``el``, grown by ``margin`` user units.
+
+        A shape's footprint (its closed outlines' interior and its stroke band; a line is its
+        stroke), a text's estimated box (:data:`GLYPH_WIDTH` per character, :data:`ASCENT` and
+        :data:`DESCENT` about each line's baseline, ``text-anchor`` honoured), a group's union.
+        """
+        parent = self.parents.get(el)
+        parent_style = self.style(parent) if parent is not None else INITIAL
+        m = self.matrix(parent) if parent is not None else np.eye(3)
+        parts: list[shapely.Geometry] = []
+        self._keep_clear(el, parent_style, m, parts)
+        parts = [p for p in parts if not p.is_empty]
+        if not parts:
+            return shapely.Polygon()
+        grown = shapely.buffer(np.array(parts, dtype=object), margin, quad_segs=4) if margin > 0 else parts
+        return shapely.union_all(grown)
+
+    def _keep_clear(self, el, parent_style, m, out: list) -> None:
+        style = _style(el, parent_style)
+        if _hidden(style) or not _is_svg(el) or _local(el.tag) in NOT_RENDERED:
+            return
+        m = m @ _matrix(el.attrib.get("transform"))
+        tag = _local(el.tag)
+        if tag in SHAPES:
+            geom = _leaf_footprint(el, style, self.source)
+            if geom is None:  # an unstroked line: the line itself, grown by the margin later
+                geom = shapely.union_all([shapely.LineString(p) if len(p) > 1 else shapely.Point(p[0])
+                                          for p, _ in _subpaths(el, self.source)])
+            out.append(_apply(m, geom))
+        elif tag == "text":
+            out.extend(_apply(m, box) for box in self._text_boxes(el))
+        elif tag in (*CONTAINERS, "svg"):
+            for child in el:
+                self._keep_clear(child, style, m, out)
+
+    def _text_boxes(self, text: ET.Element) -> list[shapely.Polygon]:
+        """Estimated boxes of a ``<text>``'s lines in its own user space (a ``tspan`` with its
+        own ``x`` or ``y`` starts a line, as Inkscape writes multi-line text)."""
+        lines: list[list] = []  # [x, y, anchor, size, characters]
+
+        def walk(node: ET.Element, x: float, y: float, anchor: str) -> None:
+            chain = self.chain(node)
+            size = _font_size(chain)
+            anchor = self._text_anchor(node, anchor)
+            if "x" in node.attrib or "y" in node.attrib or not lines:
+                x = _number((node.attrib.get("x") or "").split(",")[0].split(" ")[0] or None, x)
+                y = _number((node.attrib.get("y") or "").split(",")[0].split(" ")[0] or None, y)
+                lines.append([x, y, anchor, size, 0])
+            lines[-1][3] = max(lines[-1][3], size)
+            lines[-1][4] += len((node.text or "").strip())
+            for child in node:
+                if _local(child.tag) == "tspan":
+                    walk(child, lines[-1][0], lines[-1][1], anchor)
+                lines[-1][4] += len((child.tail or "").strip())
+
+        walk(text, 0.0, 0.0, "start")
+        boxes = []
+        for x, y, anchor, size, chars in lines:
+            if chars == 0:
+                continue
+            width = GLYPH_WIDTH * size * chars
+            x0 = x - {"start": 0.0, "middle": 0.5, "end": 1.0}.get(anchor, 0.0) * width
+            boxes.append(shapely.box(x0, y - ASCENT * size, x0 + width, y + DESCENT * size))
+        return boxes
+
+    @staticmethod
+    def _text_anchor(node: ET.Element, inherited: str) -> str:
+        value = node.attrib.get("text-anchor")
+        for decl in node.attrib.get("style", "").split(";"):
+            if ":" in decl and decl.split(":", 1)[0].strip() == "text-anchor":
+                value = decl.split(":", 1)[1]
+        return value.strip() if value else inherited

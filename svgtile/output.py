@@ -8,6 +8,7 @@ the same inputs and seed give a byte-identical file.  Files are written atomical
 from __future__ import annotations
 
 import copy
+import dataclasses
 import os
 import re
 import stat
@@ -275,3 +276,133 @@ def _in_svg_namespace(el: ET.Element) -> ET.Element:
 
 def _escape(value: str) -> str:
     return value.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
+
+
+# ----------------------------------------------------------------------------- map documents
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class MapLayer:
+    """One region's texture in a map document.
+
+    Attributes
+    ----------
+    ident : the region's id; the texture group is ``svgtile-<ident>``
+    cls : the region's class (written as ``data-svgtile-class``)
+    shape : the region (Multi)Polygon in the root's user units; its clip path
+    kinds : the kinds, their ``href`` pointing at the prefixed symbols (:func:`prefixed_defs`)
+    arr : the motifs, root user units
+    boundary : ``clip`` adds the region's clip path
+    anchor : the map element the texture is drawn just above, or None (then at the end)
+    matrix : (3, 3) from the anchor's parent's user space to the root's, or None
+    """
+
+    ident: str
+    cls: str
+    shape: shapely.Geometry
+    kinds: tuple[Kind, ...]
+    arr: Arrangement
+    boundary: str
+    anchor: ET.Element | None = None
+    matrix: np.ndarray | None = None
+
+
+def prefixed_defs(exemplar: Exemplar, prefix: str) -> tuple[list[ET.Element], tuple[Kind, ...]]:
+    """Copies of the exemplar's defs with every id prefixed, and its kinds pointing at them.
+
+    Two exemplars of one map may both define ``#dot``; with a prefix per style they cannot clash
+    with each other nor with the map's ids.  References inside the copies (``href``,
+    ``url(#…)``) follow their targets.
+    """
+    defs = [_in_svg_namespace(copy.deepcopy(el)) for el in exemplar.defs]
+    ids = {node.get("id") for el in defs for node in el.iter() if node.get("id")}
+    ids |= {k.href for k in exemplar.kinds}
+
+    def rename(match: re.Match) -> str:
+        ident = match.group(1)
+        return f"url(#{prefix}{ident})" if ident in ids else match.group(0)
+
+    for el in defs:
+        for node in el.iter():
+            for key, value in list(node.attrib.items()):
+                if key == "id" and value in ids:
+                    node.set(key, prefix + value)
+                elif key in ("href", f"{{{XLINK_NS}}}href") and value.startswith("#") and value[1:] in ids:
+                    node.set(key, "#" + prefix + value[1:])
+                elif "url(" in value:
+                    node.set(key, re.sub(r"url\(\s*#([^)\s]+)\s*\)", rename, value))
+    kinds = tuple(dataclasses.replace(k, href=prefix + k.href) for k in exemplar.kinds)
+    return defs, kinds
+
+
+def map_document(
+    root: ET.Element | None, defs: list[ET.Element], layers: list[MapLayer], *, params: dict[str, object]
+) -> str:
+    """The filled map as SVG text: the original map with one texture group per region.
+
+    Parameters
+    ----------
+    root : the map's root element, changed in place (None: a new document holding the
+        regions' outlines, for GeoJSON input)
+    defs : the prefixed symbols of every style (:func:`prefixed_defs`), in one new ``<defs>``
+    layers : the textures, each drawn right after its anchor element (its unit's own drawing,
+        so labels and linework drawn later stay on top)
+    params : recorded in ``<metadata>``
+
+    Each texture group carries the inverse of its anchor's parent's transform, so its motifs
+    and clip path are in the root's user units wherever the anchor sits.
+    """
+    outlines: list[ET.Element | None] = [None] * len(layers)
+    if root is None:
+        root = _outline_document([layer.shape for layer in layers])
+        outlines = list(root)
+    taken = {node.get("id") for node in root.iter()} | {node.get("id") for el in defs for node in el.iter()}
+    meta = ET.Element(f"{{{SVG_NS}}}metadata", {"id": _unique_id("svgtile-run", taken)})
+    ET.SubElement(meta, f"{{{META_NS}}}run", {k: _xml_chars(str(v)) for k, v in sorted(params.items())})
+    new_defs = ET.Element(f"{{{SVG_NS}}}defs", {"id": _unique_id("svgtile-defs", taken)})
+    new_defs.extend(defs)
+    root.insert(0, new_defs)
+    root.insert(0, meta)
+    parents = {c: p for p in root.iter() for c in p}
+    bodies = []
+    for n, layer in enumerate(layers):
+        safe = re.sub(r"[^A-Za-z0-9_.-]+", "-", layer.ident).strip("-") or str(n + 1)
+        group = ET.Element(f"{{{SVG_NS}}}g", {"id": _unique_id(f"svgtile-{safe}", taken),
+                                              "data-svgtile-class": _xml_chars(layer.cls)})  # fmt: skip
+        if layer.matrix is not None and not np.allclose(layer.matrix, np.eye(3)):
+            inv = np.linalg.inv(layer.matrix)
+            group.set("transform", "matrix({})".format(" ".join(fmt_array(inv[:2].T.ravel()))))
+        if layer.boundary == "clip":
+            clip_id = _unique_id(f"svgtile-clip-{safe}", taken)
+            clip = ET.SubElement(new_defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
+            ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(layer.shape), "clip-rule": "evenodd"})
+            group.set("clip-path", f"url(#{clip_id})")
+        group.append(ET.Comment(f"{USES_MARK}-{n}"))
+        anchor = layer.anchor if layer.anchor is not None else outlines[n]
+        parent = parents.get(anchor) if anchor is not None else None
+        if parent is None:
+            root.append(group)
+        else:
+            parent.insert(list(parent).index(anchor) + 1, group)
+        bodies.append("\n".join(use_elements(layer.arr, layer.kinds)))
+    ET.indent(new_defs, space="  ", level=1)
+    text = ET.tostring(root, encoding="unicode")
+    head_end = text.index(">")
+    if "xmlns:xlink=" not in text[:head_end]:
+        text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
+    for n, body in enumerate(bodies):
+        text = text.replace(f"<!--{USES_MARK}-{n}-->", "\n" + body + "\n" if body else "", 1)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + ("" if text.endswith("\n") else "\n")
+
+
+def _outline_document(shapes: list[shapely.Geometry]) -> ET.Element:
+    """A new SVG showing each region's outline (the map, when the regions came from GeoJSON)."""
+    x0, y0, x1, y1 = shapely.union_all(shapes).bounds
+    width, height, *box = fmt_array(np.array([x1 - x0, y1 - y0, x0, y0]))
+    root = ET.Element(f"{{{SVG_NS}}}svg", {"width": width, "height": height,
+                                           "viewBox": " ".join((*box, width, height))})  # fmt: skip
+    for shape in shapes:
+        ET.SubElement(root, f"{{{SVG_NS}}}path", {
+            "d": path_data(shape), "fill": "none", "stroke": "#000", "stroke-width": fmt(max(x1 - x0, y1 - y0) / 1000),
+            "fill-rule": "evenodd"})  # fmt: skip
+    return root

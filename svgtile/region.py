@@ -6,6 +6,13 @@ Boundary modes, as map makers know them from QGIS's fill symbol clipping:
 * ``centroid`` — keep it if its centroid lies inside;
 * ``clip`` — keep every motif that touches the region; the output clips them to it (default);
 * ``none`` — keep every motif that touches the region, unclipped.
+
+A region is any shapely (Multi)Polygon: several parts, and holes (inliers of another map unit),
+whose edges the boundary mode treats like the outer edge.  *Avoid zones* (labels, linework,
+symbols the texture must keep clear of) are cut out of the region, and in every mode a motif
+whose footprint meets one is dropped: whatever the mode does at the unit's edge, nothing is ever
+drawn over a label.  Edit stability: engines anchor randomness in world coordinates, so changing
+the outline changes only motifs near the change (measured in ``tests/test_region.py``).
 """
 
 from __future__ import annotations
@@ -28,15 +35,52 @@ class Region:
 
     Attributes
     ----------
-    shape : shapely Polygon or MultiPolygon, user units (holes are holes)
+    shape : shapely Polygon or MultiPolygon, user units
+        The area to fill (holes are holes), avoid zones already cut out.
+    avoid : shapely geometry or None, user units
+        Avoid zones: no motif footprint may meet them, whatever the boundary mode.
     """
 
     shape: shapely.Geometry
+    avoid: shapely.Geometry | None = None
 
     def __post_init__(self) -> None:
+        avoid = self.avoid
+        if avoid is not None and (avoid.is_empty or avoid.area <= 0):
+            avoid = None
+        object.__setattr__(self, "avoid", avoid)
+        if avoid is not None:
+            object.__setattr__(self, "shape", _polygonal(shapely.difference(self.shape, avoid)))
+            shapely.prepare(avoid)
         if self.shape.is_empty or self.shape.area <= 0:
-            raise RegionError("the output region has no area")
+            raise RegionError("the output region has no area" + (" outside its avoid zones" if avoid else ""))
         shapely.prepare(self.shape)
+
+    @classmethod
+    def from_geometry(
+        cls, geom: shapely.Geometry, *, avoid: shapely.Geometry | None = None, source: str | None = None
+    ) -> Region:
+        """A region from any geometry: made valid, only its polygons kept, parts merged.
+
+        Parameters
+        ----------
+        geom : shapely geometry, user units (a GeometryCollection's lines and points are ignored)
+        avoid : shapely geometry, user units, optional; polygonal (lines must be buffered first)
+        source : names the input in error messages
+
+        Raises
+        ------
+        RegionError
+            When nothing with area is left.
+        """
+        shape = _polygonal(shapely.make_valid(geom)) if geom is not None else shapely.Polygon()
+        if shape.is_empty or shape.area <= 0:
+            raise RegionError("the region has no area", source=source)
+        if avoid is not None:
+            avoid = _polygonal(shapely.make_valid(avoid))
+            if not shapely.difference(shape, avoid).area > 0:
+                raise RegionError("the region lies wholly inside its avoid zones", source=source)
+        return cls(shape, avoid)
 
     @classmethod
     def rectangle(cls, width: float, height: float, x: float = 0.0, y: float = 0.0) -> Region:
@@ -69,12 +113,32 @@ class Region:
         """
         if mode not in BOUNDARY_MODES:
             raise ValueError(f"unknown boundary mode {mode!r}")
+        if len(arr) == 0:
+            return np.zeros(0, dtype=bool)
+        result = self._keep_mode(arr, protos, mode, geoms)
+        if self.avoid is not None and result.any():
+            result[result] = self.clear(arr.take(result), protos, None if geoms is None else geoms[result])
+        return result
+
+    def clear(self, arr: Arrangement, protos: list[Prototype], geoms: np.ndarray | None = None) -> np.ndarray:
+        """(n,) bool: which motifs' footprints stay clear of the avoid zones (all, if none)."""
+        ok = np.ones(len(arr), dtype=bool)
+        if self.avoid is None or len(arr) == 0:
+            return ok
+        r = motif_radius(arr, protos)
+        near = np.flatnonzero(shapely.dwithin(self.avoid, shapely.points(arr.xy), r))
+        if len(near):
+            found = geoms[near] if geoms is not None else world_footprints(arr.take(near), protos)
+            ok[near] = ~shapely.intersects(self.avoid, found)
+        return ok
+
+    def _keep_mode(self, arr, protos, mode, geoms) -> np.ndarray:
         x, y = arr.xy[:, 0], arr.xy[:, 1]
-        if mode == "centroid" or len(arr) == 0:
+        if mode == "centroid":
             return shapely.contains_xy(self.shape, x, y)
         r = float(motif_radius(arr, protos).max())
-        surely_in = shapely.contains_xy(shapely.buffer(self.shape, -r), x, y)
-        surely_out = ~shapely.contains_xy(shapely.buffer(self.shape, r), x, y)
+        surely_in = shapely.contains_xy(self._grown(-r), x, y)
+        surely_out = ~shapely.contains_xy(self._grown(r), x, y)
         unsure = np.flatnonzero(~surely_in & ~surely_out)
         found = geoms[unsure] if geoms is not None else world_footprints(arr.take(unsure), protos)
         test = shapely.contains if mode == "inside" else shapely.intersects
@@ -82,6 +146,30 @@ class Region:
         result[unsure] = test(self.shape, found)
         return result
 
+    def _grown(self, r: float) -> shapely.Geometry:
+        """The shape buffered by ``r`` (negative: shrunk), prepared and kept: engines ask for
+        the same few radii round after round, and a map unit may have thousands of vertices."""
+        cache = self.__dict__.setdefault("_buffers", {})
+        if r not in cache:
+            if len(cache) > 16:
+                cache.clear()
+            cache[r] = shapely.buffer(self.shape, r)
+            shapely.prepare(cache[r])
+        return cache[r]
+
     def interior(self, margin: float) -> shapely.Geometry:
         """The region shrunk by ``margin`` (where border effects cannot reach)."""
         return shapely.buffer(self.shape, -margin)
+
+
+def _polygonal(geom: shapely.Geometry) -> shapely.Geometry:
+    """The polygons of ``geom`` (at any depth of collection), merged; empty if it has none."""
+    parts = [p for p in shapely.get_parts(geom) if not p.is_empty]
+    polys = []
+    for part in parts:
+        if isinstance(part, shapely.Polygon):
+            polys.append(part)
+        elif isinstance(part, (shapely.MultiPolygon, shapely.GeometryCollection)):
+            polys.append(_polygonal(part))
+    polys = [p for p in polys if not p.is_empty and p.area > 0]
+    return shapely.union_all(polys) if polys else shapely.Polygon()
