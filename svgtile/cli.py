@@ -19,8 +19,10 @@ from .analysis import Stats, analyze
 from .engines import ENGINES
 from .errors import ParameterError, SvgtileError
 from .exemplar import Exemplar, read_exemplar
+from .geojson import exemplar_placements
+from .mapread import synth_region
 from .output import check_output, fmt, same_file, svg_document, write_text
-from .region import BOUNDARY_MODES, Region
+from .region import BOUNDARY_MODES
 
 #: Above this estimated motif count ``synth`` refuses to run without ``--force`` (the estimate is
 #: the exemplar's motifs per unit area times the output area).  Two million motifs take about a
@@ -107,9 +109,15 @@ def cli() -> None:
 
 @cli.command()
 @click.argument("exemplar", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, help="Output SVG file, or - for standard output.")
-@click.option("--size", required=True,
+@click.option("-o", "--output", required=True, help="Output SVG file, or - for standard output; a .geojson file gets one point per motif (kind, angle, scale) for GIS.")
+@click.option("--size", default=None,
               help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600 (one number: a square).")
+@click.option("--region", "region_spec", default=None, metavar="MAP.svg#ID|FILE.geojson",
+              help="Fill this shape instead of a --size rectangle: an element (closed shape or group) of another SVG, holes by its fill rule, or the polygons of a GeoJSON file (FILE.geojson#ID: one feature).")
+@click.option("--avoid", multiple=True, metavar="MAP.svg#ID",
+              help="Keep every motif clear of these labels, lines or shapes (texts by their box, lines by their stroke, grown by --avoid-margin). Repeatable.")
+@click.option("--avoid-margin", type=float, default=2.0, show_default=True,
+              help="Clear space around --avoid zones, user units.")
 @click.option("--engine", type=click.Choice(sorted(ENGINES)), default="patch", show_default=True,
               help="Synthesis algorithm: patch = copies of the exemplar blended without seams (AlMeraj et al. 2013); tile = plain repeated copies and random = scattered motifs, both for comparison.")
 @click.option("--grid", type=click.Choice(["square", "hex"]), default="square", show_default=True,
@@ -125,13 +133,15 @@ def cli() -> None:
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
-def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orientation, boundary, seed, force):
+def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid, overlap, max_rotation,
+          vary_orientation, boundary, seed, force):
     """Synthesize a texture like EXEMPLAR and write it as SVG.
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
     with id="region" (else the viewBox) is the area the motifs were drawn in.
     """
-    width, height = _size(size)
+    region = synth_region(_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
+    where = f"--size {size}" if size is not None else f"--region {region_spec}"
     if not 0.0 <= overlap <= 0.5:
         raise ParameterError(f"--overlap must be between 0 and 0.5, not {overlap:g}")
     if not 0.0 <= max_rotation <= 180.0:
@@ -140,14 +150,13 @@ def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orie
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after
     ex, stats = _load(exemplar)
-    region = Region.rectangle(width, height)
     estimate = stats.count_density * region.area
     if not estimate <= HARD_MAX_MOTIFS:
         about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
-        raise ParameterError(f"--size {size} would hold {about} motifs, more than svgtile can hold in memory")
+        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
     if estimate > MAX_MOTIFS and not force:
         raise ParameterError(
-            f"--size {size} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}); use --force to run anyway"
+            f"{where} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}); use --force to run anyway"
         )
     if seed is None:
         seed = secrets.randbelow(2**31)
@@ -157,10 +166,15 @@ def synth(exemplar, output, size, engine, grid, overlap, max_rotation, vary_orie
     arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, progress=_progress(), **params)
     _Stderr.clear()
     if len(arr) == 0:
-        _warn(f"no motif fits in {size} with --boundary {boundary}; writing an empty texture")
-    meta = {"engine": engine, "seed": seed, "exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}",
+        _warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
+    x0, y0, x1, y1 = region.bounds
+    where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+    meta = {"engine": engine, "seed": seed, "exemplar": Path(exemplar).name, **where_meta,
             **params, "motifs": len(arr)}  # fmt: skip
-    text = svg_document(ex, arr, region, boundary=boundary, params=meta)
+    if str(output).lower().endswith(".geojson"):
+        text = exemplar_placements(ex, arr)
+    else:
+        text = svg_document(ex, arr, region, boundary=boundary, params=meta)
     write_text(text, output, protect=(Path(exemplar),))
 
 
@@ -244,6 +258,8 @@ def format_report(r: dict) -> str:
 
 # Commands that live in modules of their own (they import the helpers above, so they come last).
 # One line per module: ``from .cli_NAME import COMMAND as _COMMAND`` then ``cli.add_command(_COMMAND)``.
+from .cli_map import map_cmd as _map_cmd  # noqa: E402
+cli.add_command(_map_cmd)
 # -- end of command registrations --
 
 

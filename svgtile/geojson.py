@@ -217,3 +217,10 @@ def read_placements(path: str | Path, names: list[str], *, unit: float = 1.0) ->
         return Arrangement.empty()
     table = np.array(rows, dtype=np.float64)
     return Arrangement(table[:, 0].astype(np.int64), table[:, 1:3], table[:, 3], table[:, 4])
+
+
+def exemplar_placements(exemplar, arr: Arrangement, *, unit: float = 1.0) -> str:
+    """The placements file of a texture synthesized from ``exemplar`` (``synth -o X.geojson``)."""
+    names = [k.name for k in exemplar.kinds]
+    radius = np.array([k.prototype.radius for k in exemplar.kinds])
+    return placements_text(placements(arr, names, radius, unit=unit))

@@ -242,6 +242,7 @@ class MapFill:
     errors : ident -> one-line message, for the regions that failed
     doc : the parsed SVG map (None for GeoJSON input)
     warnings : non-fatal problems (classes of the styles file the map does not use …)
+    styles : the styles used
     """
 
     regions: list[MapRegion]
@@ -249,6 +250,7 @@ class MapFill:
     errors: dict[str, str]
     doc: SvgShapes | None
     warnings: list[str]
+    styles: Styles
 
 
 def read_map(path: str | Path, styles: Styles) -> tuple[list[MapRegion], SvgShapes | None]:
@@ -348,4 +350,4 @@ def fill_map(
                     done(*future.result(), count)
                 except Exception as exc:  # the worker itself died (killed, out of memory)
                     done(futures[future], None, f"worker failed: {type(exc).__name__}", count)
-    return MapFill(regions, results, errors, doc, warnings)
+    return MapFill(regions, results, errors, doc, warnings, styles)

@@ -19,6 +19,7 @@ Map units in a map SVG carry a *class* (:func:`class_of`), which the styles file
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,8 +28,9 @@ import numpy as np
 import shapely
 
 from . import geojson
-from .errors import RegionError
+from .errors import ParameterError, RegionError
 from .exemplar import CONTAINERS, INKSCAPE_NS, NOT_RENDERED, SHAPES, SvgShapes
+from .region import Region
 
 #: Default growth of avoid zones, user units (clear space around labels and lines).
 AVOID_MARGIN = 2.0
@@ -142,3 +144,26 @@ def classed_regions(doc: SvgShapes, classes: set[str], attribute: str | None = N
 
     walk(doc.root)
     return out
+
+
+def synth_region(
+    size: tuple[float, float] | None, region: str | None, avoid: tuple[str, ...] = (), margin: float = AVOID_MARGIN
+) -> Region:
+    """The output region of ``svgtile synth``: ``--size`` or ``--region``, less ``--avoid`` zones.
+
+    Parameters
+    ----------
+    size : (width, height) user units of a rectangle at the origin, or None
+    region : a region spec (see the module docstring), or None
+    avoid : avoid specs
+    margin : growth of avoid zones, user units
+    """
+    if (size is None) == (region is None):
+        raise ParameterError("give either --size WIDTHxHEIGHT or --region MAP.svg#ID / FILE.geojson")
+    if not (margin >= 0 and math.isfinite(margin)):
+        raise ParameterError(f"--avoid-margin must be a number >= 0, not {margin:g}")
+    zone = shapely.union_all([read_avoid_shape(spec, margin) for spec in avoid]) if avoid else None
+    if region is None:
+        rect = Region.rectangle(*size)
+        return rect if zone is None else Region.from_geometry(rect.shape, avoid=zone, source="--size")
+    return Region.from_geometry(read_region_shape(region), avoid=zone, source=region)

@@ -336,7 +336,8 @@ def prefixed_defs(exemplar: Exemplar, prefix: str) -> tuple[list[ET.Element], tu
 
 
 def map_document(
-    root: ET.Element | None, defs: list[ET.Element], layers: list[MapLayer], *, params: dict[str, object]
+    root: ET.Element | None, defs: list[ET.Element], layers: list[MapLayer], *, params: dict[str, object],
+    namespaces: tuple[tuple[str, str], ...] | list = (),
 ) -> str:
     """The filled map as SVG text: the original map with one texture group per region.
 
@@ -348,6 +349,8 @@ def map_document(
     layers : the textures, each drawn right after its anchor element (its unit's own drawing,
         so labels and linework drawn later stay on top)
     params : recorded in ``<metadata>``
+    namespaces : (prefix, uri) pairs the map declares, so its prefixes (``sodipodi:``,
+        ``inkscape:`` …) come back as they were rather than as ``ns0:``
 
     Each texture group carries the inverse of its anchor's parent's transform, so its motifs
     and clip path are in the root's user units wherever the anchor sits.
@@ -356,6 +359,9 @@ def map_document(
     if root is None:
         root = _outline_document([layer.shape for layer in layers])
         outlines = list(root)
+    for prefix, uri in namespaces:
+        if prefix and not re.fullmatch(r"ns\d+", prefix) and uri not in (SVG_NS, XLINK_NS):
+            ET.register_namespace(prefix, uri)
     taken = {node.get("id") for node in root.iter()} | {node.get("id") for el in defs for node in el.iter()}
     meta = ET.Element(f"{{{SVG_NS}}}metadata", {"id": _unique_id("svgtile-run", taken)})
     ET.SubElement(meta, f"{{{META_NS}}}run", {k: _xml_chars(str(v)) for k, v in sorted(params.items())})
