@@ -50,10 +50,19 @@ class Stats:
 
 
 def analyze(exemplar: Exemplar) -> Stats:
-    """Compute :class:`Stats` for an exemplar."""
+    """Compute :class:`Stats` for an exemplar.
+
+    For a repeating tile (``exemplar.period`` set) distances and overlaps are measured across the
+    tile's edges (:func:`periodic_distance_matrix`); the density needs no correction there, since
+    the tile holds exactly one copy of every motif of the pattern.
+    """
     motifs, protos = exemplar.motifs, exemplar.prototypes
     k = len(protos)
-    distance, measured, overlaps = distance_matrix(motifs, protos)
+    period = getattr(exemplar, "period", None)
+    if period is None:
+        distance, measured, overlaps = distance_matrix(motifs, protos)
+    else:
+        distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
     start, width = orientation_arcs(motifs.angle, motifs.kind, k)
@@ -119,6 +128,44 @@ def distance_matrix(arr: Arrangement, protos: list[Prototype]) -> tuple[np.ndarr
     fallback = np.minimum.outer(row_min, row_min)
     fallback[~np.isfinite(fallback)] = 0.0
     distance = np.where(measured, distance, fallback)
+    return distance, measured, overlaps
+
+
+def periodic_distance_matrix(
+    arr: Arrangement, protos: list[Prototype], period: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """:func:`distance_matrix` of a pattern that repeats with ``period`` (w, h), user units.
+
+    The tile's motifs are copied onto the 3 × 3 block of tiles around it, so a motif near an edge
+    meets its neighbours across that edge, and a kind with one motif per tile meets its own
+    repeats.  Every pair in the block is a translate of a pair of the infinite pattern, and every
+    pair of motifs closer than a tile width has a translate in the block, so the minima are those
+    of the pattern.  Overlaps are counted once per pair of the pattern: pairs within the tile,
+    and half of the pairs between the tile and a copy (each such pair appears from both ends).
+
+    Returns
+    -------
+    distance : (k, k) float array
+    measured : (k, k) bool array
+    overlaps : int
+    """
+    n = len(arr)
+    shifts = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1) if (i, j) != (0, 0)], dtype=np.float64)
+    shifts = np.vstack([[0.0, 0.0], shifts]) * np.asarray(period, dtype=np.float64)
+    block = Arrangement(
+        np.tile(arr.kind, 9), (arr.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
+        np.tile(arr.angle, 9), np.tile(arr.scale, 9),
+    )  # fmt: skip
+    distance, measured, _ = distance_matrix(block, protos)
+    geoms = world_footprints(block, protos)
+    radius = motif_radius(block, protos)
+    i, j = near_pairs(block.xy, radius, 1e-9)
+    first = i < n  # pairs are i < j, and the tile's own motifs come first
+    i, j = i[first], j[first]
+    dist = shapely.distance(geoms[i], geoms[j])
+    hit = overlapping(geoms, i, j, dist)
+    inner = j < n
+    overlaps = int(hit[inner].sum()) + int(hit[~inner].sum()) // 2
     return distance, measured, overlaps
 
 

@@ -133,8 +133,10 @@ def cli() -> None:
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
+@click.option("--import", "as_tile", is_flag=True,
+              help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid, overlap, max_rotation,
-          vary_orientation, boundary, seed, force):
+          vary_orientation, boundary, seed, force, as_tile):
     """Synthesize a texture like EXEMPLAR and write it as SVG.
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -149,7 +151,12 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after
-    ex, stats = _load(exemplar)
+    if as_tile:
+        from .cli_import import load_tile
+
+        ex, stats = load_tile(exemplar)
+    else:
+        ex, stats = _load(exemplar)
     estimate = stats.count_density * region.area
     if not estimate <= HARD_MAX_MOTIFS:
         about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
@@ -260,6 +267,10 @@ def format_report(r: dict) -> str:
 # One line per module: ``from .cli_NAME import COMMAND as _COMMAND`` then ``cli.add_command(_COMMAND)``.
 from .cli_map import map_cmd as _map_cmd  # noqa: E402
 cli.add_command(_map_cmd)
+from .cli_import import import_cmd as _import_cmd  # noqa: E402
+cli.add_command(_import_cmd)
+from .cli_import import swatches_cmd as _swatches_cmd  # noqa: E402
+cli.add_command(_swatches_cmd)
 # -- end of command registrations --
 
 
