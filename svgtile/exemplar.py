@@ -1560,7 +1560,10 @@ class SvgShapes:
                     walk(child, lines[-1][0], lines[-1][1], anchor)
                 lines[-1][4] += len((child.tail or "").strip())
 
-        walk(text, 0.0, 0.0, "start")
+        anchor = "start"
+        for node in self.chain(text)[:-1]:  # text-anchor is inherited
+            anchor = self._text_anchor(node, anchor)
+        walk(text, 0.0, 0.0, anchor)
         boxes = []
         for x, y, anchor, size, chars in lines:
             if chars == 0:
