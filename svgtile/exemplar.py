@@ -609,7 +609,8 @@ class _Reader:
             raise self.error("no motifs found (expected <use> elements or top-level shapes)")
         kinds, arrangement, defs = self._kinds(instances)
         region = self._region(arrangement, kinds)
-        centroid_in = shapely.contains_xy(region, arrangement.xy[:, 0], arrangement.xy[:, 1])
+        # boundary included: an imported tile may have a motif centred on its edge
+        centroid_in = shapely.intersects_xy(region, arrangement.xy[:, 0], arrangement.xy[:, 1])
         if not centroid_in.any():
             raise self.error("no motif lies inside the input region")
         if not centroid_in.all():
@@ -1239,7 +1240,7 @@ class _TileWalk:
                 kept.append((pts @ m[:2, :2].T + m[:2, 2], closed))
         if not geoms:
             return
-        if self.is_frame(shapely.union_all(geoms)):
+        if self.is_frame(shapely.union_all(geoms), width * math.sqrt(abs(det)) if stroked else 0.0):
             self.frames.append(_describe(el))
             self.filled_frame |= filled
             return
@@ -1259,9 +1260,10 @@ class _TileWalk:
             self.paint.append(key)
         self.elements += 1
 
-    def is_frame(self, geom: shapely.Geometry) -> bool:
+    def is_frame(self, geom: shapely.Geometry, stroke: float) -> bool:
+        """Does ``geom`` (a footprint with a stroke band ``stroke`` wide) cover the tile exactly?"""
         x, y, w, h = self.box
-        tol = self.FRAME_TOLERANCE * max(w, h)
+        tol = self.FRAME_TOLERANCE * max(w, h) + stroke / 2
         x0, y0, x1, y1 = geom.bounds
         covers = geom.area >= 0.9 * w * h or _fill_holes(geom).area >= 0.9 * w * h
         return covers and max(abs(x0 - x), abs(y0 - y), abs(x1 - x - w), abs(y1 - y - h)) <= tol

@@ -262,7 +262,7 @@ class _Lines:
         length = np.hypot(chord[:, 0], chord[:, 1])
         direction = chord / np.maximum(length, 1e-12)[:, None]
         deviation = np.array([
-            float(np.abs(np.cross(tile.points[p] - first[k], direction[k])).max()) if len(tile.points[p]) > 2 else 0.0
+            float(np.abs(_cross(tile.points[p] - first[k], direction[k])).max()) if len(tile.points[p]) > 2 else 0.0
             for k, p in enumerate(idx)
         ])  # fmt: skip
         straight = ~tile.closed[idx] & (length > 0) & (deviation <= STRAIGHTNESS * length)
@@ -287,6 +287,11 @@ class _Lines:
             & (gap <= JOIN_RATIO * np.minimum(li, lj))
             & (along_i <= li / 2) & (along_j <= lj / 2)
         )  # fmt: skip
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """z of the cross products of (k, 2) vectors ``a`` with the (2,) vector ``b``."""
+    return a[:, 0] * b[1] - a[:, 1] * b[0]
 
 
 def _refuse_continuous(tile: TilePieces, idx: np.ndarray, comp: np.ndarray, base: np.ndarray, copy: np.ndarray) -> None:

@@ -1,0 +1,294 @@
+"""svgtile import: pattern tiles to exemplars (issue 4), on hand-made tiles and the real symbol sets.
+
+Real files come from ``../shared/data`` beside the checkout; those tests skip when it is absent.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from svgtile.analysis import analyze, distance_matrix, periodic_distance_matrix
+from svgtile.arrangement import Arrangement
+from svgtile.cli import main
+from svgtile.errors import ExemplarError
+from svgtile.exemplar import parse_exemplar, parse_tile, read_exemplar
+from svgtile.footprint import Prototype
+from svgtile.tileimport import TileRefused, import_pieces, import_tile
+
+DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
+FGDC = DATA / "fgdc-geologic-patterns" / "lithology"
+CEC = DATA / "usgs-fgdc-cecgeology"
+OSM = DATA / "osm-carto" / "generating_patterns"
+needs_data = pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real symbol sets) is not beside the checkout")
+
+HEAD = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+STROKE = 'fill="none" stroke="#000" stroke-width="0.2"'
+
+
+def tile(body: str, head: str = HEAD) -> object:
+    return import_pieces(parse_tile(head + body + "</svg>", source="tile.svg"))
+
+
+# ----------------------------------------------------------------------------- hand-made tiles
+
+
+def test_frame_dropped_and_cut_stroke_reassembled_across_the_edge():
+    t = tile(
+        f'<rect x="0" y="0" width="10" height="10" style="fill:none;stroke:#000"/>'
+        f'<line x1="8" y1="5" x2="10" y2="5" {STROKE}/><line x1="0" y1="5" x2="2" y2="5" {STROKE}/>'
+        f'<circle cx="5" cy="2" r="1" {STROKE}/>'
+    )
+    assert len(t) == 2 and t.kinds == 2
+    assert sorted(t.pieces.tolist()) == [1, 2]
+    assert t.wrapped.tolist().count(True) == 1
+    assert any("frame" in n for n in t.notes)
+    ex = parse_exemplar(t.text)
+    line = int(np.flatnonzero(t.pieces == 2)[0])
+    # the reassembled dash is 4 long and centred on the edge (x = 0 or 10), inside the tile
+    assert np.isclose(t.xy[line, 0] % 10, 0, atol=1e-6) or np.isclose(t.xy[line, 0] % 10, 10, atol=1e-6)
+    assert len(ex.motifs) == 2  # a motif centred on the tile's edge is kept
+    width = np.ptp(shapely.get_coordinates(ex.kinds[ex.motifs.kind[line]].footprint)[:, 0])
+    assert width == pytest.approx(4.0, abs=0.01)
+
+
+def test_hatching_is_refused_with_a_reason():
+    with pytest.raises(TileRefused, match="continuous lines or hatching"):
+        tile(f'<line x1="0" y1="3" x2="10" y2="3" {STROKE}/><line x1="0" y1="7" x2="10" y2="7" {STROKE}/>')
+
+
+def test_solid_fill_is_refused():
+    with pytest.raises(TileRefused, match="solid fill"):
+        tile('<rect x="0" y="0" width="10" height="10" fill="#000"/>')
+
+
+def test_empty_tile_is_refused():
+    with pytest.raises(TileRefused, match="draws nothing"):
+        tile('<rect x="0" y="0" width="10" height="10" style="fill:none"/>')
+
+
+def test_periodic_duplicates_are_dropped():
+    t = tile('<circle cx="5" cy="5" r="1" fill="#000"/><circle cx="15" cy="5" r="1" fill="#000"/>'
+             '<circle cx="5" cy="5" r="1" fill="#000"/>')  # fmt: skip
+    assert len(t) == 1
+    assert any("repeating others" in n for n in t.notes)
+
+
+def test_rotated_copies_share_a_kind_with_the_right_angle():
+    t = tile('<polygon points="1,1 4,1 1,2" fill="#000"/><polygon points="7,6 7,9 6,6" fill="#000"/>')
+    assert t.kinds == 1
+    ex = parse_exemplar(t.text)
+    turn = abs(ex.motifs.angle[1] - ex.motifs.angle[0]) % 360
+    assert min(turn, 360 - turn) == pytest.approx(90.0, abs=0.5)
+
+
+def test_different_paint_makes_different_kinds():
+    t = tile('<circle cx="2" cy="2" r="1" fill="#000"/><circle cx="7" cy="7" r="1" fill="#f00"/>')
+    assert t.kinds == 2
+
+
+def test_dot_from_zero_length_line_has_the_stroke_diameter():
+    t = tile('<line x1="3" y1="3" x2="3" y2="3" style="stroke:#000;stroke-width:0.8;stroke-linecap:round"/>')
+    ex = parse_exemplar(t.text)
+    assert ex.kinds[0].prototype.area == pytest.approx(np.pi * 0.4**2, rel=0.01)
+
+
+def test_touching_and_contained_pieces_are_one_motif():
+    t = tile(f'<rect x="2" y="2" width="3" height="3" {STROKE}/><circle cx="3.5" cy="3.5" r="0.8" {STROKE}/>'
+             f'<line x1="7" y1="7" x2="9" y2="9" {STROKE}/><line x1="7" y1="9" x2="9" y2="7" {STROKE}/>')  # fmt: skip
+    assert len(t) == 2 and sorted(t.pieces.tolist()) == [2, 2]
+
+
+def test_round_trip_is_exact():
+    t = tile(f'<polygon points="1,1 4,1 1,2" {STROKE}/><polygon points="7,6 7,9 6,6" {STROKE}/>'
+             f'<line x1="8" y1="1" x2="10" y2="1" {STROKE}/><line x1="0" y1="1" x2="1" y2="1" {STROKE}/>')  # fmt: skip
+    ex = parse_exemplar(t.text)
+    assert ex.period == (10.0, 10.0)
+    assert len(ex.motifs) == len(t)
+    np.testing.assert_allclose(ex.motifs.xy, t.xy, atol=1e-4)
+    np.testing.assert_allclose(ex.motifs.angle, np.round(t.angle, 4), atol=1e-4)
+    assert ex.motifs.kind.tolist() == t.kind.tolist()
+    assert ex.region.equals(shapely.box(0, 0, 10, 10))
+
+
+def test_bad_period_attribute_is_a_clear_error():
+    text = tile(f'<circle cx="5" cy="5" r="1" {STROKE}/>').text.replace('period="10 10"', 'period="10 x"')
+    with pytest.raises(ExemplarError, match="period"):
+        parse_exemplar(text)
+
+
+# ----------------------------------------------------------------------------- periodic analysis
+
+
+def test_periodic_distances_measure_across_the_edges():
+    square = Prototype.from_geometry(shapely.box(-0.5, -0.5, 0.5, 0.5), tolerance=0.0)
+    arr = Arrangement(np.array([0, 0]), np.array([[1.0, 5.0], [8.0, 5.0]]), np.zeros(2), np.ones(2))
+    plain, _, _ = distance_matrix(arr, [square])
+    wrapped, measured, overlaps = periodic_distance_matrix(arr, [square], (10.0, 10.0))
+    assert plain[0, 0] == pytest.approx(6.0)
+    assert wrapped[0, 0] == pytest.approx(2.0)  # 8 -> 11 is 3 apart, less the two half widths
+    assert measured[0, 0] and overlaps == 0
+
+
+def test_periodic_overlap_across_an_edge_counts_once():
+    square = Prototype.from_geometry(shapely.box(-1, -1, 1, 1), tolerance=0.0)
+    arr = Arrangement(np.array([0, 0]), np.array([[0.5, 5.0], [9.0, 5.0]]), np.zeros(2), np.ones(2))
+    assert distance_matrix(arr, [square])[2] == 0
+    assert periodic_distance_matrix(arr, [square], (10.0, 10.0))[2] == 1
+
+
+def test_analyze_honours_the_period():
+    t = tile(f'<circle cx="1" cy="5" r="0.5" {STROKE}/><circle cx="8.5" cy="5" r="0.5" {STROKE}/>')
+    ex = parse_exemplar(t.text)
+    gap = analyze(ex).distance[0, 0]
+    flat = parse_exemplar(t.text.replace(' svgtile:period="10 10"', ""))
+    assert flat.period is None
+    assert gap == pytest.approx(2.5 - 1.2, abs=0.05)  # prototypes are slightly grown outlines
+    assert analyze(flat).distance[0, 0] == pytest.approx(7.5 - 1.2, abs=0.05)
+
+
+# ----------------------------------------------------------------------------- real symbol sets
+
+
+@needs_data
+def test_fgdc_730_is_43_motifs_of_one_kind():
+    t = import_tile(FGDC / "730.svg")
+    assert len(t) == 43 and t.kinds == 1
+
+
+@needs_data
+@pytest.mark.parametrize("other", ["IGM_fixedcolor/igm730.svg", "IGM/igm730.svg"])
+def test_second_vectorisation_of_730_gives_the_same_motif_set(other):
+    a, b = import_tile(FGDC / "730.svg"), import_tile(CEC / other)
+    assert (len(b), b.kinds) == (len(a), a.kinds)
+    ea, eb = parse_exemplar(a.text), parse_exemplar(b.text)
+    assert eb.kinds[0].prototype.area == pytest.approx(ea.kinds[0].prototype.area, rel=0.01)
+
+    def spacing(ex):  # nearest periodic neighbour of every motif: invariant under the y-flip
+        w, h = ex.period
+        xy = ex.motifs.xy
+        d = xy[:, None, :] - xy[None, :, :]
+        d -= np.round(d / [w, h]) * [w, h]
+        r = np.hypot(d[..., 0], d[..., 1])
+        np.fill_diagonal(r, np.inf)
+        return np.sort(r.min(axis=1))
+
+    np.testing.assert_allclose(spacing(eb), spacing(ea), atol=0.02)
+
+
+@needs_data
+def test_fgdc_729_pairs_two_lines_into_one_motif():
+    t = import_tile(FGDC / "729.svg")
+    lines = len(re.findall(r"<line ", (FGDC / "729.svg").read_text()))
+    assert t.pieces.sum() == lines == 114
+    # every motif is one pair; pairs cut at the tile's edge come back as two pairs of halves
+    assert set(t.pieces[~t.wrapped].tolist()) == {2}
+    assert set(t.pieces[t.wrapped].tolist()) <= {2, 4}
+    assert len(t) == 56
+
+
+@needs_data
+def test_fgdc_dots_have_the_stroke_diameter():
+    text = (FGDC / "601.svg").read_text()
+    dot = re.search(r'style="[^"]*stroke-width:([0-9.]+);stroke-linecap:round;[^"]*" x1="([^"]+)" y1="([^"]+)" x2="\2" y2="\3"', text)
+    width = float(dot.group(1))
+    ex = parse_exemplar(import_tile(FGDC / "601.svg").text)
+    common = int(np.argmax(np.bincount(ex.motifs.kind)))
+    x0, y0, x1, y1 = ex.kinds[common].footprint.bounds
+    assert (x1 - x0, y1 - y0) == (pytest.approx(width, rel=0.01), pytest.approx(width, rel=0.01))
+
+
+@needs_data
+def test_malformed_file_is_a_clear_error(capsys):
+    bad = CEC / "SED_fixedcolor" / "sed663.svg"
+    with pytest.raises(ExemplarError, match=r"sed663\.svg: not a well-formed XML file"):
+        import_tile(bad)
+    assert main(["import", str(bad), "-o", "-"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "sed663.svg" in err[0]
+
+
+@needs_data
+@pytest.mark.parametrize("code, why", [("624", "hatching"), ("658", "solid fill"), ("703", "continuous")])
+def test_fgdc_non_discrete_patterns_are_refused(code, why):
+    with pytest.raises(TileRefused, match=why):
+        import_tile(FGDC / f"{code}.svg")
+
+
+def flattened(path: Path) -> tuple[str, np.ndarray]:
+    """A jsdotpattern tile flattened the way osm-carto's svg_pattern.sh does: every unique
+    instance's outline (cut at the tile's edge, the cut-off parts wrapped round) in one compound
+    path.  Returns the SVG and the ground-truth kind of each unique instance."""
+    ex = read_exemplar(path)
+    x0, y0, x1, y1 = ex.region.bounds
+    w, h = x1 - x0, y1 - y0
+    arr = ex.motifs
+    key = np.round(np.mod(arr.xy - [x0, y0], [w, h]), 3) % [w, h]
+    _, first = np.unique(np.c_[arr.kind, key], axis=0, return_index=True)
+    arr = arr.take(np.sort(first))
+    box = shapely.box(x0, y0, x1, y1)
+    d = []
+    for k, xy, angle in zip(arr.kind, arr.xy, np.radians(arr.angle), strict=True):
+        c, s = np.cos(angle), np.sin(angle)
+        world = shapely.transform(ex.kinds[k].footprint, lambda p, c=c, s=s, xy=xy: p @ np.array([[c, s], [-s, c]]) + xy)
+        for dx in (-w, 0, w):
+            for dy in (-h, 0, h):
+                for poly in shapely.get_parts(shapely.intersection(shapely.transform(world, lambda p, dx=dx, dy=dy: p + np.array((dx, dy))), box)):
+                    if poly.geom_type == "Polygon" and poly.area > 0:
+                        pts = shapely.get_coordinates(poly.exterior)[:-1]
+                        d.append("M" + " L".join(f"{x:.4f} {y:.4f}" for x, y in pts) + " Z")
+    svg = (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{x0:g} {y0:g} {w:g} {h:g}">'
+           f'<rect x="{x0:g}" y="{y0:g}" width="{w:g}" height="{h:g}" fill="none"/>'
+           f'<path fill="#6b8d5e" d="{" ".join(d)}"/></svg>')  # fmt: skip
+    return svg, arr.kind
+
+
+@needs_data
+@pytest.mark.parametrize(
+    "name",
+    [
+        "scrub",
+        "wetland",
+        pytest.param("marsh", marks=pytest.mark.xfail(strict=True, reason="each marsh motif is several blades that do not touch")),
+        pytest.param("swamp", marks=pytest.mark.xfail(strict=True, reason="each swamp motif is two parts that do not touch")),
+    ],
+)
+def test_osm_flattened_patterns_recover_the_ground_truth(name):
+    svg, truth = flattened(OSM / f"{name}.svg")
+    t = import_pieces(parse_tile(svg, source=name))
+    assert len(t) == len(truth)
+    assert sorted(np.bincount(t.kind).tolist()) == sorted(np.bincount(truth).tolist())
+
+
+# ----------------------------------------------------------------------------- command line
+
+
+def test_cli_import_and_synth_import(tmp_path, capsys):
+    src = tmp_path / "tile.svg"
+    src.write_text(HEAD + f'<polygon points="1,1 4,1 1,2" {STROKE}/><polygon points="7,6 7,9 6,6" {STROKE}/>'
+                   f'<line x1="8" y1="4" x2="10" y2="4" {STROKE}/><line x1="0" y1="4" x2="1" y2="4" {STROKE}/></svg>')  # fmt: skip
+    before = src.read_bytes()
+    out = tmp_path / "ex.svg"
+    assert main(["import", str(src), "-o", str(out)]) == 0
+    assert "3 motif(s) of 2 kind(s), 1 reassembled" in capsys.readouterr().err
+    assert len(read_exemplar(out).motifs) == 3
+    a, b = tmp_path / "a.svg", tmp_path / "b.svg"
+    assert main(["synth", str(src), "--import", "--size", "40", "--seed", "3", "-o", str(a)]) == 0
+    assert main(["synth", str(out), "--size", "40", "--seed", "3", "-o", str(b)]) == 0
+    strip = lambda p: re.sub(r'exemplar="[^"]*"', "", p.read_text())  # noqa: E731
+    assert strip(a) == strip(b)
+    assert src.read_bytes() == before
+
+
+def test_cli_refused_tile_is_one_line(tmp_path, capsys):
+    src = tmp_path / "hatch.svg"
+    src.write_text(HEAD + f'<line x1="0" y1="3" x2="10" y2="3" {STROKE}/></svg>')
+    out = tmp_path / "ex.svg"
+    assert main(["import", str(src), "-o", str(out)]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "hatch.svg" in err[0] and "hatching" in err[0]
+    assert not out.exists()
