@@ -1,0 +1,85 @@
+"""svgtile swatches: a legend sheet of pattern tiles (issue 4, item 3)."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from svgtile.cli import main
+from svgtile.errors import ExemplarError
+from svgtile.exemplar import SVG_NS
+from svgtile.swatches import collect, read_names, swatch_sheet
+
+HEAD = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+STROKE = 'fill="none" stroke="#000" stroke-width="0.2"'
+GOOD = HEAD + f'<polygon id="a" points="1,1 4,1 1,2" {STROKE}/><circle cx="7" cy="7" r="1" {STROKE}/></svg>'
+HATCH = HEAD + f'<line x1="0" y1="3" x2="10" y2="3" {STROKE}/></svg>'
+DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
+
+
+@pytest.fixture
+def tiles(tmp_path):
+    folder = tmp_path / "set"
+    folder.mkdir()
+    (folder / "b-good.svg").write_text(GOOD)
+    (folder / "a-hatch.svg").write_text(HATCH)
+    (folder / "notes.txt").write_text("not a tile")
+    return folder
+
+
+def test_collect_sorts_directories_and_keeps_svg_only(tiles):
+    assert [p.name for p in collect([str(tiles)])] == ["a-hatch.svg", "b-good.svg"]
+
+
+def test_sheet_shows_texture_or_reason(tiles):
+    sheet = swatch_sheet(collect([str(tiles)]), columns=2, names={"b-good": "Good pattern"})
+    assert (sheet.accepted, sheet.refused) == (1, 1)
+    hatch, good = sheet.swatches
+    assert "hatching" in hatch.refused and good.refused is None
+    assert good.motifs == 2 and good.texture > 2 * 4  # 3 x 3 tiles hold about 18 motifs
+    root = ET.fromstring(sheet.text)
+    texts = " ".join(t.text or "" for t in root.iter(f"{{{SVG_NS}}}text"))
+    assert "b-good Good pattern" in texts and "refused:" in texts
+    ids = [el.get("id") for el in root.iter() if el.get("id")]
+    assert len(ids) == len(set(ids))  # every pattern's ids prefixed
+    # the original tile is repeated through a pattern; the texture is a nested svg of <use>s
+    assert len(list(root.iter(f"{{{SVG_NS}}}pattern"))) == 2
+    uses = [u for u in root.iter(f"{{{SVG_NS}}}use")]
+    assert len(uses) == good.texture
+
+
+def test_read_names(tmp_path):
+    table = tmp_path / "names.csv"
+    table.write_text("file,code,name\nlithology/601.svg,601,Gravel\n")
+    assert read_names(table) == {"601": "Gravel"}
+    (tmp_path / "bad.csv").write_text("a,b\n1,2\n")
+    with pytest.raises(ExemplarError, match="name"):
+        read_names(tmp_path / "bad.csv")
+
+
+def test_cli_swatches_svg_and_png(tiles, tmp_path, capsys):
+    pytest.importorskip("resvg_py")
+    out = tmp_path / "sheet.svg"
+    assert main(["swatches", str(tiles), "-o", str(out), "--png", "--png-width", "400"]) == 0
+    assert "1 of 2 pattern(s) synthesized, 1 refused" in capsys.readouterr().err
+    assert ET.parse(out).getroot().tag == f"{{{SVG_NS}}}svg"
+    png = out.with_suffix(".png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cli_swatches_errors_are_one_line(tmp_path, capsys):
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main(["swatches", str(empty), "-o", str(tmp_path / "s.svg")]) == 1
+    assert main(["swatches", str(empty), "-o", "-", "--png"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all(line.startswith("svgtile: error:") for line in err)
+
+
+@pytest.mark.skipif(not (DATA / "usgs-fgdc-cecgeology").is_dir(), reason="../shared/data is not beside the checkout")
+def test_malformed_tile_is_a_refused_swatch_not_a_crash():
+    bad = DATA / "usgs-fgdc-cecgeology" / "SED_fixedcolor" / "sed663.svg"
+    sheet = swatch_sheet([bad])
+    assert sheet.refused == 1 and "well-formed" in sheet.swatches[0].refused

@@ -1,0 +1,116 @@
+"""Import every pattern tile of the shared symbol sets and write docs/patterns.md (issue 4).
+
+For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), then a texture of
+3 × 3 tile sizes synthesized with the patch engine (seed 1) and its figures from
+:func:`svgtile.metrics.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+(the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
+
+Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
+repository root: ``python tools/make_patterns_doc.py`` (a few minutes).
+"""
+
+from __future__ import annotations
+
+import csv
+import time
+from pathlib import Path
+
+import numpy as np
+
+from svgtile import Region, analyze
+from svgtile.engines.patch import synthesize
+from svgtile.errors import SvgtileError
+from svgtile.exemplar import parse_exemplar
+from svgtile.metrics import score
+from svgtile.swatches import collect, read_names, render_png, swatch_sheet
+from svgtile.tileimport import import_tile
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT.parent / "shared" / "data"
+DOCS = ROOT / "docs"
+SETS = [
+    ("FGDC lithology", DATA / "fgdc-geologic-patterns" / "lithology"),
+    ("OSM carto patterns", DATA / "osm-carto" / "patterns"),
+    ("OSM carto symbols (sanitised)", DATA / "osm-carto" / "symbols"),
+    ("Equinor lithology", DATA / "equinor-lithology" / "svg"),
+]
+TILES = 3
+SEED = 1
+
+
+def row(path: Path, names: dict[str, str]) -> dict:
+    out = {"pattern": path.stem, "name": names.get(path.stem, "")}
+    start = time.perf_counter()
+    try:
+        imported = import_tile(path)
+    except SvgtileError as exc:
+        out["refused"] = str(exc).removeprefix(f"{path}: ")
+        return out
+    ex = parse_exemplar(imported.text, source=str(path))
+    stats = analyze(ex)
+    x0, y0, w, h = imported.box
+    region = Region.rectangle(TILES * w, TILES * h, x0, y0)
+    arr = synthesize(ex, region, rng=np.random.default_rng(SEED), stats=stats)
+    figures = score(ex, stats, arr, region)
+    out.update(
+        motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
+        overlaps=figures["overlaps_total"], violators=figures["violators_total"],
+        density=figures["density_ratio"], kind_mix=figures["kind_mix_tv"], coverage=figures["coverage"],
+        exemplar_overlaps=stats.overlaps, seconds=time.perf_counter() - start,
+    )  # fmt: skip
+    return out
+
+
+def fmt(v, digits=2) -> str:
+    return "–" if v is None else f"{v:.{digits}f}"
+
+
+def table(rows: list[dict]) -> list[str]:
+    lines = [
+        "| pattern | name | motifs | kinds | cut & reassembled | result | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage |",
+        "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|",
+    ]
+    for r in rows:
+        if "refused" in r:
+            lines.append(f"| {r['pattern']} | {r['name']} | | | | refused: {r['refused']} | | | | | | |")
+        else:
+            lines.append(
+                f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted | "
+                f"{r['texture']} | {r['overlaps']} | {r['violators']} | {fmt(r['density'])} | "
+                f"{fmt(r['kind_mix'])} | {fmt(r['coverage'])} |"
+            )
+    return lines
+
+
+def main() -> None:
+    DOCS.mkdir(exist_ok=True)
+    fgdc_names = read_names(DATA / "fgdc-geologic-patterns" / "INDEX.csv")
+    equinor = {}
+    sections, summary = [], []
+    for title, folder in SETS:
+        files = collect([str(folder)])
+        names = fgdc_names if "FGDC" in title else equinor
+        rows = [row(p, names) for p in files]
+        accepted = [r for r in rows if "refused" not in r]
+        clean = [r for r in accepted if r["overlaps"] == 0 and r["violators"] == 0]
+        summary.append(
+            f"| {title} | {len(rows)} | {len(accepted)} | {len(clean)} | {len(rows) - len(accepted)} |"
+        )
+        sections += [f"## {title}", "", *table(rows), ""]
+        with open(DOCS / f"patterns-{folder.parent.name}-{folder.name}.csv", "w", newline="") as handle:
+            keys = sorted({k for r in rows for k in r})
+            writer = csv.DictWriter(handle, keys)
+            writer.writeheader()
+            writer.writerows(rows)
+        print(title, len(rows), "accepted", len(accepted), "clean", len(clean))
+    head = (ROOT / "tools" / "patterns_head.md").read_text()
+    text = head.replace("<!-- summary -->", "\n".join(
+        ["| set | tiles | accepted | of which 0 overlaps and 0 violators | refused |", "|---|--:|--:|--:|--:|", *summary]
+    ))
+    (DOCS / "patterns.md").write_text(text + "\n" + "\n".join(sections))
+    sheet = swatch_sheet(collect([str(SETS[0][1])]), columns=6, seed=SEED, names=fgdc_names)
+    (DOCS / "fgdc-swatches.png").write_bytes(render_png(sheet.text, 1500))
+
+
+if __name__ == "__main__":
+    main()
