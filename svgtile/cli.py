@@ -265,6 +265,8 @@ def format_report(r: dict) -> str:
 
 # Commands that live in modules of their own (they import the helpers above, so they come last).
 # One line per module: ``from .cli_NAME import COMMAND as _COMMAND`` then ``cli.add_command(_COMMAND)``.
+from .cli_inkscape import inkscape as _inkscape  # noqa: E402
+cli.add_command(_inkscape)
 from .cli_map import map_cmd as _map_cmd  # noqa: E402
 cli.add_command(_map_cmd)
 from .cli_import import import_cmd as _import_cmd  # noqa: E402
