@@ -1,0 +1,211 @@
+"""``svgtile score`` and ``svgtile compare``: a texture read back scores as the arrangement it was
+written from, one-line errors, the table, PNG previews and the contact sheet."""
+
+from __future__ import annotations
+
+import json
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from svgtile import metrics
+from svgtile.analysis import analyze
+from svgtile.cli import main
+from svgtile.compare import FIGURES, compare, format_table
+from svgtile.engines import ENGINES
+from svgtile.errors import ExemplarError, ParameterError
+from svgtile.exemplar import SVG_NS, read_exemplar
+from svgtile.output import svg_document
+from svgtile.region import Region
+from svgtile.texture import read_texture
+
+EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def run(capsys, *args) -> tuple[int, str, str]:
+    rc = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def write_texture(path: Path, name: str, region: Region, engine: str = "patch", seed: int = 2):
+    ex = read_exemplar(EXEMPLARS / f"{name}.svg")
+    stats = analyze(ex)
+    arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats)
+    path.write_text(svg_document(ex, arr, region, boundary="clip", params={"engine": engine}))
+    return ex, stats, arr
+
+
+# ----------------------------------------------------------------------------- reading back
+
+
+@pytest.mark.parametrize("name", ["breccia-plain", "chert-nodules", "till"])
+def test_texture_reads_back_as_written(tmp_path, name):
+    """Kinds are renumbered to the exemplar's (breccia-plain's texture lists them in another
+    order), positions and angles survive the file, and the score is the arrangement's."""
+    region = Region.rectangle(260, 200)
+    ex, stats, arr = write_texture(tmp_path / "t.svg", name, region)
+    back, back_region = read_texture(tmp_path / "t.svg", ex)
+    assert back_region.shape.equals(region.shape)
+    inside = shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
+    want = arr.take(inside)
+    order_a = np.lexsort((want.xy[:, 0], want.xy[:, 1], want.kind))
+    order_b = np.lexsort((back.xy[:, 0], back.xy[:, 1], back.kind))
+    assert np.array_equal(want.kind[order_a], back.kind[order_b])
+    assert np.allclose(want.xy[order_a], back.xy[order_b], atol=2e-4)
+    assert np.allclose(np.cos(np.radians(want.angle[order_a] - back.angle[order_b])), 1.0, atol=1e-6)
+    a = metrics.score(ex, stats, want, region)
+    b = metrics.score(ex, stats, back, back_region)
+    for key in ("motifs", "overlaps", "violators", "kind_mix_tv", "density_ratio", "gap_distance", "repetition"):
+        assert b[key] == pytest.approx(a[key], rel=1e-3, abs=1e-3), key
+
+
+def test_region_is_the_clip_path_with_its_hole(tmp_path):
+    outer = shapely.box(0, 0, 300, 200)
+    region = Region.from_geometry(outer.difference(shapely.box(100, 60, 180, 140)))
+    ex, _, _ = write_texture(tmp_path / "t.svg", "gravel", region)
+    _, back = read_texture(tmp_path / "t.svg", ex)
+    assert back.area == pytest.approx(300 * 200 - 80 * 80)
+    assert not back.shape.contains(shapely.Point(140, 100))
+
+
+def test_unclipped_texture_uses_its_viewbox(tmp_path):
+    ex = read_exemplar(EXEMPLARS / "sand.svg")
+    arr = ENGINES["tile"](ex, Region.rectangle(120, 90), rng=np.random.default_rng(0))
+    (tmp_path / "t.svg").write_text(svg_document(ex, arr, Region.rectangle(120, 90), boundary="inside", params={}))
+    _, back = read_texture(tmp_path / "t.svg", ex)
+    assert back.bounds == (0.0, 0.0, 120.0, 90.0)
+
+
+def test_texture_of_another_exemplar_is_refused(tmp_path):
+    write_texture(tmp_path / "t.svg", "breccia-plain", Region.rectangle(100, 100))
+    with pytest.raises(ExemplarError, match=r"t\.svg: motif kind 'svgtile-kind-\d' is not in the exemplar"):
+        read_texture(tmp_path / "t.svg", read_exemplar(EXEMPLARS / "gravel.svg"))
+
+
+# ----------------------------------------------------------------------------- svgtile score
+
+
+def test_score_json_matches_the_library(tmp_path, capsys):
+    ex, stats, arr = write_texture(tmp_path / "t.svg", "shale", Region.rectangle(300, 300))
+    rc, out, err = run(capsys, "score", EXEMPLARS / "shale.svg", tmp_path / "t.svg", "--json")
+    assert rc == 0, err
+    got = json.loads(out)
+    want = metrics.score(ex, stats, arr, Region.rectangle(300, 300))
+    assert got["texture"] == "t.svg"
+    assert got["motifs"] == want["motifs"] > 0
+    assert got["overlaps"] == got["violators"] == 0
+    assert got["kind_mix_tv"] == pytest.approx(want["kind_mix_tv"], abs=1e-9)
+    assert got["gap_distance"] == pytest.approx(want["gap_distance"], rel=1e-3)
+
+
+def test_score_table_tells_tile_from_random(tmp_path, capsys):
+    region = Region.rectangle(360, 360)
+    write_texture(tmp_path / "tile.svg", "gravel", region, engine="tile")
+    write_texture(tmp_path / "random.svg", "gravel", region, engine="random")
+    rows = {}
+    for engine in ("tile", "random"):
+        rc, out, err = run(capsys, "score", EXEMPLARS / "gravel.svg", tmp_path / f"{engine}.svg")
+        assert rc == 0, err
+        line = next(s for s in out.splitlines() if s.startswith("repetition"))
+        rows[engine] = float(line.split()[-1])
+        assert "pebble-round → pebble-oblong" in out
+    assert rows["tile"] > 0.9 > 0.2 > rows["random"]
+
+
+@pytest.mark.parametrize(
+    "texture, message",
+    [
+        ("missing.svg", "missing.svg"),
+        ("other", "is not in the exemplar"),
+        ("broken", "broken.svg"),
+    ],
+)
+def test_score_errors_are_one_line(tmp_path, capsys, texture, message):
+    if texture == "other":
+        write_texture(tmp_path / "other.svg", "till", Region.rectangle(80, 80))
+        texture = "other.svg"
+    elif texture == "broken":
+        (tmp_path / "broken.svg").write_text("<svg><g></svg")
+        texture = "broken.svg"
+    rc, out, err = run(capsys, "score", EXEMPLARS / "gravel.svg", tmp_path / texture)
+    assert rc == 1
+    assert out == ""
+    assert err.count("\n") == 1 and err.startswith("svgtile: error: ") and message in err
+
+
+# ----------------------------------------------------------------------------- svgtile compare
+
+
+def test_compare_library_columns_and_errors():
+    ex = read_exemplar(EXEMPLARS / "sand.svg")
+    stats = analyze(ex)
+    results = compare(ex, stats, Region.rectangle(200, 200), engines=["tile", "random"], seed=3)
+    assert [r.engine for r in results] == ["tile", "random"]
+    table = format_table(results).splitlines()
+    assert table[0].split()[-2:] == ["tile", "random"]
+    assert len(table) == 1 + len(FIGURES)
+    assert results[0].score["repetition"] > 0.9 > results[1].score["repetition"]
+    for bad in (["tile", "nope"], [], ["tile", "tile"]):
+        with pytest.raises(ParameterError, match="--engines"):
+            compare(ex, stats, Region.rectangle(50, 50), engines=bad)
+
+
+def test_compare_json_same_seed_same_figures(capsys):
+    args = ("compare", EXEMPLARS / "marsh.svg", "--size", "180x150", "--engines", "random,patch", "--seed", "4", "--json")
+    rc, out, err = run(capsys, *args)
+    assert rc == 0, err
+    first = json.loads(out)
+    assert list(first["engines"]) == ["random", "patch"]
+    assert first["engines"]["patch"]["overlaps"] == 0
+    rc, again, _ = run(capsys, *args)
+    assert json.loads(again) == first
+
+
+def test_compare_bad_engine_is_one_line(capsys):
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100", "--engines", "patch,magic")
+    assert rc == 1 and out == ""
+    assert err.count("\n") == 1 and "unknown engine 'magic'" in err
+
+
+def test_compare_png_writes_textures_and_a_labelled_contact_sheet(tmp_path, capsys):
+    pytest.importorskip("resvg_py", reason="the optional renderer (pip install 'svgtile[png]') is not installed")
+    out_dir = tmp_path / "previews"
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "gravel.svg", "--size", "120x90", "--png", out_dir)
+    assert rc == 0, err
+    assert out.startswith("gravel.svg on 120 x 90, seed 1\n")
+    for engine in ("patch", "tile", "random"):
+        assert (out_dir / f"{engine}.png").read_bytes().startswith(PNG_MAGIC)
+        assert read_exemplar(out_dir / f"{engine}.svg").motifs is not None
+    sheet = ET.parse(out_dir / "contact-sheet.svg").getroot()
+    labels = [t.text for t in sheet.iter(f"{{{SVG_NS}}}text")]
+    assert labels == ["exemplar gravel", "patch", "tile", "random"]
+    panels = sheet.findall(f"{{{SVG_NS}}}svg")
+    assert len(panels) == 4
+    ids = [el.get("id") for el in sheet.iter() if el.get("id")]
+    assert len(ids) == len(set(ids)), "panel ids must not collide"
+    assert all(i.startswith(("p0-", "p1-", "p2-", "p3-")) for i in ids)
+    png = (out_dir / "contact-sheet.png").read_bytes()
+    assert png.startswith(PNG_MAGIC)
+    width = int.from_bytes(png[16:20], "big")
+    assert width == round(float(sheet.get("width")))
+
+
+def test_compare_png_without_renderer_is_one_line(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "resvg_py", None)  # import fails as if not installed
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100", "--png", tmp_path / "p")
+    assert rc == 1 and out == ""
+    assert err.count("\n") == 1 and "pip install 'svgtile[png]'" in err
+    assert not (tmp_path / "p").exists()
+
+
+def test_compare_png_into_a_file_is_refused(tmp_path, capsys):
+    (tmp_path / "f").write_text("x")
+    rc, _, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100", "--png", tmp_path / "f")
+    assert rc != 0 and err.count("\n") == 1
+    assert (tmp_path / "f").read_text() == "x"
