@@ -42,7 +42,9 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)
-    if seed is None:
+    if seed is None and all(s.seed is not None for s in styles.classes.values()):
+        seed = 0  # every class has its own seed: the run's is never used
+    elif seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
     result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress())
