@@ -33,6 +33,7 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
     ("kind_mix_tv", "kind mix TV", ".3f"),
     ("orientation_outside", "orientation outside arcs", ".3f"),
     ("gap_distance", "structure: nearest-gap W1", ".3f"),
+    ("gap_noise", "  its sampling noise", ".3f"),
     ("pair_correlation_distance", "structure: pair correlation", ".3f"),
     ("repetition", "repetition", ".3f"),
     ("coverage", "coverage (empty disc ratio)", ".2f"),
@@ -114,9 +115,9 @@ def format_score(score: dict) -> str:
     lines += [f"{lab:<{label}}  {_cell(score.get(key), spec):>9}" for key, lab, spec in FIGURES]
     pairs = [p for p in score.get("kind_pairs", []) if p["gap_distance"] is not None or p["pair_correlation_distance"] is not None]
     if pairs:
-        lines += ["", "structure per kind pair (gap W1, pair correlation):"]
+        lines += ["", "structure per kind pair (gap W1, its sampling noise, pair correlation):"]
         for p in pairs:
             names = " → ".join(p["names"])
             gap, pc = _cell(p["gap_distance"], ".3f"), _cell(p["pair_correlation_distance"], ".3f")
-            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {pc:>9}")
+            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {_cell(p.get('gap_noise'), '.3f'):>9}  {pc:>9}")
     return "\n".join(lines)

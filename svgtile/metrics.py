@@ -53,6 +53,9 @@ from .region import Region
 GAP_MIN_SAMPLES = 5
 #: At most this many texture motifs per kind are measured for nearest gaps.
 GAP_SAMPLES = 4000
+#: Draws of the nearest-gap sampling noise (:func:`sampling_noise`), and their fixed seed.
+NOISE_DRAWS = 64
+NOISE_SEED = 0x6A9
 #: Pair correlation is computed for distances up to this many mean spacings …
 PAIR_RANGE = 3.0
 #: … in this many equal bins …
@@ -199,6 +202,10 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
         (:func:`orientation_outside`).
     ``gap_distance`` : float or None
         Nearest-gap distance of :func:`structure`; 0 is the exemplar's structure.
+    ``gap_noise`` : float or None
+        What ``gap_distance`` would be, on average, if the exemplar's gaps were a sample of the
+        texture's own (:func:`structure`): a ``gap_distance`` near it cannot be told from the
+        exemplar's structure with so few exemplar motifs.
     ``pair_correlation_distance`` : float or None
         Pair-correlation distance of :func:`structure`; 0 is the exemplar's structure.
     ``kind_pairs`` : list of dict
@@ -251,6 +258,7 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
 
     found = structure(exemplar, stats, arr, window, geoms=geoms)
     out["gap_distance"] = found["gap_distance"]
+    out["gap_noise"] = found["gap_noise"]
     out["pair_correlation_distance"] = found["pair_correlation_distance"]
     out["kind_pairs"] = found["kind_pairs"]
 
@@ -369,6 +377,17 @@ def structure(
     (``∫ |F^E(t) − F^T(t)| dt``), and ``gap_distance = Σ f_i f_j D_ij / Σ f_i f_j`` over the
     pairs that count (``f`` the exemplar's kind frequencies).
 
+    **Sampling noise.**  An exemplar holds few motifs (often under 20 of a kind), so ``D_ij`` is
+    far from 0 even for a texture of exactly the process that drew the exemplar.
+    ``N_ij = E W1(S, G^T_ij) / mean(G^E_ij)``, ``S`` a sample of ``|G^E_ij|`` values drawn with
+    replacement from ``G^T_ij`` (:func:`sampling_noise`), is what ``D_ij`` would be on average
+    if the exemplar's gaps were drawn from the texture's distribution; ``gap_noise`` is its
+    weighted mean as above.  ``gap_distance`` near ``gap_noise`` says the exemplar cannot tell the
+    texture's gap structure from its own; well above it, that they differ.  A tiling scores
+    below the noise, as it repeats the exemplar's very sample.  (The exemplar's gaps are taken
+    as it shows them, so its motifs at the edge lack their neighbours beyond it: a tiling, which
+    gives them those neighbours, is not at 0 either.)
+
     **Pair correlation.**  ``g_ij(r)`` of the centroids (:func:`pair_correlation`) for
     ``0 ≤ r < R``, ``R = min(PAIR_RANGE · s, ½ · shorter side of the input region's bounding
     box)``, in :data:`PAIR_BINS` equal bins; the exemplar's on its input region, the texture's on
@@ -392,9 +411,9 @@ def structure(
 
     Returns
     -------
-    dict: ``gap_distance``, ``pair_correlation_distance`` (float or None) and ``kind_pairs``, a
-    list over the ordered kind pairs (i, j) of dicts with ``kinds`` [i, j], ``names``,
-    ``gap_samples`` [exemplar, texture], ``exemplar_mean_gap``, ``gap_distance``,
+    dict: ``gap_distance``, ``gap_noise``, ``pair_correlation_distance`` (float or None) and
+    ``kind_pairs``, a list over the ordered kind pairs (i, j) of dicts with ``kinds`` [i, j],
+    ``names``, ``gap_samples`` [exemplar, texture], ``exemplar_mean_gap``, ``gap_distance``, ``gap_noise``,
     ``exemplar_pairs_in_range`` and ``pair_correlation_distance``.
     """
     protos = exemplar.prototypes
@@ -414,7 +433,7 @@ def structure(
     have = np.bincount(arr.kind[inside], minlength=k) > 0
 
     pairs = []
-    gap_num = gap_den = pc_num = pc_den = 0.0
+    gap_num = gap_den = pc_num = pc_den = noise_num = 0.0
     for i in range(k):
         src_ex = np.flatnonzero(ex.kind == i)
         src_tex = _sample(arr, np.flatnonzero(inside & (arr.kind == i)), GAP_SAMPLES)
@@ -423,10 +442,12 @@ def structure(
             ge = ge[np.isfinite(ge)]
             gt = nearest_gaps(arr, protos, src_tex, j, geoms=geoms)
             gt = gt[np.isfinite(gt)]
-            d_gap = None
+            d_gap = noise = None
             if len(ge) >= GAP_MIN_SAMPLES and ge.mean() > 0 and len(gt):
                 d_gap = wasserstein(ge, gt) / float(ge.mean())
+                noise = sampling_noise(gt, len(ge)) / float(ge.mean())
                 gap_num += freq[i] * freq[j] * d_gap
+                noise_num += freq[i] * freq[j] * noise
                 gap_den += freq[i] * freq[j]
             d_pc = None
             if n_ex[i, j] >= PAIR_MIN_PAIRS and have[i] and have[j]:
@@ -440,15 +461,37 @@ def structure(
                     "gap_samples": [len(ge), len(gt)],
                     "exemplar_mean_gap": _number(float(ge.mean())) if len(ge) else None,
                     "gap_distance": d_gap,
+                    "gap_noise": noise,
                     "exemplar_pairs_in_range": int(n_ex[i, j]),
                     "pair_correlation_distance": d_pc,
                 }
             )
     return {
         "gap_distance": float(gap_num / gap_den) if gap_den > 0 else None,
+        "gap_noise": float(noise_num / gap_den) if gap_den > 0 else None,
         "pair_correlation_distance": float(pc_num / pc_den) if pc_den > 0 else None,
         "kind_pairs": pairs,
     }
+
+
+def sampling_noise(values: np.ndarray, n: int, draws: int = NOISE_DRAWS) -> float:
+    """Mean 1-Wasserstein distance between ``n`` values drawn from ``values`` and ``values`` itself.
+
+    The draws are with replacement, from a generator seeded with :data:`NOISE_SEED` (a figure is
+    a function of its inputs).  0 for constant values; it shrinks like ``1/√n``.
+
+    Parameters
+    ----------
+    values : (m,) float array, a large sample of a distribution
+    n : the size of the small sample
+    draws : how many small samples are averaged
+    """
+    values = np.sort(np.asarray(values, dtype=np.float64))
+    if len(values) == 0 or n <= 0:
+        return 0.0
+    rng = np.random.default_rng(NOISE_SEED)
+    picks = np.sort(rng.integers(0, len(values), size=(draws, n)), axis=1)
+    return float(np.mean([wasserstein(values[row], values) for row in picks]))
 
 
 def wasserstein(u: np.ndarray, v: np.ndarray) -> float:

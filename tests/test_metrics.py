@@ -300,6 +300,41 @@ def test_tiled_pairs_keep_their_gaps_exactly():
     assert rand["gap_distance"] > 0.5
 
 
+@pytest.mark.parametrize(
+    "values, n, expected",
+    [
+        (np.array([0.0, 1.0] * 50), 1, 0.5),  # one draw is 0 or 1, always ½ from the fair coin
+        (np.full(40, 3.0), 7, 0.0),  # a constant: every sample is exact
+        (np.array([0.0, 2.0, 4.0]), 1, 16 / 9),  # see below
+    ],
+)
+def test_sampling_noise_known_answers(values, n, expected):
+    # for {0, 2, 4}: W1(δ_0) = (0 + 2 + 4)/3 = 2, W1(δ_2) = (2 + 0 + 2)/3 = 4/3, W1(δ_4) = 2; their
+    # mean 16/9 is what many draws approach (64 draws: within a few percent)
+    got = metrics.sampling_noise(values, n)
+    assert got == pytest.approx(expected, rel=0.08, abs=1e-12)
+
+
+def test_sampling_noise_shrinks_like_one_over_root_n():
+    values = np.random.default_rng(5).random(4000)
+    small, large = metrics.sampling_noise(values, 16), metrics.sampling_noise(values, 256)
+    assert small / large == pytest.approx(4.0, rel=0.25)
+
+
+def test_gap_noise_separates_a_tiling_from_a_sample(grid36):
+    # a tiling repeats the exemplar's very sample: its distance is below the noise of a fresh
+    # sample; random placement is far above it
+    ex, stats = grid36
+    tiled, region = stamp(ex, 8, 8)
+    tile = metrics.score(ex, stats, tiled, region)
+    rand = metrics.score(ex, stats, scatter(stats, region, np.random.default_rng(4)), region)
+    assert tile["gap_noise"] > 0 and rand["gap_noise"] > 0
+    assert tile["gap_distance"] < tile["gap_noise"]
+    assert rand["gap_distance"] > 2 * rand["gap_noise"]
+    noise = [p["gap_noise"] for p in tile["kind_pairs"] if p["gap_distance"] is not None]
+    assert len(noise) == 4 and all(v is not None and v >= 0 for v in noise)
+
+
 def test_nearest_gaps_match_brute_force(grid16):
     ex, _ = grid16
     rng = np.random.default_rng(11)
