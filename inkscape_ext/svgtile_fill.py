@@ -62,26 +62,43 @@ def _references(el):
     return refs
 
 
+def _own_transform(el):
+    # the raw attribute: inkex's ``transform`` property rewrites it as a matrix when read
+    return inkex.Transform(etree.ElementBase.get(el, "transform") or None)
+
+
+def _composed_transform(el):
+    """From ``el``'s user space (its own transform included) to the document's."""
+    total = inkex.Transform()
+    while el is not None and el.getparent() is not None:  # the root's own transform is not ours
+        total = _own_transform(el) @ total
+        el = el.getparent()
+    return total
+
+
 def _parent_transform(el):
     """From ``el``'s parent's user space to the document's (root) user space."""
     parent = el.getparent()
-    if parent is None or parent.getparent() is None:  # the root's own transform is not ours
-        return inkex.Transform()
-    return parent.composed_transform()
+    return _composed_transform(parent) if parent is not None else inkex.Transform()
 
 
 def _fill_rule(el):
-    try:
-        style = el.specified_style()
-    except AttributeError:  # inkex < 1.2
-        style = el.composed_style()
-    rule = (style.get("fill-rule") or "nonzero").strip()
-    return rule if rule in ("nonzero", "evenodd") else "nonzero"
+    """The ``fill-rule`` that applies to ``el`` (style, then attribute, inherited; no CSS sheets).
+
+    Read from the raw attributes: inkex's style accessors rewrite the attributes they read."""
+    while el is not None:
+        style = etree.ElementBase.get(el, "style") or ""
+        found = re.findall(r"(?:^|;)\s*fill-rule\s*:\s*([a-z]+)", style)
+        value = found[-1] if found else etree.ElementBase.get(el, "fill-rule")
+        if value in ("nonzero", "evenodd"):
+            return value
+        el = el.getparent()
+    return "nonzero"
 
 
 def _rings(shape):
     """The shape's subpaths as polylines in document coordinates: [[[x, y], …], …]."""
-    path = shape.path.to_absolute().transform(shape.composed_transform())
+    path = shape.path.to_absolute().transform(_composed_transform(shape))
     box = path.bounding_box()
     size = max(box.width, box.height) if box is not None else 0.0
     csp = path.to_superpath()
