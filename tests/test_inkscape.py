@@ -1,0 +1,164 @@
+"""svgtile's side of the Inkscape extension: container areas, the fill command, install/uninstall."""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from conftest import TINY
+
+from svgtile import inkscape as ink
+from svgtile.cli import main
+from svgtile.output import same_file
+
+OUTER_CCW = [[0, 0], [10, 0], [10, 10], [0, 10]]
+INNER_CW = [[3, 3], [3, 7], [7, 7], [7, 3]]
+INNER_CCW = INNER_CW[::-1]
+FAR = [[20, 0], [24, 0], [24, 4], [20, 4]]
+BOWTIE = [[0, 0], [10, 10], [10, 0], [0, 10]]  # crosses itself: two triangles
+
+
+@pytest.mark.parametrize(
+    ("rings", "rule", "area"),
+    [
+        ([OUTER_CCW], "nonzero", 100),
+        ([OUTER_CCW, INNER_CW], "nonzero", 84),  # opposite winding: a hole
+        ([OUTER_CCW, INNER_CCW], "nonzero", 100),  # same winding: filled
+        ([OUTER_CCW, INNER_CCW], "evenodd", 84),
+        ([OUTER_CCW, INNER_CW], "evenodd", 84),
+        ([OUTER_CCW, FAR], "nonzero", 116),
+        ([BOWTIE], "nonzero", 50),
+        ([BOWTIE], "evenodd", 50),
+        ([OUTER_CCW, OUTER_CCW], "evenodd", 0),  # drawn twice: even
+        ([OUTER_CCW, OUTER_CCW], "nonzero", 100),
+        ([[[0, 0], [5, 0], [9, 0]]], "nonzero", 0),  # a line encloses nothing
+        ([], "nonzero", 0),
+    ],
+)
+def test_container_shape_follows_the_fill_rule(rings, rule, area):
+    shape = ink.container_shape([np.array(r, float) for r in rings], rule)
+    assert shape.area == pytest.approx(area)
+    assert shape.is_valid
+
+
+def test_hole_is_a_hole():
+    shape = ink.container_shape([np.array(OUTER_CCW, float), np.array(INNER_CW, float)])
+    assert not shape.contains(shapely.Point(5, 5)) and shape.contains(shapely.Point(1, 1))
+
+
+def test_winding_numbers_by_hand():
+    rings = [np.array(OUTER_CCW, float), np.array(INNER_CCW, float)]
+    w = ink.winding_numbers(rings, np.array([1.0, 5.0, 15.0]), np.array([1.0, 5.0, 5.0]))
+    assert abs(w[0]) == 1 and abs(w[1]) == 2 and w[2] == 0
+    assert np.sign(w[0]) == np.sign(w[1])
+
+
+def _containers(path: Path, *items) -> Path:
+    path.write_text(json.dumps({"containers": [
+        {"id": ident, "fill_rule": rule, "rings": rings} for ident, rule, rings in items
+    ]}))  # fmt: skip
+    return path
+
+
+def test_fill_writes_one_texture_per_container(tmp_path):
+    ex = tmp_path / "ex.svg"
+    ex.write_text(TINY)
+    big = [[0, 0], [60, 0], [60, 40], [0, 40]]
+    hole = [[20, 10], [20, 30], [40, 30], [40, 10]]
+    c = _containers(tmp_path / "c.json", ("a", "nonzero", [big, hole]), ("b", "evenodd", [FAR]))
+    code = main(["inkscape", "fill", str(ex), str(c), "--out-dir", str(tmp_path), "--seed", "1",
+                 "--boundary", "centroid"])  # fmt: skip
+    assert code == 0
+    first = (tmp_path / "texture-0.svg").read_text()
+    assert 'container="a"' in first and "<use" in first
+    assert (tmp_path / "texture-1.svg").is_file()
+    xy = np.array([m.split() for m in re.findall(r"translate\(([-\d.]+ [-\d.]+)\) ", first)], float)
+    area = ink.container_shape([np.array(big, float), np.array(hole, float)])
+    assert len(xy) > 10 and shapely.contains_xy(area, xy[:, 0], xy[:, 1]).all()
+
+
+def test_fill_same_seed_same_bytes(tmp_path):
+    ex = tmp_path / "ex.svg"
+    ex.write_text(TINY)
+    c = _containers(tmp_path / "c.json", ("a", "nonzero", [[[0, 0], [50, 0], [50, 50], [0, 50]]]))
+    texts = []
+    for out in ("o1", "o2"):
+        (tmp_path / out).mkdir()
+        assert main(["inkscape", "fill", str(ex), str(c), "--out-dir", str(tmp_path / out), "--seed", "4"]) == 0
+        texts.append((tmp_path / out / "texture-0.svg").read_bytes())
+    assert texts[0] == texts[1]
+
+
+@pytest.mark.parametrize(
+    ("content", "needle"),
+    [
+        ("{", "not a containers file"),
+        ('{"containers": []}', "lists no containers"),
+        ('{"containers": [{"id": "x", "rings": [[[0, 0], [1, 0], [0, 1]]], "fill_rule": "odd"}]}', "unknown fill rule"),
+        ('{"containers": [{"id": "x", "rings": [[[0, 0], [1, 0], [0, NaN]]]}]}', "not finite"),
+        ('{"containers": [{"id": "flat", "rings": [[[0, 0], [5, 0], [9, 0]]]}]}', "the shape 'flat' encloses no area"),
+    ],
+)
+def test_fill_errors_are_one_line(tmp_path, capsys, content, needle):
+    ex = tmp_path / "ex.svg"
+    ex.write_text(TINY)
+    c = tmp_path / "c.json"
+    c.write_text(content)
+    assert main(["inkscape", "fill", str(ex), str(c), "--out-dir", str(tmp_path), "--seed", "1"]) == 1
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("svgtile: error:") and needle in err and "\n" not in err
+    assert not list(tmp_path.glob("texture-*"))
+
+
+def test_fill_refuses_huge_containers(tmp_path, capsys):
+    ex = tmp_path / "ex.svg"
+    ex.write_text(TINY)
+    c = _containers(tmp_path / "c.json", ("huge", "nonzero", [[[0, 0], [1e5, 0], [1e5, 1e5], [0, 1e5]]]))
+    assert main(["inkscape", "fill", str(ex), str(c), "--out-dir", str(tmp_path), "--seed", "1"]) == 1
+    assert "the shape 'huge' would hold about" in capsys.readouterr().err
+
+
+# ----------------------------------------------------------------------------- install
+
+
+def test_install_copies_the_extension_and_records_this_python(tmp_path, capsys):
+    assert main(["inkscape", "install", "--user-dir", str(tmp_path)]) == 0
+    folder = tmp_path / "extensions" / "svgtile"
+    assert str(folder) in capsys.readouterr().out
+    for name in ink.EXTENSION_FILES:
+        assert (folder / name).read_bytes() == (ink.extension_source() / name).read_bytes()
+    config = json.loads((folder / ink.CONFIG_NAME).read_text())
+    assert same_file(config["python"], sys.executable)
+    # again: updates in place
+    (folder / "svgtile_fill.py").write_text("old")
+    assert main(["inkscape", "install", "--user-dir", str(tmp_path)]) == 0
+    assert (folder / "svgtile_fill.py").read_bytes() == (ink.extension_source() / "svgtile_fill.py").read_bytes()
+    assert main(["inkscape", "uninstall", "--user-dir", str(tmp_path)]) == 0
+    assert not folder.exists() and (tmp_path / "extensions").is_dir()
+
+
+def test_uninstall_when_not_installed(tmp_path, capsys):
+    assert main(["inkscape", "uninstall", "--user-dir", str(tmp_path)]) == 1
+    assert "not installed here" in capsys.readouterr().err
+
+
+def test_install_never_overwrites_a_foreign_folder(tmp_path, capsys):
+    folder = tmp_path / "extensions" / "svgtile"
+    folder.mkdir(parents=True)
+    (folder / "mine.txt").write_text("keep")
+    assert main(["inkscape", "install", "--user-dir", str(tmp_path)]) == 1
+    assert "was not made by 'svgtile inkscape install'" in capsys.readouterr().err
+    assert main(["inkscape", "uninstall", "--user-dir", str(tmp_path)]) == 1
+    assert (folder / "mine.txt").read_text() == "keep"
+
+
+def test_default_user_dir_honours_inkscape_profile_dir(tmp_path, monkeypatch):
+    monkeypatch.setenv("INKSCAPE_PROFILE_DIR", str(tmp_path / "profile"))
+    assert ink.user_data_dir() == tmp_path / "profile"
+    assert main(["inkscape", "install"]) == 0
+    assert (tmp_path / "profile" / "extensions" / "svgtile" / ink.CONFIG_NAME).is_file()
