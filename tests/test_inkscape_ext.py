@@ -108,11 +108,11 @@ class FillComparison(ComparisonMixin, _Base):
     """Golden snapshots of the whole document after the effect (ids and float noise filtered)."""
 
     compare_file = "svg/fill.svg"
-    comparisons = [
+    comparisons = [  # noqa: RUF012 (inkex reads these class attributes)
         ("--id=exemplar", "--id=container", "--id=pond", "--engine=tile", "--max-rotation=0"),
         ("--id=exemplar", "--id=container", "--engine=tile", "--boundary=inside", "--seed=3"),
     ]
-    compare_filters = [CompareWithoutIds(), CompareNumericFuzzy()]
+    compare_filters = [CompareWithoutIds(), CompareNumericFuzzy()]  # noqa: RUF012
 
 
 class FillInx(InxMixin, TestCase):
