@@ -25,7 +25,7 @@ SHEET_PANEL = 320
 @click.option("--engines", default="patch,tile,random", show_default=True, help="Comma-separated engines, one column each.")
 @click.option("--seed", type=click.IntRange(min=0), default=1, show_default=True, help="Random seed, the same for every engine.")
 @click.option("--png", "png_dir", type=click.Path(file_okay=False),
-              help="Also write each texture as SVG and PNG, and contact-sheet.svg/.png (exemplar | engines), into this folder.")
+              help="Also write each texture as SVG and PNG into this folder, and a contact sheet: the exemplar beside every texture.")
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
 def compare(exemplar, size, engines, seed, png_dir, as_json):
     """Synthesize EXEMPLAR with each engine and print their figures side by side."""
