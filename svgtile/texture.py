@@ -78,7 +78,10 @@ def _clip_region(path: Path, source: str) -> Region | None:
     except (ET.ParseError, OSError):  # read_exemplar has already read it: not reached in practice
         return None
     ids = {el.get("id"): el for el in root.iter() if el.get("id")}
-    group = ids.get("svgtile")
+    # the motif group is the root's last <g>, "svgtile" or, should the exemplar's defs use that
+    # id, "svgtile-2" …
+    groups = [el for el in root if el.tag == f"{{{SVG_NS}}}g" and (el.get("id") or "").startswith("svgtile")]
+    group = groups[-1] if groups else None
     ref = re.fullmatch(r"\s*url\(\s*#([^)\s]+)\s*\)\s*", group.get("clip-path", "")) if group is not None else None
     clip = ids.get(ref.group(1)) if ref else None
     if clip is None:

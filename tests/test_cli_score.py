@@ -209,3 +209,24 @@ def test_compare_png_into_a_file_is_refused(tmp_path, capsys):
     rc, _, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100", "--png", tmp_path / "f")
     assert rc != 0 and err.count("\n") == 1
     assert (tmp_path / "f").read_text() == "x"
+
+
+def test_clip_region_found_when_the_exemplar_takes_svgtiles_ids(tmp_path):
+    # symbols named like svgtile's own group and clip path push those to "svgtile-2" …
+    (tmp_path / "ex.svg").write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 20 20">'
+        '<defs><symbol id="svgtile" overflow="visible"><circle r="1"/></symbol>'
+        '<symbol id="svgtile-clip" overflow="visible"><rect width="2" height="1"/></symbol></defs>'
+        '<use xlink:href="#svgtile" x="4" y="4"/><use xlink:href="#svgtile-clip" x="12" y="6"/>'
+        '<use xlink:href="#svgtile" x="8" y="15"/><use xlink:href="#svgtile-clip" x="15" y="14"/></svg>'
+    )
+    ex = read_exemplar(tmp_path / "ex.svg")
+    region = Region.from_geometry(shapely.box(0, 0, 120, 80).difference(shapely.box(40, 20, 80, 60)))
+    arr = ENGINES["random"](ex, region, rng=np.random.default_rng(1))
+    text = svg_document(ex, arr, region, boundary="clip", params={})
+    assert 'id="svgtile-2"' in text and 'id="svgtile-clip-2"' in text
+    (tmp_path / "t.svg").write_text(text)
+    back, back_region = read_texture(tmp_path / "t.svg", ex)
+    assert back_region.area == pytest.approx(120 * 80 - 40 * 40)
+    # every motif whose centroid is in the viewBox is read back
+    assert sorted(np.bincount(back.kind).tolist()) == sorted(np.bincount(arr.kind[shapely.contains_xy(shapely.box(0, 0, 120, 80), arr.xy[:, 0], arr.xy[:, 1])]).tolist())
