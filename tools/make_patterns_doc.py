@@ -12,7 +12,7 @@ repository root: ``python tools/make_patterns_doc.py`` (a few minutes).
 from __future__ import annotations
 
 import csv
-import time
+import io
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +40,6 @@ SEED = 1
 
 def row(path: Path, names: dict[str, str]) -> dict:
     out = {"pattern": path.stem, "name": names.get(path.stem, "")}
-    start = time.perf_counter()
     try:
         imported = import_tile(path)
     except SvgtileError as exc:
@@ -56,7 +55,7 @@ def row(path: Path, names: dict[str, str]) -> dict:
         motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
         overlaps=figures["overlaps_total"], violators=figures["violators_total"],
         density=figures["density_ratio"], kind_mix=figures["kind_mix_tv"], coverage=figures["coverage"],
-        exemplar_overlaps=stats.overlaps, seconds=time.perf_counter() - start,
+        exemplar_overlaps=stats.overlaps,
     )  # fmt: skip
     return out
 
@@ -109,7 +108,18 @@ def main() -> None:
     ))
     (DOCS / "patterns.md").write_text(text + "\n" + "\n".join(sections))
     sheet = swatch_sheet(collect([str(SETS[0][1])]), columns=6, seed=SEED, names=fgdc_names)
-    (DOCS / "fgdc-swatches.png").write_bytes(render_png(sheet.text, 1500))
+    (DOCS / "fgdc-swatches.png").write_bytes(small_png(render_png(sheet.text, 1500)))
+
+
+def small_png(data: bytes) -> bytes:
+    """The sheet as a 16-grey palette PNG (under 1 MB for the docs), if Pillow is installed."""
+    try:
+        from PIL import Image
+    except ImportError:
+        return data
+    out = io.BytesIO()
+    Image.open(io.BytesIO(data)).convert("L").quantize(16).save(out, "PNG", optimize=True)
+    return out.getvalue()
 
 
 if __name__ == "__main__":
