@@ -13,10 +13,14 @@ Two encodings are written:
   ``<g id="motifs">``; the input region is ``<rect id="region">`` or ``<circle id="region">``.
 * plain: every motif is a top-level ``<polygon>`` or ``<g>`` with absolute coordinates, no ``<use>``.
 
-Motifs are placed by dart throwing until saturation, with a per-motif jittered gap between
-*footprints* (interior of closed outlines plus the stroke band), so the spacing is even but not
-regular.  Before writing, every exemplar is checked: footprints are pairwise at least
-``MIN_GAP`` apart, lie inside the region and keep only a small margin to its boundary.
+Motifs are placed the way a cartographer draws them, not by dart throwing (which is what the
+``random`` engine imitates, so a dart-thrown exemplar has no structure to lose): along offset
+rows that continue across the edges, in tight groups (nests, clumps, split fragments, chains)
+whose members keep a characteristic gap between *footprints* (interior of closed outlines plus
+the stroke band), all with a hand-drawn irregularity (``rows``, ``group``, ``settle``).  Before
+writing, every exemplar is checked: footprints are pairwise at least ``MIN_GAP`` apart and lie
+inside the region; a square exemplar tiled 3 × 3 shows no seam (gaps across its sides are no
+wider than inside it), and in the circle the outermost motifs keep only a small margin to it.
 
 The output is deterministic (fixed seed per exemplar, at most 3 decimals per number).
 Run from anywhere:  python3 tools/make_exemplars.py [--out DIR]
@@ -28,6 +32,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -280,44 +285,34 @@ class Region:
     shape: str  # "square" | "circle"
     size: float
 
-    def margin(self, geom: BaseGeometry, stretch_y: float = 1.0) -> float:
-        """Signed distance from ``geom`` to the region boundary (negative when sticking out).
-
-        With ``stretch_y`` the distances to the top and bottom sides of a square are divided by
-        it (the placement metric of layered exemplars).
-        """
+    def margin(self, geom: BaseGeometry) -> float:
+        """Signed distance from ``geom`` to the region boundary (negative when sticking out)."""
         if self.shape == "square":
             x0, y0, x1, y1 = geom.bounds
-            return min(x0, self.size - x1, y0 / stretch_y, (self.size - y1) / stretch_y)
+            return min(x0, self.size - x1, y0, self.size - y1)
         c = self.size / 2
         pts = shapely.get_coordinates(geom)
         return c - float(np.hypot(pts[:, 0] - c, pts[:, 1] - c).max())
 
-    def snap(
-        self, motif: Motif, target: float, rng: np.random.Generator, stretch_y: float = 1.0
-    ) -> Motif:
-        """Move ``motif`` towards a random side (square) or radially (circle) so that its margin
-        becomes ``target``: the way a hand drawer fills the region right up to its edge."""
+    def inset(self, motif: Motif, margin: float) -> Motif | None:
+        """``motif`` moved just far enough inward (square: along x and y; circle: radially) to
+        keep ``margin`` from the boundary -- how a drafter finishes a row at the region's edge;
+        None if it does not fit."""
         fp = motif.footprint()
         x, y = motif.x, motif.y
         if self.shape == "square":
             x0, y0, x1, y1 = fp.bounds
-            side = rng.integers(4)
-            if side == 0:
-                x += target - x0
-            elif side == 1:
-                x += self.size - target - x1
-            elif side == 2:
-                y += target * stretch_y - y0
-            else:
-                y += self.size - target * stretch_y - y1
+            x += max(0.0, margin - x0) - max(0.0, margin - (self.size - x1))
+            y += max(0.0, margin - y0) - max(0.0, margin - (self.size - y1))
         else:
             c = self.size / 2
             theta = math.atan2(y - c, x - c)
             for _ in range(4):  # the footprint is not round: converge in a few steps
-                shift = self.margin(affinity.translate(fp, x - motif.x, y - motif.y)) - target
+                moved = affinity.translate(fp, x - motif.x, y - motif.y)
+                shift = min(0.0, self.margin(moved) - margin - 0.002)
                 x, y = x + shift * math.cos(theta), y + shift * math.sin(theta)
-        return Motif(motif.kind, r3(x), r3(y), motif.angle)
+        out = Motif(motif.kind, r3(x), r3(y), motif.angle)
+        return out if self.margin(out.footprint()) >= margin - 1e-9 else None
 
     def side_of(self, geom: BaseGeometry) -> list[str]:
         """Names of the boundary parts a motif is closest to (for the edge-margin check)."""
@@ -354,106 +349,193 @@ class Region:
 
 
 # --------------------------------------------------------------------------- placement
+#
+# A cartographer does not scatter motifs at random: they are drawn along rows (offset from row
+# to row), around a few centres (clumps, satellites) or in pairs, by eye, so that spacing is
+# characteristic but never exact.  A layout function builds that intent as *candidates* --
+# (kind id, x, y, angle, gap) in order -- with ``rows`` and ``around``; ``settle`` then inks
+# them in that order the way a drafter would: a motif that would run over the region's edge is
+# nudged inside, one that would touch an earlier one is left out.
 
 
 @dataclass(frozen=True)
-class Phase:
-    """One drawing pass: kinds (with weights) placed until ``count`` or saturation.
+class Cand:
+    """A motif the layout intends to draw: kind, centre, rotation (degrees) and the clear
+    distance it wants to its neighbours (two motifs keep the mean of theirs)."""
 
-    ``gap`` is the nominal clear distance between footprints; each motif gets its own gap
-    ``gap * U(1 - jitter, 1 + jitter)`` and two motifs keep at least the mean of their gaps.
-    """
-
-    weights: dict[str, float]
+    kind: str
+    x: float
+    y: float
+    angle: float
     gap: float
-    count: int | None = None
-    jitter: float = 0.4
-    max_fail: int = 8000
-    edge_bias: float = 0.2  # share of candidates pushed against the region boundary
 
 
-def place(
-    region: Region,
-    kinds: dict[str, Kind],
-    phases: list[Phase],
-    margin: float,
+def steps(rng: np.random.Generator, n: int, total: float, spread: float) -> np.ndarray:
+    """``n`` positive steps of relative spread ``spread`` (uniform ±) that sum to ``total``:
+    spacing judged by eye along a row, closed on itself so the pattern tiles."""
+    s = 1.0 + rng.uniform(-spread, spread, n)
+    return s / s.sum() * total
+
+
+def rows(
     rng: np.random.Generator,
-    stretch_y: float = 1.0,
-) -> list[Motif]:
-    """Dart-throw motifs phase by phase, keeping footprint gaps and the boundary margin.
+    size: float,
+    row_gap: float,
+    pitch,
+    *,
+    spread: float = 0.25,
+    row_spread: float = 0.12,
+    wobble: float = 0.0,
+    stagger: float = 0.5,
+) -> list[tuple[float, float, int, int]]:
+    """Centres along offset rows across a ``size`` square, as (x, y, row, index in row).
 
-    ``stretch_y`` > 1 measures the gaps in a space squeezed vertically by that factor, so vertical
-    gaps come out larger than horizontal ones (a layered look); the true gap never drops below
-    ``PLACE_GAP``.  A share of the candidates is snapped to the boundary with a margin of
-    ``margin + U(0, gap)``, so that the outermost motifs sit about half a gap from the edge
-    without lining up along it.
+    Rows are about ``row_gap`` apart (relative spread ``row_spread``); along a row the centres
+    follow ``pitch`` -- a number, or a callable ``pitch(row, k) -> float`` giving the distance
+    from motif k of the row to motif k + 1 -- scaled by ``1 ± spread`` and closed to the square's width, so
+    both the rows and the positions along them continue across the edges when the exemplar is
+    tiled.  Each row starts ``stagger`` of a pitch after the one above (plus a little), and each
+    centre sits ``wobble`` (standard deviation) off its row line: the hand-drawn offset rows of
+    FGDC 607, 620 or the OSM marsh fill.
     """
-    placed = _Placed(stretch_y)
-    for phase in phases:
-        ids = list(phase.weights)
-        prob = np.array([phase.weights[i] for i in ids], dtype=float)
-        prob /= prob.sum()
-        count, fails = 0, 0
-        while fails < phase.max_fail and (phase.count is None or count < phase.count):
-            kind = kinds[ids[rng.choice(len(ids), p=prob)]]
-            motif = Motif(
-                kind,
-                r3(rng.uniform(0, region.size)),
-                r3(rng.uniform(0, region.size)),
-                round(kind.sample_angle(rng), 2),
+    n_rows = max(2, round(size / row_gap))
+    n_rows += n_rows % 2 if stagger else 0
+    ys = np.cumsum(steps(rng, n_rows, size, row_spread)) - size / n_rows / 2
+    out = []
+    start = rng.uniform(0, 1)
+    for r, y in enumerate(ys):
+        nominal: list[float] = []
+        while True:
+            step = pitch(r, len(nominal)) if callable(pitch) else pitch
+            if sum(nominal) + 0.5 * step > size:
+                break
+            nominal.append(step)
+        xs = np.concatenate([[0.0], np.cumsum(steps(rng, len(nominal), size, spread)[:-1])])
+        x0 = (start + r * stagger + rng.uniform(-0.12, 0.12)) * size / len(nominal)
+        for i, x in enumerate(xs):
+            out.append((float((x + x0) % size), float(y + rng.normal(0, wobble)), r, i))
+    return out
+
+
+def around(
+    rng: np.random.Generator, x: float, y: float, reach: float, n: int, spread: float = 0.3
+) -> list[tuple[float, float]]:
+    """``n`` centres about ``reach`` from (x, y) at roughly even angles: a clump or satellites."""
+    theta = rng.uniform(0, 2 * math.pi) + 2 * math.pi * np.arange(n) / n
+    theta = theta + rng.uniform(-0.35, 0.35, n) * (2 * math.pi / max(n, 3))
+    dist = reach * (1 + rng.uniform(-spread, spread, n) / 2)
+    return [(x + d * math.cos(t), y + d * math.sin(t)) for t, d in zip(theta, dist, strict=True)]
+
+
+def group(
+    rng: np.random.Generator,
+    kinds: list[Kind],
+    x: float,
+    y: float,
+    gap: float,
+    *,
+    angles: list[float] | None = None,
+    spread: float = 0.1,
+    keep: float = 0.0,
+    theta: float | None = None,
+    box: float | None = None,
+) -> list[Cand]:
+    """A tight group drawn around (x, y): the first motif there, each next one pushed against
+    the ones before it from an evenly turning direction until its footprint is ``gap``
+    (± ``spread``) from theirs -- pebbles in a nest, a clump of bushes, a split clast.
+    ``keep`` is the candidates' own gap (see :class:`Cand`); ``theta`` (radians) fixes the
+    first direction, so a group of two or three becomes a chain along it (rows, bedding).
+    With ``box`` the whole group is moved inside the square [0, box]² (0.4 from its sides), so
+    the region's edge does not break it up."""
+    out: list[Cand] = []
+    union = None
+    theta0 = rng.uniform(0, 2 * math.pi) if theta is None else theta
+    wiggle = 0.3 if theta is None else 0.08
+    for n, kind in enumerate(kinds):
+        angle = kind.sample_angle(rng) if angles is None else angles[n]
+        fp0 = affinity.rotate(kind.footprint, angle, origin=(0, 0))
+        if union is None:
+            px, py = x, y
+        else:
+            t = (
+                theta0
+                + 2 * math.pi * (n - 1) / max(1, len(kinds) - 1)
+                + rng.uniform(-wiggle, wiggle)
             )
-            gap = phase.gap * rng.uniform(1 - phase.jitter, 1 + phase.jitter)
-            if rng.random() < phase.edge_bias:
-                target = margin + 0.002 + rng.uniform(0, phase.gap)
-                motif = region.snap(motif, target, rng, stretch_y)
-            fp = motif.footprint()
-            if region.margin(fp, stretch_y) < margin or not placed.clear(motif, fp, gap):
-                fails += 1
-                continue
-            placed.add(motif, fp, gap)
-            count, fails = count + 1, 0
+            want = gap * (1 + rng.uniform(-spread, spread))
+            lo, hi = 0.0, 30.0
+            for _ in range(18):  # bisection on the distance from the group centre
+                mid = (lo + hi) / 2
+                fp = affinity.translate(fp0, x + mid * math.cos(t), y + mid * math.sin(t))
+                lo, hi = (mid, hi) if fp.distance(union) < want else (lo, mid)
+            px, py = x + hi * math.cos(t), y + hi * math.sin(t)
+        out.append(Cand(kind.id, px, py, angle, keep))
+        placed = affinity.translate(fp0, px, py)
+        union = placed if union is None else union.union(placed)
+    if box is not None:
+        x0, y0, x1, y1 = union.bounds
+        sx = max(0.0, 0.4 - x0) - max(0.0, x1 - (box - 0.4))
+        sy = max(0.0, 0.4 - y0) - max(0.0, y1 - (box - 0.4))
+        out = [Cand(c.kind, c.x + sx, c.y + sy, c.angle, c.gap) for c in out]
+    return out
+
+
+def cand(rng: np.random.Generator, kind: Kind, x: float, y: float, gap: float, angle=None) -> Cand:
+    """A candidate of ``kind`` at (x, y); its angle drawn from the kind's law unless given."""
+    return Cand(kind.id, x, y, kind.sample_angle(rng) if angle is None else angle, gap)
+
+
+def pick(rng: np.random.Generator, weights: dict[str, float]) -> str:
+    """A kind id drawn with the given weights."""
+    ids = list(weights)
+    p = np.array([weights[i] for i in ids], dtype=float)
+    return ids[rng.choice(len(ids), p=p / p.sum())]
+
+
+def settle(region: Region, kinds: dict[str, Kind], cands: list[Cand], margin: float) -> list[Motif]:
+    """Ink the candidates in order: nudge each inside the region (at least ``margin`` from its
+    boundary) and keep it only if it clears every motif kept so far by its gap."""
+    placed = _Placed()
+    for c in cands:
+        kind = kinds[c.kind]
+        motif = region.inset(Motif(kind, r3(c.x), r3(c.y), round(c.angle, 2)), margin)
+        if motif is None:
+            continue
+        fp = motif.footprint()
+        if placed.clear(motif, fp, c.gap):
+            placed.add(motif, fp, c.gap)
     return placed.motifs
 
 
 class _Placed:
-    """The motifs placed so far, with what the gap test needs."""
+    """The motifs kept so far, with what the gap test needs."""
 
-    def __init__(self, stretch_y: float):
-        self.stretch_y = stretch_y
+    def __init__(self):
         self.motifs: list[Motif] = []
-        self.true: list[BaseGeometry] = []  # footprints
-        self.metric: list[BaseGeometry] = []  # footprints squeezed by 1/stretch_y
+        self.fps: list[BaseGeometry] = []
         self.centres: list[tuple[float, float]] = []
         self.radii: list[float] = []
         self.gaps: list[float] = []
 
-    def squeeze(self, geom: BaseGeometry) -> BaseGeometry:
-        return affinity.scale(geom, 1.0, 1.0 / self.stretch_y, origin=(0, 0))
-
     def add(self, motif: Motif, fp: BaseGeometry, gap: float) -> None:
         self.motifs.append(motif)
-        self.true.append(fp)
-        self.metric.append(self.squeeze(fp))
+        self.fps.append(fp)
         self.centres.append((motif.x, motif.y))
         self.radii.append(motif.kind.radius)
         self.gaps.append(gap)
 
     def clear(self, motif: Motif, fp: BaseGeometry, gap: float) -> bool:
-        """True if ``fp`` keeps the required gaps to every placed footprint."""
+        """True if ``fp`` keeps the required gaps to every kept footprint."""
         if not self.motifs:
             return True
         c = np.asarray(self.centres)
         need = np.maximum(PLACE_GAP, (gap + np.asarray(self.gaps)) / 2)
-        reach = (motif.kind.radius + np.asarray(self.radii) + need) * max(1.0, self.stretch_y)
+        reach = motif.kind.radius + np.asarray(self.radii) + need
         near = np.flatnonzero(np.hypot(c[:, 0] - motif.x, c[:, 1] - motif.y) < reach)
         if len(near) == 0:
             return True
-        squeezed = self.squeeze(fp)
-        shapely.prepare(squeezed)
-        if shapely.dwithin(squeezed, np.asarray(self.metric, dtype=object)[near], need[near]).any():
-            return False
         shapely.prepare(fp)
-        return not shapely.dwithin(fp, np.asarray(self.true, dtype=object)[near], PLACE_GAP).any()
+        return not shapely.dwithin(fp, np.asarray(self.fps, dtype=object)[near], need[near]).any()
 
 
 # --------------------------------------------------------------------------- validation
@@ -485,7 +567,7 @@ def validate(name: str, region: Region, items: list[tuple[str, float, BaseGeomet
     """
     fps = [fp for _, _, fp in items]
     n = len(fps)
-    require(25 <= n <= 90, f"{name}: {n} motifs (want 25-90)")
+    require(25 <= n <= 100, f"{name}: {n} motifs (want 25-100)")
     tree = shapely.STRtree(fps)
     nn = np.full(n, np.inf)
     for i, fp in enumerate(fps):
@@ -503,11 +585,14 @@ def validate(name: str, region: Region, items: list[tuple[str, float, BaseGeomet
             side[s] = min(side[s], mg)
     median_gap = float(np.median(nn))
     worst = max(side.values())
-    # the outermost motifs must hug every side: about half the typical gap, never a wide band
-    require(
-        worst <= 0.75 * median_gap,
-        f"{name}: a boundary part has an empty band of {worst:.2f} (median gap {median_gap:.2f})",
-    )
+    if region.shape == "circle":
+        # the outermost motifs must hug every sector: about half the typical gap, no wide band
+        require(
+            worst <= 0.75 * median_gap,
+            f"{name}: a boundary part has an empty band of {worst:.2f} (median gap {median_gap:.2f})",
+        )
+    else:
+        require_seamless(name, region, fps, nn, np.asarray(margins))
     counts: dict[str, int] = {}
     angles: dict[str, list[float]] = {}
     for kind_id, angle, _ in items:
@@ -520,6 +605,36 @@ def validate(name: str, region: Region, items: list[tuple[str, float, BaseGeomet
         min(margins),
         side,
         {k: (min(v), max(v)) for k, v in angles.items()},
+    )
+
+
+def require_seamless(
+    name: str, region: Region, fps: list[BaseGeometry], nn: np.ndarray, margins: np.ndarray
+) -> None:
+    """Tiled 3 × 3, a square exemplar must show no seam: the motifs along its sides, with their
+    neighbours across the sides, have no larger nearest gaps than the exemplar's inner motifs.
+
+    ``nn`` are the nearest footprint gaps within the exemplar alone, ``margins`` each motif's
+    distance to the boundary.  (For clumped or row patterns the typical gap between clumps or
+    rows, not the gap within them, sets how close to a side the outermost motifs must be.)
+    """
+    size = region.size
+    shifts = [(dx, dy) for dx in (-size, 0, size) for dy in (-size, 0, size)]
+    tiled = [affinity.translate(fp, dx, dy) for dx, dy in shifts for fp in fps]
+    tree = shapely.STRtree(tiled)
+    _idx, torus = tree.query_nearest(fps, return_distance=True, exclusive=True, all_matches=False)
+    inner = margins > 2 * float(np.median(nn))
+    require(inner.sum() >= 5, f"{name}: too few motifs away from the sides to judge the seams")
+    limit = 1.2 * float(nn[inner].max())
+    edge = ~inner
+    require(
+        float(torus[edge].max()) <= limit,
+        f"{name}: tiling leaves a seam: a gap of {torus[edge].max():.2f} across a side "
+        f"(the largest inner gap is {nn[inner].max():.2f})",
+    )
+    require(
+        float(np.median(torus[edge])) <= 1.25 * float(np.median(nn[inner])),
+        f"{name}: tiling leaves a seam: gaps across the sides are wider than inside",
     )
 
 
@@ -596,18 +711,18 @@ class Exemplar:
     depicts: str
     modelled_on: str
     region: Region
+    structure: str  # what a cartographer draws: rows, clumps, pairs … (for the README)
     kinds: list[Kind]
-    phases: list[Phase]
+    layout: Callable[[np.random.Generator, float], list[Cand]]  # (rng, region size) -> intent
     seed: int
     margin: float
-    stretch_y: float = 1.0
     plain: bool = False
 
     def build(self) -> tuple[str, list[Motif], Report]:
         """Place, validate and serialise; returns (svg text, motifs, report)."""
         rng = np.random.default_rng(self.seed)
         by_id = {k.id: k for k in self.kinds}
-        motifs = place(self.region, by_id, self.phases, self.margin, rng, self.stretch_y)
+        motifs = settle(self.region, by_id, self.layout(rng, self.region.size), self.margin)
         if self.plain:
             # check the geometry exactly as written: absolute, rounded shapes
             items = [
@@ -661,12 +776,23 @@ def gravel() -> Exemplar:
         depicts="gravel / conglomerate: scattered rounded pebbles drawn as thin outlines",
         modelled_on="FGDC 601 *Gravel or conglomerate (1st option)* and 602 "
         "(pebble outlines only, no dots)",
+        structure="pebbles in nests of two or three (gaps about 0.8) at sites on loose "
+        "offset rows about 10 apart, round and oblong mixed",
         region=Region("square", 60),
         kinds=kinds,
-        phases=[Phase({"pebble-round": 1, "pebble-oblong": 1}, gap=3.4)],
+        layout=lambda rng, size: gravel_layout(rng, size, {k.id: k for k in kinds}),
         seed=601,
-        margin=1.3,
+        margin=0.4,
     )
+
+
+def gravel_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    mix = {"pebble-round": 1, "pebble-oblong": 1}
+    for x, y, _r, _i in rows(rng, size, 10.0, 10.5, spread=0.15, wobble=0.6):
+        n = int(pick(rng, {"2": 2, "3": 3}))
+        out += group(rng, [kinds[pick(rng, mix)]] * n, x, y, 0.8, keep=0.6, box=size)
+    return out
 
 
 def sand() -> Exemplar:
@@ -676,11 +802,16 @@ def sand() -> Exemplar:
         title="Massive sand or sandstone: small dots",
         depicts="sand / sandstone: evenly scattered small dots",
         modelled_on="FGDC 607 *Massive sand or sandstone*",
+        structure="dots on offset rows 5 apart, about 5.5 apart along a row, each a little off "
+        "its place (a hand-stippled lattice)",
         region=Region("square", 50),
         kinds=[Kind("dot", 'filled dot, diameter 0.8 (`<circle r="0.4">`)', [dot_shape])],
-        phases=[Phase({"dot": 1}, gap=4.0, jitter=0.3)],
+        layout=lambda rng, size: [
+            Cand("dot", x, y, 0.0, 2.0)
+            for x, y, _r, _i in rows(rng, size, 5.0, 5.6, spread=0.18, wobble=0.3)
+        ],
         seed=607,
-        margin=1.6,
+        margin=0.4,
     )
 
 
@@ -707,13 +838,34 @@ def shale() -> Exemplar:
         depicts="shale / clay shale: short horizontal dashes in loose layers "
         "(strongly oriented, all within ±3°)",
         modelled_on="FGDC 620 *Clay or clay shale* (here jittered instead of in strict rows)",
-        region=Region("square", 56),
+        structure="dashes end to end along rows 3.6 apart, a short one after one to three "
+        "long ones, each row offset from the one above (brickwork)",
+        region=Region("square", 48),
         kinds=kinds,
-        phases=[Phase({"dash-long": 3, "dash-short": 1}, gap=2.2, jitter=0.35)],
+        layout=lambda rng, size: shale_layout(rng, size, {k.id: k for k in kinds}),
         seed=620,
-        margin=0.9,
-        stretch_y=1.7,
+        margin=0.4,
     )
+
+
+def shale_layout(rng, size, kinds) -> list[Cand]:
+    seqs: dict[int, list[str]] = {}
+    half = {"dash-long": 2.5, "dash-short": 1.3}
+
+    def kind_at(r: int, k: int) -> str:
+        seq = seqs.setdefault(r, [])
+        while len(seq) <= k:
+            run = [] if seq and seq[-1] == "dash-short" else ["dash-long"] * int(rng.integers(1, 4))
+            seq += [*run, "dash-short"] if run else ["dash-long"]
+        return seq[k]
+
+    def pitch(r: int, k: int) -> float:
+        return half[kind_at(r, k)] + 2.2 + half[kind_at(r, k + 1)]
+
+    return [
+        cand(rng, kinds[kind_at(r, i)], x, y, 0.9)
+        for x, y, r, i in rows(rng, size, 3.6, pitch, spread=0.2, wobble=0.2, stagger=0.4)
+    ]
 
 
 def breccia() -> Exemplar:
@@ -745,12 +897,32 @@ def breccia() -> Exemplar:
         modelled_on="FGDC 605 *Breccia (1st option)* (fragments only, no dots)",
         region=Region("square", 60),
         kinds=kinds,
-        phases=[
-            Phase({"fragment-triangle": 1, "fragment-quad": 1, "fragment-notched": 1}, gap=2.8)
-        ],
+        structure="fragments of one shape in groups of two or three (a broken clast whose pieces "
+        "lie close, gaps about 0.8) at sites on offset rows about 10 apart",
+        layout=lambda rng, size: groups_layout(
+            rng,
+            size,
+            {k.id: k for k in kinds},
+            row_gap=10.0,
+            pitch=10.5,
+            reach=0.8,
+            sizes={2: 2, 3: 3},
+            weights={"fragment-triangle": 1, "fragment-quad": 1, "fragment-notched": 1},
+        ),
         seed=605,
-        margin=1.1,
+        margin=0.4,
     )
+
+
+def groups_layout(rng, size, kinds, *, row_gap, pitch, reach, sizes, weights) -> list[Cand]:
+    """Groups of one kind (sizes: group size -> weight), ``reach`` apart within, at sites on
+    offset rows."""
+    out = []
+    n_of = {str(k): v for k, v in sizes.items()}
+    for x, y, _r, _i in rows(rng, size, row_gap, pitch, spread=0.2, wobble=0.6):
+        n = int(pick(rng, n_of))
+        out += group(rng, [kinds[pick(rng, weights)]] * n, x, y, reach, keep=0.6, box=size)
+    return out
 
 
 def breccia_plain() -> Exemplar:
@@ -790,11 +962,23 @@ def breccia_plain() -> Exemplar:
         modelled_on="FGDC 714 *Volcanic breccia and tuff* and 606 *Breccia (2nd option)*",
         region=Region("square", 56),
         kinds=kinds,
-        phases=[Phase({"shard": 1, "block": 1, "clast-with-crystal": 1}, gap=2.7)],
+        structure="split fragments: pairs of the same shape, the second turned about half "
+        "round (gap about 0.8), at sites on offset rows about 9 apart",
+        layout=lambda rng, size: breccia_plain_layout(rng, size, {k.id: k for k in kinds}),
         seed=714,
-        margin=1.1,
+        margin=0.4,
         plain=True,
     )
+
+
+def breccia_plain_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    for x, y, _r, _i in rows(rng, size, 9.0, 9.5, spread=0.15, wobble=0.5):
+        k = kinds[pick(rng, {"shard": 1.1, "block": 1, "clast-with-crystal": 0.9})]
+        a = k.sample_angle(rng)
+        turned = a + 180 + rng.uniform(-20, 20)  # the other half of a split fragment
+        out += group(rng, [k, k], x, y, 0.8, angles=[a, turned], keep=0.6, box=size)
+    return out
 
 
 def marsh() -> Exemplar:
@@ -816,6 +1000,10 @@ def marsh() -> Exemplar:
     ]:
         blade = [(x, 1.1), (x + lean * 0.4, (1.1 + top) / 2), (x + lean, top)]
         tuft5.append(polyline(blade, **pen))
+    kinds = [
+        Kind("tuft-small", "grass tuft: 3 blades on a short ground line", tuft3, upright),
+        Kind("tuft-large", "grass tuft: 5 fanned blades on a ground line", tuft5, upright),
+    ]
     return Exemplar(
         name="marsh",
         title="Marsh: upright grass tufts",
@@ -823,14 +1011,31 @@ def marsh() -> Exemplar:
         modelled_on="openstreetmap-carto `generating_patterns/marsh.svg` (two tuft variants) "
         "and the topographic marsh symbol",
         region=Region("square", 60),
-        kinds=[
-            Kind("tuft-small", "grass tuft: 3 blades on a short ground line", tuft3, upright),
-            Kind("tuft-large", "grass tuft: 5 fanned blades on a ground line", tuft5, upright),
-        ],
-        phases=[Phase({"tuft-small": 1, "tuft-large": 1}, gap=3.4)],
+        kinds=kinds,
+        structure="tufts of one size side by side in twos and threes (gap about 0.9), the "
+        "groups along offset rows about 7.5 apart",
+        layout=lambda rng, size: marsh_layout(rng, size, {k.id: k for k in kinds}),
         seed=1004,
-        margin=1.3,
+        margin=0.4,
     )
+
+
+def marsh_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    for x, y, _r, _i in rows(rng, size, 7.5, 11.0, spread=0.15, wobble=0.3):
+        k = kinds[pick(rng, {"tuft-small": 1.2, "tuft-large": 1})]
+        n = int(pick(rng, {"2": 3, "3": 1}))
+        out += group(
+            rng,
+            [k] * n,
+            x,
+            y,
+            0.9,
+            theta=0.0 if rng.random() < 0.5 else math.pi,
+            keep=0.6,
+            box=size,
+        )
+    return out
 
 
 def scrub() -> Exemplar:
@@ -849,6 +1054,15 @@ def scrub() -> Exemplar:
         line(0, 0.5, 0, 1.5, **pen),
         line(-1.1, 1.5, 1.1, 1.5, **pen),
     ]
+    kinds = [
+        Kind(
+            "bush-stick",
+            "stick bush: stem with two upturned branches on a ground line",
+            stick,
+            upright,
+        ),
+        Kind("bush-round", "round bush: closed crown outline on a short stem", crown, upright),
+    ]
     return Exemplar(
         name="scrub",
         title="Scrub: small bush symbols",
@@ -856,19 +1070,21 @@ def scrub() -> Exemplar:
         modelled_on="openstreetmap-carto `generating_patterns/scrub.svg` (stick bush) and the "
         "Temaki `shrub` icon (round crown)",
         region=Region("square", 60),
-        kinds=[
-            Kind(
-                "bush-stick",
-                "stick bush: stem with two upturned branches on a ground line",
-                stick,
-                upright,
-            ),
-            Kind("bush-round", "round bush: closed crown outline on a short stem", crown, upright),
-        ],
-        phases=[Phase({"bush-stick": 3, "bush-round": 2}, gap=3.6)],
+        kinds=kinds,
+        structure="clumps of three to five bushes of one kind (gaps about 0.8) at sites on "
+        "offset rows about 12 apart",
+        layout=lambda rng, size: scrub_layout(rng, size, {k.id: k for k in kinds}),
         seed=2005,
-        margin=1.4,
+        margin=0.4,
     )
+
+
+def scrub_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    for x, y, _r, _i in rows(rng, size, 12.0, 12.5, spread=0.2, wobble=0.8):
+        k = kinds[pick(rng, {"bush-stick": 3, "bush-round": 2})]
+        out += group(rng, [k] * int(rng.integers(3, 6)), x, y, 0.8, keep=0.6, box=size)
+    return out
 
 
 def till() -> Exemplar:
@@ -897,15 +1113,29 @@ def till() -> Exemplar:
         modelled_on="FGDC 681 *Till or diamicton (1st option)* and 682 (2nd option)",
         region=Region("square", 50),
         kinds=kinds,
-        phases=[  # large motifs first, dots fill the rest (as a drafter would draw it)
-            Phase({"clast": 1}, gap=3.6, count=6, max_fail=2000),
-            Phase({"dash": 1}, gap=2.4, count=12, max_fail=2000),
-            Phase({"ring": 1}, gap=2.2, count=8, max_fail=2000),
-            Phase({"dot": 1}, gap=4.4, jitter=0.35),
-        ],
+        structure="large clasts on a coarse offset lattice (about 16 apart), each with one or "
+        "two pebble rings close by; dashes on the rows between the clasts; dots on fine offset "
+        "rows filling the rest",
+        layout=lambda rng, size: till_layout(rng, size, {k.id: k for k in kinds}),
         seed=681,
-        margin=1.2,
+        margin=0.4,
     )
+
+
+def till_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    coarse = rows(rng, size, 16.7, 16.7, spread=0.15, wobble=1.0)
+    for x, y, _r, _i in coarse:  # large motifs first, as a drafter would draw them
+        out.append(cand(rng, kinds["clast"], x, y, 0.8))
+        for px, py in around(rng, x, y, 4.0, int(rng.integers(1, 3)), spread=0.15):
+            out.append(cand(rng, kinds["ring"], px, py, 0.8))
+    for x, y, _r, _i in coarse:
+        out.append(cand(rng, kinds["dash"], (x + 8.3) % size, (y + 8.3) % size, 2.0))
+    out += [
+        cand(rng, kinds["dot"], x, y, 2.6)
+        for x, y, _r, _i in rows(rng, size, 5.0, 5.4, spread=0.2, wobble=0.4)
+    ]
+    return out
 
 
 def boulders() -> Exemplar:
@@ -943,13 +1173,20 @@ def boulders() -> Exemplar:
         modelled_on="the Temaki `boulder1`–`boulder3` icons and the filled blobs of FGDC 681",
         region=Region("square", 80),
         kinds=kinds,
-        phases=[
-            Phase({"boulder-large": 1, "boulder-medium": 1.3}, gap=3.2, count=34),
-            Phase({"boulder-small": 1}, gap=2.8, count=22),
-        ],
+        structure="boulders of the three sizes mixed along offset rows about 9.4 apart, about "
+        "10 apart along a row (a blockfield drawn boulder by boulder)",
+        layout=lambda rng, size: boulders_layout(rng, size, {k.id: k for k in kinds}),
         seed=3001,
-        margin=1.2,
+        margin=0.4,
     )
+
+
+def boulders_layout(rng, size, kinds) -> list[Cand]:
+    out = []
+    mix = {"boulder-large": 1, "boulder-medium": 1.2, "boulder-small": 1.4}
+    for x, y, _r, _i in rows(rng, size, 9.4, 10.0, spread=0.15, wobble=0.6):
+        out.append(cand(rng, kinds[pick(rng, mix)], x, y, 1.2))
+    return out
 
 
 def chert_nodules() -> Exemplar:
@@ -977,6 +1214,7 @@ def chert_nodules() -> Exemplar:
             bedding,
         ),
     ]
+    by = {k.id: k for k in kinds}
     return Exemplar(
         name="chert-nodules",
         title="Chert nodules in a circular input region",
@@ -986,9 +1224,21 @@ def chert_nodules() -> Exemplar:
         "*Cherty dolostone* (without the limestone brick lines)",
         region=Region("circle", 68),
         kinds=kinds,
-        phases=[Phase({"nodule-ellipse": 2, "nodule-lens": 2, "nodule-irregular": 1}, gap=2.6)],
+        structure="nodules strung along bedding rows about 5 apart, about 8 apart along a row, "
+        "rows offset from one another, inside the circle",
+        layout=lambda rng, size: [
+            cand(
+                rng,
+                by[pick(rng, {"nodule-ellipse": 2, "nodule-lens": 2, "nodule-irregular": 1})],
+                x,
+                y,
+                1.0,
+            )
+            for x, y, _r, _i in rows(rng, size, 5.0, 8.0, spread=0.18, wobble=0.3)
+            if math.hypot(x - size / 2, y - size / 2) < size / 2 - 0.8
+        ],
         seed=639,
-        margin=1.1,
+        margin=0.4,
     )
 
 
@@ -1043,9 +1293,13 @@ All files but `breccia-plain.svg` use `<symbol>`/`<use>`:
   `stroke-linecap`, `stroke-linejoin`); ink is `#000` or `#231f20`, boulders have a grey fill.
 * A motif's *footprint* is the interior of its closed outlines (filled or not) plus the stroke
   band (round caps add discs at line ends; a zero-length round-capped line is a dot). In every
-  file any two footprints are at least 0.4 units apart, every footprint lies inside the region,
-  and the outermost motifs keep only about half the typical gap to the region boundary (so the
-  exemplar can be tiled without seams). The generator asserts all of this.
+  file any two footprints are at least 0.4 units apart and every footprint lies inside the
+  region; a square exemplar tiled 3 × 3 shows no seam (rows and groups continue across its
+  sides), and in the circle the outermost motifs keep about half the typical gap to it. The
+  generator asserts all of this.
+* Each exemplar has the structure a cartographer draws -- offset rows, nests, clumps, split
+  fragments, chains along bedding -- with hand-drawn irregularity, not a dart-thrown scatter
+  (which is what the `random` engine makes); "Structure" below says what each one is.
 * Numbers have at most 3 decimals.
 
 `breccia-plain.svg` is the "real world" encoding: no `<symbol>`/`<use>`; each motif is a
@@ -1076,6 +1330,7 @@ def readme(entries: list[tuple[Exemplar, Report]]) -> str:
             f"\n## {ex.name}.svg\n\n"
             f"* **Depicts:** {ex.depicts}.\n"
             f"* **Modelled on:** {ex.modelled_on}.\n"
+            f"* **Structure:** {ex.structure}.\n"
             f"* **Kinds and motif counts** ({sum(rep.counts.values())} motifs, {encoding}):\n{kinds}\n"
             f"* **Input region:** {ex.region.describe()}.\n"
             f"* **Spacing:** footprint gaps ≥ {rep.min_gap:.2f} (median nearest-neighbour gap "
