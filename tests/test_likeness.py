@@ -36,7 +36,7 @@ STRUCTURE_SHORT = {
     "boulders": "patch 0.175 vs random 0.236 (ratio 0.74)",
     "breccia": "patch 0.654 vs random 1.012 (ratio 0.65)",
     "breccia-plain": "patch 0.465 vs random 0.744 (ratio 0.62)",
-    "chert-nodules": "patch 0.111 vs random 0.195 (ratio 0.57)",
+    "chert-nodules": "patch 0.104 vs random 0.172 (ratio 0.60)",
     "gravel": "patch 0.454 vs random 0.871 (ratio 0.52)",
     "marsh": "patch 0.453 vs random 0.718 (ratio 0.63)",
     "scrub": "patch 0.596 vs random 1.108 (ratio 0.54)",

@@ -1229,7 +1229,7 @@ def chert_nodules() -> Exemplar:
         layout=lambda rng, size: [
             cand(
                 rng,
-                by[pick(rng, {"nodule-ellipse": 2, "nodule-lens": 2, "nodule-irregular": 1})],
+                by[pick(rng, {"nodule-ellipse": 2, "nodule-lens": 3, "nodule-irregular": 0.7})],
                 x,
                 y,
                 1.0,
