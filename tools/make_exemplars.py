@@ -777,7 +777,7 @@ def gravel() -> Exemplar:
         modelled_on="FGDC 601 *Gravel or conglomerate (1st option)* and 602 "
         "(pebble outlines only, no dots)",
         structure="pebbles in nests of two or three (gaps about 0.8) at sites on loose "
-        "offset rows about 10 apart, round and oblong mixed",
+        "offset rows about 10 apart, each nest of one shape (round or oblong)",
         region=Region("square", 60),
         kinds=kinds,
         layout=lambda rng, size: gravel_layout(rng, size, {k.id: k for k in kinds}),
