@@ -37,6 +37,7 @@ import numpy as np
 import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from .errors import ExemplarError
 from .exemplar import PERIOD_ATTR, SVG_NS, XLINK_NS, TilePieces, match_kinds, parse_tile
@@ -59,6 +60,27 @@ TOUCH = 2e-4
 #: Coordinates are compared at this many decimals when dropping duplicate pieces (relative to the
 #: tile size, 1e-5 of it).
 DUPLICATE_DECIMALS = 5
+#: Repetition rule (stage 4b): two parts are one motif when the offset between them (in the first
+#: part's frame, with their relative rotation) recurs, within this share of the larger kind's radius …
+REPEAT_TOLERANCE = 0.05
+#: … and this many degrees of relative rotation …
+REPEAT_TURN = 3.0
+#: … for at least this share of the parts of either kind (swamp's rarer arrangement: 0.45) …
+REPEAT_SHARE = 0.25
+#: … and at least this many times.  Each part is compared with this many nearest parts.
+MIN_REPEATS, NEIGHBOURS = 3, 12
+#: A recurring offset that pairs more than this share of its parts twice is a lattice step (every
+#: part of a lattice has a neighbour both at +v and at −v), not a motif.
+AMBIGUOUS = 0.1
+#: Motifs so joined must stand apart: the nearest part outside a motif lies farther than this many
+#: times its longest link (a single-linkage gap; the osm-carto marsh, reed, bog, mangrove and swamp
+#: tufts have ≥ 1.5, the near-lattices of FGDC 710, 711 and 716 about 1.0) …
+SEPARATION = 1.3
+#: … for all but this share of the motifs.
+CROWDED = 0.1
+#: Centred footprints whose outline points agree on a grid of this share of their radius are taken
+#: as copies without the rotation search of :func:`svgtile.exemplar.match_kinds` (a speed-up only).
+COPY_GRID = 0.02
 #: The 3 × 3 block of tiles, central tile (0, 0) at index 4.
 OFFSETS = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64)
 CENTRE = 4
@@ -153,44 +175,56 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     comp = _components(block, lines, scale=float(max(w, h)))
     _refuse_continuous(tile, idx, comp, base, copy)
 
-    # 4. one copy per motif: the component whose lowest piece lies in the central tile
+    # 4. one copy per part: the component whose lowest piece lies in the central tile
     order = np.lexsort((base, comp))
     first = order[np.r_[True, comp[order][1:] != comp[order][:-1]]]
     chosen = first[copy[first] == CENTRE]
-    motif_of = np.full(len(block), -1)
-    motif_of[np.isin(comp, comp[chosen])] = np.searchsorted(np.sort(comp[chosen]), comp[np.isin(comp, comp[chosen])])
-    members = np.flatnonzero(motif_of >= 0)
-    motif = motif_of[members]
-    footprint = _group_union(block[members], motif, len(chosen))
-    mb = shapely.bounds(footprint)
+    part_of = np.full(len(block), -1)
+    part_of[np.isin(comp, comp[chosen])] = np.searchsorted(np.sort(comp[chosen]), comp[np.isin(comp, comp[chosen])])
+    members = np.flatnonzero(part_of >= 0)
+    part = part_of[members]
+    n_parts = len(chosen)
+    part_fp = _group_union(block[members], part, n_parts)
+    mb = shapely.bounds(part_fp)
     span = (mb[:, 2:] - mb[:, :2]) / period
     if (span > 1.0 + 1e-9).any():
         worst = int(np.argmax(span.max(axis=1)))
         raise TileRefused(
-            f"not discrete motifs: a group of {int((motif == worst).sum())} piece(s) spans "
+            f"not discrete motifs: a group of {int((part == worst).sum())} piece(s) spans "
             f"{span[worst].max():.2g} times the tile, so the pattern is continuous",
             source=tile.source,
         )
+    pxy = shapely.get_coordinates(shapely.centroid(part_fp))
+    pmove = -np.floor((pxy - origin) / period) * period
+    pxy = pxy + pmove
+
+    # 4b. parts that always occur together at the same offset are one motif
+    part_paint = _paints(tile, idx, base[members], part, n_parts)
+    pkind, pangle = _kinds(_moved(part_fp, pmove - pxy), part_paint)
+    motif_of, join = _repeat_groups(pxy, pkind, pangle, _radii(part_fp, pmove - pxy), period, origin)
+    n_motifs = int(motif_of.max(initial=-1)) + 1
+    motif = motif_of[part]
+    footprint = _group_union(_moved(part_fp, pmove + join), motif_of, n_motifs) if n_motifs < n_parts else _moved(part_fp, pmove)
     cxy = shapely.get_coordinates(shapely.centroid(footprint))
     move = -np.floor((cxy - origin) / period) * period
+    centred = _moved(footprint, -cxy)
     cxy = cxy + move
 
     # 5. kinds up to rotation
-    centred = _moved(footprint, -cxy + move)
-    paints = [tuple(sorted({tile.paint[idx[b]] for b in base[members[motif == m]]})) for m in range(len(chosen))]
-    kind, angle = match_kinds(list(centred), paints, KIND_TOLERANCE)
+    paints = _paints(tile, idx, base[members], motif, n_motifs)
+    kind, angle = _kinds(centred, paints)
     # number kinds by size of their motif counts (most common first), stable
     counts = np.bincount(kind)
     rank = np.argsort(np.argsort(-counts, kind="stable"), kind="stable")
     kind = rank[kind]
 
     # 6. the drawing of each kind: its first motif's pieces around its centroid
-    offset = OFFSETS[copy[members]] * period + shift[base[members]] + move[motif]
+    offset = OFFSETS[copy[members]] * period + shift[base[members]] + pmove[part] + join[part] + move[motif]
     text = _write(tile, idx, kind, cxy, angle, motif, base[members], offset)
-    wrapped = np.zeros(len(chosen), dtype=bool)
-    np.logical_or.at(wrapped, motif, copy[members] != CENTRE)
+    wrapped = np.zeros(n_motifs, dtype=bool)
+    np.logical_or.at(wrapped, motif, (copy[members] != CENTRE) | (join[part] != 0).any(axis=1))
     return ImportedTile(
-        tile.source, tile.box, kind, cxy, angle, np.bincount(motif, minlength=len(chosen)), wrapped,
+        tile.source, tile.box, kind, cxy, angle, np.bincount(motif, minlength=n_motifs), wrapped,
         text, tuple(notes),
     )  # fmt: skip
 
@@ -231,6 +265,168 @@ def _components(geoms: np.ndarray, lines: _Lines, *, scale: float) -> np.ndarray
     m = len(geoms)
     graph = coo_matrix((np.ones(int(join.sum())), (i[join], j[join])), shape=(m, m))
     return connected_components(graph, directed=False)[1]
+
+
+def _kinds(centred: np.ndarray, paints: list[tuple]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`svgtile.exemplar.match_kinds` of centred footprints, run once per set of plain copies.
+
+    Footprints with the same paint whose outline points coincide on a grid of :data:`COPY_GRID`
+    × their radius (far inside :data:`KIND_TOLERANCE`) are copies: only the first of each set is
+    matched up to rotation, and the others take its kind and angle.  Returns (n,) kinds numbered
+    in order of first appearance and (n,) angles, degrees.
+    """
+    radius = _radii(centred, np.zeros((len(centred), 2)))
+    coords, index = shapely.get_coordinates(centred, return_index=True)
+    step = COPY_GRID * np.maximum(radius, 1e-12)
+    cells = np.round(coords / step[index, None]).astype(np.int64)
+    start = np.r_[0, np.cumsum(np.bincount(index, minlength=len(centred)))]
+    keys = [(paints[g], round(float(radius[g] / step[g])), cells[start[g] : start[g + 1]].tobytes()) for g in range(len(centred))]
+    rep: dict[tuple, int] = {}
+    first = np.array([rep.setdefault(key, g) for g, key in enumerate(keys)], dtype=np.int64)
+    reps = np.unique(first)
+    kind, angle = match_kinds([centred[g] for g in reps], [paints[g] for g in reps], KIND_TOLERANCE)
+    at = np.searchsorted(reps, first)
+    return kind[at], angle[at]
+
+
+def _paints(tile: TilePieces, idx: np.ndarray, piece: np.ndarray, group: np.ndarray, count: int) -> list[tuple]:
+    """(count,) sorted tuples of the distinct paints of each group's pieces (``piece`` indexes
+    ``idx``; ``group`` is each piece's group)."""
+    sets: list[set] = [set() for _ in range(count)]
+    for g, b in zip(group.tolist(), piece.tolist(), strict=True):
+        sets[g].add(tile.paint[idx[b]])
+    return [tuple(sorted(s)) for s in sets]
+
+
+def _radii(geoms: np.ndarray, by: np.ndarray) -> np.ndarray:
+    """(n,) farthest outline point of each geometry, translated by ``by`` (n, 2), from the origin."""
+    coords, index = shapely.get_coordinates(_moved(geoms, by), return_index=True)
+    out = np.zeros(len(geoms))
+    np.maximum.at(out, index, np.hypot(coords[:, 0], coords[:, 1]))
+    return out
+
+
+def _repeat_groups(
+    xy: np.ndarray, kind: np.ndarray, angle: np.ndarray, radius: np.ndarray, period: np.ndarray, origin: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Join parts that always occur together: the motifs of a tile whose parts do not touch.
+
+    A tuft of separate blades (osm-carto marsh) or a shape beside a dot (swamp) is drawn as parts
+    that neither touch nor pair up as parallel strokes, but a motif is copied whole, so the offset
+    from one of its parts to another — taken in the first part's frame, with their relative
+    rotation — is the same in every copy, while offsets between separate motifs scatter (Gestalt
+    common fate / the repetition AlMeraj et al. 2013 §3.1 look for).  Offsets to the
+    :data:`NEIGHBOURS` nearest parts (across the tile's edges) are clustered per ordered pair of
+    part kinds, within :data:`REPEAT_TOLERANCE` of the larger kind's radius and
+    :data:`REPEAT_TURN` degrees; a cluster holding at least :data:`REPEAT_SHARE` of either kind's
+    parts (and :data:`MIN_REPEATS`) is a *recurring offset*, and its pairs are links.
+
+    A regular lattice makes every neighbour offset recur, so a recurring offset is kept only if it
+    is one-to-one (at most :data:`AMBIGUOUS` of its parts have a partner both ways, as every
+    lattice point has at +v and −v), and the joined groups must be finite (not reach their own
+    repeat) and stand apart (the nearest outside part farther than
+    :data:`SEPARATION` times the group's longest link, for all but :data:`CROWDED` of them); while
+    they do not, the longest recurring offset is dropped.
+
+    Parameters
+    ----------
+    xy : (n, 2) part centroids inside the tile, user units
+    kind : (n,) part kinds; angle : (n,) degrees, each part's rotation from its kind's first part
+    radius : (n,) each part's farthest outline point from its centroid, user units
+    period, origin : (2,) the tile's size and corner
+
+    Returns
+    -------
+    group : (n,) motif of each part, numbered from 0 by each motif's first part
+    join : (n, 2) whole periods moving each part next to the other parts of its motif
+    """
+    n = len(xy)
+    alone = (np.arange(n), np.zeros((n, 2)))
+    if n < 2 * MIN_REPEATS:
+        return alone
+    pos = np.mod(xy - origin, period)
+    pos[pos >= period] = 0.0
+    k = min(NEIGHBOURS, n - 1)
+    dist, nb = cKDTree(pos, boxsize=period).query(pos, k=k + 1)
+    i, j, dist = np.repeat(np.arange(n), k), nb[:, 1:].ravel(), dist[:, 1:].ravel()
+    ok = (j < n) & (j != i)
+    i, j, dist = i[ok], j[ok], dist[ok]
+    d = _min_image(pos[j] - pos[i], period)
+    t = np.radians(angle[i])
+    c, s = np.cos(t), np.sin(t)
+    local = np.c_[c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]]
+    kind_radius = np.zeros(int(kind.max()) + 1)
+    np.maximum.at(kind_radius, kind, radius)
+    scale = REPEAT_TOLERANCE * np.maximum(kind_radius[kind[i]], kind_radius[kind[j]])
+    turn = (angle[j] - angle[i] + 180.0) % 360.0 - 180.0
+    # in these coordinates two links repeat each other when no coordinate differs by more than 1
+    feat = np.c_[local / np.maximum(scale, 1e-12)[:, None], turn / REPEAT_TURN, 3.0 * kind[i], 3.0 * kind[j]]
+    links = cKDTree(feat)
+    support = links.query_ball_point(feat, r=1.0, p=np.inf, return_length=True)
+    per_kind = np.bincount(kind)
+    need = np.maximum(MIN_REPEATS, REPEAT_SHARE * np.maximum(per_kind[kind[i]], per_kind[kind[j]]))
+    recurring = np.flatnonzero(support >= need)
+    if len(recurring) == 0:
+        return alone
+
+    # recurring links into clusters, the best-supported offset first (a few dozen clusters)
+    cluster = np.full(len(i), -1)
+    count = 0
+    for r in recurring[np.argsort(-support[recurring], kind="stable")]:
+        if cluster[r] >= 0:
+            continue
+        near = np.asarray(links.query_ball_point(feat[r], r=1.0, p=np.inf), dtype=np.int64)
+        near = near[(cluster[near] < 0) & (support[near] >= need[near])]
+        cluster[near] = count
+        count += 1
+    use = cluster >= 0
+    ci, a, b, length, step = cluster[use], i[use], j[use], dist[use], d[use]
+
+    # one-to-one: a part with two partners under one offset is a lattice point
+    ends = np.r_[ci * n + a, ci * n + b]
+    # a pair seen from both sides (i -> j and j -> i) counts once
+    key = ci * n * n + np.minimum(a, b) * n + np.maximum(a, b)
+    _, unique = np.unique(key, return_index=True)
+    ends = np.r_[ci[unique] * n + a[unique], ci[unique] * n + b[unique]]
+    node, times = np.unique(ends, return_counts=True)
+    twice = node[times > 1]
+    involved = np.bincount(node // n, minlength=count)
+    ambiguous = np.bincount(twice // n, minlength=count)
+    fine = ambiguous <= AMBIGUOUS * involved
+    keep = fine[ci] & ~np.isin(ci * n + a, twice) & ~np.isin(ci * n + b, twice)
+    ci, a, b, length, step = ci[keep], a[keep], b[keep], length[keep], step[keep]
+    if len(ci) == 0:
+        return alone
+    size = np.zeros(count)
+    np.maximum.at(size, ci, length)
+    active = np.unique(ci)
+    active = active[np.argsort(size[active], kind="stable")]
+    while len(active):
+        on = np.isin(ci, active)
+        graph = coo_matrix((np.ones(int(on.sum())), (a[on], b[on])), shape=(n, n))
+        m, group = connected_components(graph, directed=False)
+        root = np.full(m, n)
+        np.minimum.at(root, group, np.arange(n))
+        rel = _min_image(pos - pos[root[group]], period)
+        wraps = np.zeros(m, dtype=bool)
+        np.logical_or.at(wraps, group[a[on]], np.abs(rel[b[on]] - rel[a[on]] - step[on]).max(axis=1) > 1e-6 * period.max())
+        longest = np.zeros(m)
+        np.maximum.at(longest, group[a[on]], length[on])
+        outside = np.full(m, np.inf)
+        apart = group[i] != group[j]
+        np.minimum.at(outside, group[i[apart]], dist[apart])
+        multi = np.bincount(group, minlength=m) > 1
+        crowded = multi & (outside <= SEPARATION * longest)
+        if not wraps.any() and crowded.sum() <= CROWDED * multi.sum():
+            join = np.round((pos[root[group]] + rel - pos) / period) * period
+            return group, join
+        active = active[:-1]
+    return alone
+
+
+def _min_image(d: np.ndarray, period: np.ndarray) -> np.ndarray:
+    """(k, 2) offsets moved by whole periods to their shortest form."""
+    return d - np.round(d / period) * period
 
 
 @dataclass(frozen=True)

@@ -103,6 +103,40 @@ def test_touching_and_contained_pieces_are_one_motif():
     assert len(t) == 2 and sorted(t.pieces.tolist()) == [2, 2]
 
 
+def _scattered_pairs(pair: bool, n: int = 12, seed: int = 5) -> str:
+    """A 40 x 40 tile of n crosses scattered with a minimum gap; each with a dot beside it at the
+    same offset in the cross's own frame (rotated with it) when ``pair``."""
+    rng = np.random.default_rng(seed)
+    xy: list[np.ndarray] = []
+    while len(xy) < n:
+        p = rng.uniform(3, 37, 2)
+        if all(np.hypot(*(p - q)) > 9 for q in xy):
+            xy.append(p)
+    body = []
+    for k, (x, y) in enumerate(xy):
+        turn = 90 * (k % 4)
+        g = f'<g transform="translate({x:.3f} {y:.3f}) rotate({turn})">'
+        g += f'<path d="M-1.5 0H1.5M0 -1.5V1.5" {STROKE}/>'
+        if pair:
+            g += '<circle cx="3" cy="1" r="0.4" fill="#000"/>'
+        body.append(g + "</g>")
+    return '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 40 40">' + "".join(body)
+
+
+def test_parts_at_a_recurring_offset_are_one_motif():
+    t = tile("", head=_scattered_pairs(True))
+    assert len(t) == 12 and t.kinds == 1
+    assert set(t.pieces.tolist()) == {3}  # the cross's two strokes and the dot
+
+
+def test_a_lattice_of_parts_is_not_joined():
+    dots = "".join(f'<circle cx="{x}" cy="{y}" r="0.4" fill="#000"/>' for x in (2.5, 7.5) for y in (2.5, 7.5))
+    t = tile(dots + f'<path d="M4 5H6" {STROKE}/>')
+    assert len(t) == 5 and set(t.pieces.tolist()) == {1}
+    lone = tile("", head=_scattered_pairs(False))
+    assert len(lone) == 12 and set(lone.pieces.tolist()) == {2}
+
+
 def test_round_trip_is_exact():
     t = tile(f'<polygon points="1,1 4,1 1,2" {STROKE}/><polygon points="7,6 7,9 6,6" {STROKE}/>'
              f'<line x1="8" y1="1" x2="10" y2="1" {STROKE}/><line x1="0" y1="1" x2="1" y2="1" {STROKE}/>')  # fmt: skip
@@ -253,8 +287,8 @@ def flattened(path: Path) -> tuple[str, np.ndarray]:
     [
         "scrub",
         "wetland",
-        pytest.param("marsh", marks=pytest.mark.xfail(strict=True, reason="each marsh motif is several blades that do not touch")),
-        pytest.param("swamp", marks=pytest.mark.xfail(strict=True, reason="each swamp motif is two parts that do not touch")),
+        "marsh",
+        "swamp",
     ],
 )
 def test_osm_flattened_patterns_recover_the_ground_truth(name):
