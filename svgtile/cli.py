@@ -264,20 +264,14 @@ def format_report(r: dict) -> str:
 
 
 # Commands that live in modules of their own (they import the helpers above, so they come last).
-# One line per module: ``from .cli_NAME import COMMAND as _COMMAND`` then ``cli.add_command(_COMMAND)``.
-from .cli_inkscape import inkscape as _inkscape  # noqa: E402
-cli.add_command(_inkscape)
-from .cli_map import map_cmd as _map_cmd  # noqa: E402
-cli.add_command(_map_cmd)
-from .cli_import import import_cmd as _import_cmd  # noqa: E402
-cli.add_command(_import_cmd)
-from .cli_import import swatches_cmd as _swatches_cmd  # noqa: E402
-cli.add_command(_swatches_cmd)
-from .cli_score import score as _score  # noqa: E402
-cli.add_command(_score)
-from .cli_compare import compare as _compare  # noqa: E402
-cli.add_command(_compare)
-# -- end of command registrations --
+from .cli_compare import compare  # noqa: E402
+from .cli_import import import_cmd, swatches_cmd  # noqa: E402
+from .cli_inkscape import inkscape  # noqa: E402
+from .cli_map import map_cmd  # noqa: E402
+from .cli_score import score  # noqa: E402
+
+for _command in (compare, import_cmd, inkscape, map_cmd, score, swatches_cmd):
+    cli.add_command(_command)
 
 
 def _one_line(exc: BaseException) -> str:
