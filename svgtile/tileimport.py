@@ -280,7 +280,9 @@ def _kinds(centred: np.ndarray, paints: list[tuple]) -> tuple[np.ndarray, np.nda
     step = COPY_GRID * np.maximum(radius, 1e-12)
     cells = np.round(coords / step[index, None]).astype(np.int64)
     start = np.r_[0, np.cumsum(np.bincount(index, minlength=len(centred)))]
-    keys = [(paints[g], round(float(radius[g] / step[g])), cells[start[g] : start[g + 1]].tobytes()) for g in range(len(centred))]
+    # the cells are relative to each radius, so the radius itself (on a log scale) is in the key
+    size = np.round(np.log(np.maximum(radius, 1e-12)) / np.log1p(COPY_GRID)).astype(np.int64)
+    keys = [(paints[g], int(size[g]), cells[start[g] : start[g + 1]].tobytes()) for g in range(len(centred))]
     rep: dict[tuple, int] = {}
     first = np.array([rep.setdefault(key, g) for g, key in enumerate(keys)], dtype=np.int64)
     reps = np.unique(first)

@@ -86,6 +86,12 @@ def test_rotated_copies_share_a_kind_with_the_right_angle():
     assert min(turn, 360 - turn) == pytest.approx(90.0, abs=0.5)
 
 
+def test_scaled_copies_are_different_kinds():
+    t = tile(f'<circle cx="2" cy="2" r="0.5" {STROKE}/><circle cx="7" cy="2" r="1" {STROKE}/>'
+             f'<circle cx="2" cy="7" r="0.5" {STROKE}/><circle cx="7" cy="7" r="1" {STROKE}/>')  # fmt: skip
+    assert len(t) == 4 and t.kinds == 2
+
+
 def test_different_paint_makes_different_kinds():
     t = tile('<circle cx="2" cy="2" r="1" fill="#000"/><circle cx="7" cy="7" r="1" fill="#f00"/>')
     assert t.kinds == 2
