@@ -14,8 +14,11 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
    pieces closer than :data:`JOIN_RATIO` times the smaller one's size (729's pairs of parallel
    lines); a group that reaches its own repeat is a continuous line or hatching, and the pattern
    is refused (:class:`TileRefused`);
-4. **pick** — each motif of the periodic pattern is kept once (the copy whose lowest piece
+4. **pick** — each part of the periodic pattern is kept once (the copy whose lowest piece
    lies in the central tile) and moved by whole periods so its centroid is in the tile;
+   **repeat** — parts that recur at the same offset and relative rotation in every copy are one
+   motif though they do not touch (a tuft of blades, a diatom's two valves, FGDC 710's three
+   strokes), unless that offset is a lattice step (:func:`_repeat_groups`);
 5. **classify** — motifs identical up to rotation and translation share a kind
    (:func:`svgtile.exemplar.match_kinds`, the rule of plain exemplars);
 6. **write** — one ``<symbol>`` per kind (the first motif, redrawn as polylines around its
