@@ -85,6 +85,18 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
     return exemplar, stats
 
 
+def _check_motif_count(stats: Stats, region, where: str, *, force: bool | None = False) -> None:
+    """Refuse a region whose estimated motif count is above :data:`MAX_MOTIFS` (unless ``force``;
+    a command without ``--force`` passes None) or above :data:`HARD_MAX_MOTIFS`."""
+    estimate = stats.count_density * region.area
+    if not estimate <= HARD_MAX_MOTIFS:
+        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
+        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
+    if estimate > MAX_MOTIFS and not force:
+        hint = "; use --force to run anyway" if force is not None else ""
+        raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}){hint}")
+
+
 def _progress():
     """A ``progress(stage, fraction)`` callback drawing one self-erasing line, when stderr is a
     terminal; None otherwise (logs and pipes get nothing)."""
@@ -157,14 +169,7 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
         ex, stats = load_tile(exemplar)
     else:
         ex, stats = _load(exemplar)
-    estimate = stats.count_density * region.area
-    if not estimate <= HARD_MAX_MOTIFS:
-        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
-        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
-    if estimate > MAX_MOTIFS and not force:
-        raise ParameterError(
-            f"{where} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}); use --force to run anyway"
-        )
+    _check_motif_count(stats, region, where, force=force)
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
