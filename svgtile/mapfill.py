@@ -48,6 +48,7 @@ from .errors import ParameterError, RegionError, SvgtileError
 from .exemplar import Exemplar, SvgShapes, read_exemplar
 from .mapread import (
     AVOID_MARGIN,
+    MAX_AVOID_MARGIN,
     MapRegion,
     classed_regions,
     is_geojson,
@@ -145,8 +146,8 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
     # "#labels" and "labels" are ids in the map; "other.svg#ID" and "x.geojson" are files
     avoid = [a[1:] if a.startswith("#") else str(folder / a) if "#" in a or is_geojson(a) else a for a in avoid]
     margin = data.get("avoid_margin", AVOID_MARGIN)
-    if not isinstance(margin, (int, float)) or not margin >= 0 or not math.isfinite(margin):
-        raise ParameterError(f"avoid_margin must be a number >= 0, not {margin!r}", source=source)
+    if not isinstance(margin, (int, float)) or isinstance(margin, bool) or not 0 <= margin <= MAX_AVOID_MARGIN:
+        raise ParameterError(f"avoid_margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin!r}", source=source)
     attr, prop = data.get("class_attribute"), data.get("class_property", "class")
     for key, value in (("class_attribute", attr), ("class_property", prop)):
         if value is not None and not isinstance(value, str):

@@ -73,6 +73,8 @@ BAD_OPTIONS = {
     "rotation-low": (["--max-rotation", "-1"], "--max-rotation"),
     "rotation-high": (["--max-rotation", "180.5"], "--max-rotation"),
     "rotation-nan": (["--max-rotation", "nan"], "--max-rotation"),
+    "avoid-margin-nan": (["--avoid-margin", "nan"], "--avoid-margin"),
+    "avoid-margin-huge": (["--avoid-margin", "1e300"], "--avoid-margin"),  # grown zones overflow
     "seed-negative": (["--seed", "-1"], "--seed"),
     "seed-not-a-number": (["--seed", "one"], "--seed"),
     "grid-unknown": (["--grid", "triangle"], "--grid"),

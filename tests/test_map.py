@@ -209,6 +209,8 @@ def test_geojson_map_with_class_property(folder, capsys):
         ({"colour": 1, "classes": {"a": {"exemplar": "x.svg"}}}, "unknown key 'colour'"),
         ({"classes": {"a": {"exemplar": "x.svg", "unit": 0}}}, "unit must be a positive number"),
         ({"avoid_margin": -1, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin"),
+        ({"avoid_margin": 1e300, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin must be a number from 0"),
+        ({"avoid_margin": True, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin"),
     ],
 )
 def test_bad_styles_are_one_line_errors(toml, message):
