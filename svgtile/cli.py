@@ -85,10 +85,16 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
     return exemplar, stats
 
 
-def _check_motif_count(stats: Stats, region, where: str, *, force: bool | None = False) -> None:
+def _check_motif_count(ex: Exemplar, stats: Stats, region, where: str, *, force: bool | None = False) -> None:
     """Refuse a region whose estimated motif count is above :data:`MAX_MOTIFS` (unless ``force``;
-    a command without ``--force`` passes None) or above :data:`HARD_MAX_MOTIFS`."""
-    estimate = stats.count_density * region.area
+    a command without ``--force`` passes None) or above :data:`HARD_MAX_MOTIFS`.
+
+    The estimate is the motifs of the exemplar-sized copies covering the region's bounds: a strip
+    thinner than the exemplar (0.01 x 1e8) costs as much as one an exemplar wide.
+    """
+    x0, y0, x1, y1 = region.bounds
+    ex0, ey0, ex1, ey1 = ex.region.bounds
+    estimate = stats.count_density * max(region.area, max(x1 - x0, ex1 - ex0) * max(y1 - y0, ey1 - ey0))
     if not estimate <= HARD_MAX_MOTIFS:
         about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
         raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
@@ -169,7 +175,7 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
         ex, stats = load_tile(exemplar)
     else:
         ex, stats = _load(exemplar)
-    _check_motif_count(stats, region, where, force=force)
+    _check_motif_count(ex, stats, region, where, force=force)
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)

@@ -38,7 +38,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
     ex, stats = _load(exemplar)
     region = Region.rectangle(width, height)
-    _check_motif_count(stats, region, f"--size {size}", force=None)  # every engine holds them, and the scoring
+    _check_motif_count(ex, stats, region, f"--size {size}", force=None)  # every engine holds them, and the scoring
     results = run_compare(ex, stats, region, engines=names, seed=seed)
     _Stderr.clear()
     if png_dir is not None:
