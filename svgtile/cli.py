@@ -85,6 +85,24 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
     return exemplar, stats
 
 
+def _check_motif_count(ex: Exemplar, stats: Stats, region, where: str, *, force: bool | None = False) -> None:
+    """Refuse a region whose estimated motif count is above :data:`MAX_MOTIFS` (unless ``force``;
+    a command without ``--force`` passes None) or above :data:`HARD_MAX_MOTIFS`.
+
+    The estimate is the motifs of the exemplar-sized copies covering the region's bounds: a strip
+    thinner than the exemplar (0.01 x 1e8) costs as much as one an exemplar wide.
+    """
+    x0, y0, x1, y1 = region.bounds
+    ex0, ey0, ex1, ey1 = ex.region.bounds
+    estimate = stats.count_density * max(region.area, max(x1 - x0, ex1 - ex0) * max(y1 - y0, ey1 - ey0))
+    if not estimate <= HARD_MAX_MOTIFS:
+        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
+        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
+    if estimate > MAX_MOTIFS and not force:
+        hint = "; use --force to run anyway" if force is not None else ""
+        raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}){hint}")
+
+
 def _progress():
     """A ``progress(stage, fraction)`` callback drawing one self-erasing line, when stderr is a
     terminal; None otherwise (logs and pipes get nothing)."""
@@ -157,14 +175,7 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
         ex, stats = load_tile(exemplar)
     else:
         ex, stats = _load(exemplar)
-    estimate = stats.count_density * region.area
-    if not estimate <= HARD_MAX_MOTIFS:
-        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
-        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")
-    if estimate > MAX_MOTIFS and not force:
-        raise ParameterError(
-            f"{where} would hold about {estimate:,.0f} motifs (limit {MAX_MOTIFS:,}); use --force to run anyway"
-        )
+    _check_motif_count(ex, stats, region, where, force=force)
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)

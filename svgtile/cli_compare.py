@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from .cli import _json_safe, _load, _size, _Stderr
+from .cli import _check_motif_count, _json_safe, _load, _size, _Stderr
 from .compare import compare as run_compare
 from .compare import format_table
 from .errors import OutputError
@@ -38,6 +38,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
     ex, stats = _load(exemplar)
     region = Region.rectangle(width, height)
+    _check_motif_count(ex, stats, region, f"--size {size}", force=None)  # every engine holds them, and the scoring
     results = run_compare(ex, stats, region, engines=names, seed=seed)
     _Stderr.clear()
     if png_dir is not None:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from . import cli
 from .analysis import Stats, analyze
 from .cli import _size, _warn
 from .errors import OutputError, ParameterError
@@ -82,7 +83,7 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
         check_output(str(png_path), protect=tuple(files))
     swatch = _size(size) if size is not None else None
     table = read_names(names) if names else None
-    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table)
+    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=cli.MAX_MOTIFS)
     if png_path is not None:
         write_bytes(render_png(sheet.text, png_width), png_path)
     write_text(sheet.text, output, protect=tuple(files))

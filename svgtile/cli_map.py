@@ -10,7 +10,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from . import geojson
+from . import cli, geojson
 from .cli import _Stderr, _warn
 from .errors import ParameterError, SvgtileError
 from .mapfill import MapFill, _load, default_jobs, fill_map, read_styles
@@ -47,7 +47,8 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     elif seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
-    result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress())
+    result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress(),
+                      max_motifs=cli.MAX_MOTIFS)  # fmt: skip
     _Stderr.clear()
     for message in result.warnings:
         _warn(message)

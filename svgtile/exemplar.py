@@ -1492,7 +1492,8 @@ class SvgShapes:
 
     def _area(self, el: ET.Element, parent_style: dict[str, str], m: np.ndarray) -> shapely.Geometry | None:
         style = _style(el, parent_style)
-        if _hidden(style) or not _rendered(el):
+        # as in _keep_clear, id="region" is an ordinary element here: it only marks an exemplar's region
+        if _hidden(style) or not _is_svg(el) or _local(el.tag) in NOT_RENDERED:
             return None
         m = m @ _matrix(el.attrib.get("transform"))
         tag = _local(el.tag)

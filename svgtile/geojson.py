@@ -59,6 +59,8 @@ def load(path: str | Path) -> dict:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise RegionError(f"not valid JSON ({exc.msg} at line {exc.lineno})", source=str(path)) from None
+    except RecursionError:
+        raise RegionError("not valid GeoJSON (arrays or objects nested too deeply)", source=str(path)) from None
     if not isinstance(data, dict) or "type" not in data:
         raise RegionError("not a GeoJSON object (no 'type')", source=str(path))
     return data

@@ -216,6 +216,8 @@ def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
             out.append((ident, container_shape(rings, rule)))
     except OSError as exc:
         raise RegionError(f"cannot read file ({exc.strerror or exc})", source=source) from None
+    except RecursionError:
+        raise RegionError("not a containers file (nested too deeply)", source=source) from None
     except (ValueError, KeyError, TypeError) as exc:
         raise RegionError(f"not a containers file ({' '.join(str(exc).split())})", source=source) from None
     if not out:

@@ -48,6 +48,7 @@ from .errors import ParameterError, RegionError, SvgtileError
 from .exemplar import Exemplar, SvgShapes, read_exemplar
 from .mapread import (
     AVOID_MARGIN,
+    MAX_AVOID_MARGIN,
     MapRegion,
     classed_regions,
     is_geojson,
@@ -145,8 +146,8 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
     # "#labels" and "labels" are ids in the map; "other.svg#ID" and "x.geojson" are files
     avoid = [a[1:] if a.startswith("#") else str(folder / a) if "#" in a or is_geojson(a) else a for a in avoid]
     margin = data.get("avoid_margin", AVOID_MARGIN)
-    if not isinstance(margin, (int, float)) or not margin >= 0 or not math.isfinite(margin):
-        raise ParameterError(f"avoid_margin must be a number >= 0, not {margin!r}", source=source)
+    if not isinstance(margin, (int, float)) or isinstance(margin, bool) or not 0 <= margin <= MAX_AVOID_MARGIN:
+        raise ParameterError(f"avoid_margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin!r}", source=source)
     attr, prop = data.get("class_attribute"), data.get("class_property", "class")
     for key, value in (("class_attribute", attr), ("class_property", prop)):
         if value is not None and not isinstance(value, str):
@@ -194,7 +195,7 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
 
 
 def fill_region(
-    shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int
+    shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int, max_motifs: float = math.inf
 ) -> Arrangement:
     """Synthesize one region with its style; motifs in map units (the region's frame).
 
@@ -204,11 +205,17 @@ def fill_region(
     avoid : the avoid zones near it, map units, or None
     style : its class's style
     seed : the run's seed (the style's own wins)
+    max_motifs : refuse a region whose estimated motif count is larger
     """
     ex, stats = _load(str(style.exemplar))
     unit = style.unit
     region = Region.from_geometry(geojson.to_working(shape, unit),
                                   avoid=None if avoid is None else geojson.to_working(avoid, unit))  # fmt: skip
+    estimate = stats.count_density * region.area
+    if not estimate <= max_motifs:
+        about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
+        raise ParameterError(f"the region would hold {about} motifs (limit {max_motifs:,.0f}); "
+                             f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     rng = np.random.default_rng(style.seed if style.seed is not None else seed)
     arr = ENGINES[style.engine](ex, region, rng=rng, stats=stats, **style.params)
     if unit != 1.0:
@@ -216,10 +223,12 @@ def fill_region(
     return arr
 
 
-def _task(ident: str, shape, avoid, style: Style, seed: int) -> tuple[str, Arrangement | None, str | None]:
+def _task(
+    ident: str, shape, avoid, style: Style, seed: int, max_motifs: float = math.inf
+) -> tuple[str, Arrangement | None, str | None]:
     """A worker's job: never raises, so one region's failure cannot take the pool down."""
     try:
-        return ident, fill_region(shape, avoid, style, seed), None
+        return ident, fill_region(shape, avoid, style, seed, max_motifs), None
     except SvgtileError as exc:
         return ident, None, " ".join(str(exc).split())
     except MemoryError:
@@ -304,7 +313,7 @@ def default_jobs() -> int:
 
 def fill_map(
     path: str | Path, styles: Styles, *, seed: int, avoid: tuple[str, ...] = (), jobs: int | None = None,
-    progress: Progress | None = None,
+    progress: Progress | None = None, max_motifs: float = math.inf,
 ) -> MapFill:  # fmt: skip
     """Fill every classed region of a map with its class's style.
 
@@ -316,6 +325,7 @@ def fill_map(
     avoid : more avoid specs (added to the styles file's)
     jobs : worker processes (default: the usable cores; 1 runs in this process)
     progress : called as ``progress(done, total, ident, error_or_None)`` after each region
+    max_motifs : a region whose estimated motif count is larger fails (and the others are filled)
 
     Returns
     -------
@@ -328,7 +338,7 @@ def fill_map(
     results: list[Arrangement | None] = [None] * len(regions)
     errors: dict[str, str] = {}
     index = {r.ident: n for n, r in enumerate(regions)}
-    tasks = [(r.ident, r.shape, zone, styles.classes[r.cls], seed) for r in regions]
+    tasks = [(r.ident, r.shape, zone, styles.classes[r.cls], seed, max_motifs) for r in regions]
     jobs = min(jobs or default_jobs(), len(tasks))
 
     def done(ident: str, arr: Arrangement | None, error: str | None, count: int) -> None:

@@ -34,6 +34,8 @@ from .region import Region
 
 #: Default growth of avoid zones, user units (clear space around labels and lines).
 AVOID_MARGIN = 2.0
+#: Larger margins are refused: no map is this wide, and growing a shape by ~1e150 overflows.
+MAX_AVOID_MARGIN = 1e12
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,8 +162,8 @@ def synth_region(
     """
     if (size is None) == (region is None):
         raise ParameterError("give either --size WIDTHxHEIGHT or --region MAP.svg#ID / FILE.geojson")
-    if not (margin >= 0 and math.isfinite(margin)):
-        raise ParameterError(f"--avoid-margin must be a number >= 0, not {margin:g}")
+    if not (0 <= margin <= MAX_AVOID_MARGIN):
+        raise ParameterError(f"--avoid-margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin:g}")
     zone = shapely.union_all([read_avoid_shape(spec, margin) for spec in avoid]) if avoid else None
     if region is None:
         rect = Region.rectangle(*size)

@@ -185,7 +185,9 @@ def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) ->
 
     Refuses to overwrite any path in ``protect`` (the inputs).  The text goes to a temporary file
     in the target folder that is flushed to disk and renamed into place, so a failure never
-    leaves half a file, and a file that was there stays untouched.  A new file gets the usual
+    leaves half a file, and a file that was there stays untouched.  A symbolic link is written
+    through (the file it points to is replaced); a device or FIFO (``/dev/null``, a named pipe)
+    is written into directly, never replaced.  A new file gets the usual
     permissions (``0o666`` less the umask); a replaced file keeps its permissions.
 
     Raises
@@ -212,6 +214,19 @@ def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) ->
         return
     check_output(out, protect=protect)
     out = Path(out)
+    try:
+        special = not stat.S_ISREG(os.stat(out).st_mode)  # follows symlinks
+    except OSError:  # no such file (yet)
+        special = False
+    if special:  # a device (/dev/null) or a FIFO: a rename would replace it with a regular file
+        try:
+            with open(out, "wb") as fh:
+                fh.write(data)
+        except OSError as exc:
+            raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+        return
+    if out.is_symlink():  # replace the file the link points to, not the link
+        out = Path(os.path.realpath(out))
     mode = _file_mode(out)
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import copy
 import csv
+import math
 import re
 import textwrap
 import xml.etree.ElementTree as ET
@@ -103,6 +104,7 @@ def swatch_sheet(
     columns: int = 4,
     seed: int = 1,
     names: dict[str, str] | None = None,
+    max_motifs: float = math.inf,
 ) -> Sheet:
     """The sheet as SVG text.
 
@@ -114,6 +116,7 @@ def swatch_sheet(
     columns : patterns per row
     seed : seed of every synthesis (the same for each pattern)
     names : file stem -> pattern name, shown after the stem
+    max_motifs : a pattern whose swatch would hold more motifs (estimated) is refused
     """
     names = names or {}
     rows = -(-len(files) // columns)
@@ -133,7 +136,7 @@ def swatch_sheet(
         text = ET.SubElement(cell, f"{{{SVG_NS}}}text", {"x": fmt(x), "y": fmt(y + 11), "font-size": "11"})
         text.text = _short(label, 60)
         top = y + LABEL
-        result = _swatch(path, label, swatch, tiles, seed)
+        result = _swatch(path, label, swatch, tiles, seed, max_motifs)
         done.append(result[0])
         original, texture = result[1], result[2]
         if original is not None:
@@ -160,7 +163,7 @@ def render_png(svg: str, width: int) -> bytes:
 # ----------------------------------------------------------------------------- one pattern
 
 
-def _swatch(path: Path, label: str, swatch, tiles: float, seed: int):
+def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf):
     """(Swatch, original panel, texture panel); panels are (content root, viewBox) or None."""
     try:
         data = path.read_bytes()
@@ -177,10 +180,18 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int):
         return Swatch(path, label, refused=reason), original, None
     x0, y0, w, h = imported.box
     sw, sh = swatch if swatch is not None else (tiles * w, tiles * h)
-    exemplar = parse_exemplar(imported.text, source=str(path))
-    stats = analyze(exemplar)
-    region = Region.rectangle(sw, sh, x0, y0)
-    arr = ENGINES["patch"](exemplar, region, rng=np.random.default_rng(seed), stats=stats)
+    try:
+        exemplar = parse_exemplar(imported.text, source=str(path))
+        stats = analyze(exemplar)
+        region = Region.rectangle(sw, sh, x0, y0)
+        estimate = stats.count_density * region.area
+        if not estimate <= max_motifs:
+            about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
+            raise ExemplarError(f"the swatch would hold {about} motifs (limit {max_motifs:,.0f}); choose a smaller --size")
+        arr = ENGINES["patch"](exemplar, region, rng=np.random.default_rng(seed), stats=stats)
+    except SvgtileError as exc:
+        reason = str(exc).removeprefix(f"{path}: ")
+        return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
     texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}))
     result = Swatch(path, label, len(imported), imported.kinds, len(arr))
     return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
@@ -190,13 +201,16 @@ def _box(root: ET.Element) -> tuple[float, float, float, float] | None:
     box = root.attrib.get("viewBox")
     if box:
         x, y, w, h = (float(v) for v in re.split(r"[\s,]+", box.strip()))
-        return x, y, w, h
-    try:
-        w = float(re.sub(r"px$", "", root.attrib.get("width", "")))
-        h = float(re.sub(r"px$", "", root.attrib.get("height", "")))
-    except ValueError:
-        return None
-    return 0.0, 0.0, w, h
+    else:
+        try:
+            x, y = 0.0, 0.0
+            w = float(re.sub(r"px$", "", root.attrib.get("width", "")))
+            h = float(re.sub(r"px$", "", root.attrib.get("height", "")))
+        except ValueError:
+            return None
+    if not (0 < w < math.inf and 0 < h < math.inf and math.isfinite(x) and math.isfinite(y)):
+        return None  # nothing to draw the tile in
+    return x, y, w, h
 
 
 def _repeated(root: ET.Element, box, swatch, tiles):

@@ -67,12 +67,16 @@ BAD_OPTIONS = {
     "size-absurd": (["--size", "20000x20000"], "--force"),
     "size-absurd-square": (["--size", "1e6"], "--size"),
     "size-beyond-force": (["--size", "1e300x1e300", "--force"], "--size"),
+    "size-thin-strip": (["--size", "1e-300x1e300", "--force"], "--size"),  # area 1, yet countless copies
+    "size-thin-long": (["--size", "0.01x1e8"], "--force"),
     "overlap-low": (["--overlap", "-0.1"], "--overlap"),
     "overlap-high": (["--overlap", "0.6"], "--overlap"),
     "overlap-nan": (["--overlap", "nan"], "--overlap"),
     "rotation-low": (["--max-rotation", "-1"], "--max-rotation"),
     "rotation-high": (["--max-rotation", "180.5"], "--max-rotation"),
     "rotation-nan": (["--max-rotation", "nan"], "--max-rotation"),
+    "avoid-margin-nan": (["--avoid-margin", "nan"], "--avoid-margin"),
+    "avoid-margin-huge": (["--avoid-margin", "1e300"], "--avoid-margin"),  # grown zones overflow
     "seed-negative": (["--seed", "-1"], "--seed"),
     "seed-not-a-number": (["--seed", "one"], "--seed"),
     "grid-unknown": (["--grid", "triangle"], "--grid"),

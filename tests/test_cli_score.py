@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import shapely
 
+import svgtile.cli
 from svgtile import metrics
 from svgtile.analysis import analyze
 from svgtile.cli import main
@@ -171,6 +172,14 @@ def test_compare_bad_engine_is_one_line(capsys):
     rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100", "--engines", "patch,magic")
     assert rc == 1 and out == ""
     assert err.count("\n") == 1 and "unknown engine 'magic'" in err
+
+
+def test_compare_refuses_a_size_above_the_motif_limit(capsys, monkeypatch):
+    monkeypatch.setattr(svgtile.cli, "MAX_MOTIFS", 5)  # sand 100x100 holds about 360 motifs
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100")
+    assert rc == 1 and out == ""
+    assert err.count("\n") == 1 and "--size 100 would hold about" in err and "(limit 5)" in err
+    assert "--force" not in err  # compare has no --force
 
 
 def test_compare_png_writes_textures_and_a_labelled_contact_sheet(tmp_path, capsys):

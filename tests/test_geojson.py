@@ -70,6 +70,7 @@ def test_region_spec_picks_one_feature_or_merges_all(units):
     [
         ("{not json", "", "not valid JSON"),
         ("[1, 2]", "", "not a GeoJSON object"),
+        ("[" * 100_000 + "]" * 100_000, "", "nested too deeply"),
         (json.dumps(collection(feature({"type": "Point", "coordinates": [1, 2]}))), "", "no Polygon or MultiPolygon"),
         (json.dumps(collection(feature(SQUARE_WITH_HOLE, "a"))), "#zz", "no feature with id 'zz'"),
         (json.dumps(collection(feature({"type": "Point", "coordinates": [1, 2]}, "p"))), "#p", "not a Polygon"),

@@ -98,6 +98,7 @@ def test_fill_same_seed_same_bytes(tmp_path):
     ("content", "needle"),
     [
         ("{", "not a containers file"),
+        ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
         ('{"containers": []}', "lists no containers"),
         ('{"containers": [{"id": "x", "rings": [[[0, 0], [1, 0], [0, 1]]], "fill_rule": "odd"}]}', "unknown fill rule"),
         ('{"containers": [{"id": "x", "rings": [[[0, 0], [1, 0], [0, NaN]]]}]}', "not finite"),

@@ -157,6 +157,19 @@ def test_region_failing_inside_synthesis_is_isolated(folder):
     assert result.results[0] is not None
 
 
+def test_region_above_the_motif_limit_fails_alone(folder, capsys, monkeypatch):
+    # a tiny unit makes a region countless exemplar widths wide: refused, not run out of memory
+    styles = STYLES.replace('engine = "random"', 'engine = "random"\nunit = 1e-6')
+    (folder / "styles.toml").write_text(styles)
+    out = folder / "filled.svg"
+    rc = main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out),
+               "--seed", "3", "--jobs", "1"])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "region 'u2' not filled: the region would hold about" in err and "raise unit of class 'plain'" in err
+    assert set(groups(out)) == {"svgtile-u1", "svgtile-u3"}
+
+
 def test_geojson_map_with_class_property(folder, capsys):
     data = {"type": "FeatureCollection", "features": [
         {"type": "Feature", "id": "west", "properties": {"class": "dots"},
@@ -196,6 +209,8 @@ def test_geojson_map_with_class_property(folder, capsys):
         ({"colour": 1, "classes": {"a": {"exemplar": "x.svg"}}}, "unknown key 'colour'"),
         ({"classes": {"a": {"exemplar": "x.svg", "unit": 0}}}, "unit must be a positive number"),
         ({"avoid_margin": -1, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin"),
+        ({"avoid_margin": 1e300, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin must be a number from 0"),
+        ({"avoid_margin": True, "classes": {"a": {"exemplar": "x.svg"}}}, "avoid_margin"),
     ],
 )
 def test_bad_styles_are_one_line_errors(toml, message):

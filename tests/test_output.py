@@ -267,6 +267,32 @@ def test_new_file_gets_usual_permissions_and_replaced_file_keeps_its_own(tmp_pat
     assert stat.S_IMODE(kept.stat().st_mode) == 0o640 and kept.read_text() == "new"
 
 
+def test_write_text_writes_into_a_fifo_instead_of_replacing_it(tmp_path):
+    fifo = tmp_path / "out.svg"
+    os.mkfifo(fifo)
+    reader = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)  # so opening it for writing does not block
+    try:
+        write_text("<svg/>\n", fifo)
+        received = os.read(reader, 1000)
+    finally:
+        os.close(reader)
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)  # not replaced by a regular file
+    assert received == b"<svg/>\n"
+    assert os.listdir(tmp_path) == ["out.svg"]
+
+
+def test_write_text_writes_through_a_symlink(tmp_path):
+    (tmp_path / "real").mkdir()
+    target = tmp_path / "real" / "out.svg"
+    target.write_text("old")
+    link = tmp_path / "link.svg"
+    link.symlink_to(target)
+    write_text("new", link)
+    assert link.is_symlink() and target.read_text() == "new"
+    assert sorted(os.listdir(tmp_path)) == ["link.svg", "real"]
+    assert os.listdir(tmp_path / "real") == ["out.svg"]
+
+
 @pytest.mark.parametrize("spelling", ["same", "dotdot", "hardlink"])
 def test_write_text_protects_inputs(tmp_path, spelling):
     src = tmp_path / "in.svg"

@@ -163,6 +163,14 @@ def test_svg_group_region_is_the_union_of_its_shapes(mapfile):
     assert shape.area == pytest.approx(4 * (25 + np.pi * 2.5**2), rel=1e-3)  # scale(2) applied
 
 
+def test_element_with_id_region_can_be_the_region(write_svg):
+    # id="region" marks an exemplar's input region; in a map it is an ordinary shape
+    path = write_svg('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 50 50">'
+                     '<g id="units"><rect id="region" width="40" height="30" fill="none"/></g></svg>', "map.svg")  # fmt: skip
+    assert read_region_shape(f"{path}#region").area == pytest.approx(1200)
+    assert read_region_shape(f"{path}#units").area == pytest.approx(1200)
+
+
 def test_avoid_zones_from_text_and_lines(mapfile):
     labels = read_avoid_shape(f"{mapfile}#labels", margin=1.0)
     # "Qal": three glyphs centred on x = 50, on the baseline y = 90

@@ -83,3 +83,31 @@ def test_malformed_tile_is_a_refused_swatch_not_a_crash():
     bad = DATA / "usgs-fgdc-cecgeology" / "SED_fixedcolor" / "sed663.svg"
     sheet = swatch_sheet([bad])
     assert sheet.refused == 1 and "well-formed" in sheet.swatches[0].refused
+
+
+def test_tile_without_area_is_a_refused_swatch_not_a_crash(tmp_path):
+    flat = tmp_path / "flat.svg"
+    flat.write_text('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 0 0"><circle cx="5" cy="5" r="1"/></svg>')
+    sheet = swatch_sheet([flat])
+    assert sheet.refused == 1 and "no area" in sheet.swatches[0].refused
+
+
+def test_tile_failing_after_import_is_a_refused_swatch(tmp_path):
+    # 1e308-wide tile: the import passes, the exemplar it makes does not (an infinite region)
+    huge = tmp_path / "huge.svg"
+    huge.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="1e308" height="1e308" viewBox="0 0 1e308 1e308">'
+                    '<circle cx="5" cy="5" r="1"/><circle cx="15" cy="5" r="1"/></svg>')  # fmt: skip
+    good = tmp_path / "good.svg"
+    good.write_text(GOOD)
+    sheet = swatch_sheet([huge, good])
+    assert (sheet.accepted, sheet.refused) == (1, 1) and sheet.swatches[0].refused
+
+
+def test_swatch_above_the_motif_limit_is_refused(tiles, tmp_path, capsys, monkeypatch):
+    import svgtile.cli
+
+    monkeypatch.setattr(svgtile.cli, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
+    out = tmp_path / "s.svg"
+    assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--size", "100"]) == 0
+    assert "0 of 1 pattern(s) synthesized, 1 refused" in capsys.readouterr().err
+    assert "would hold about 200 motifs (limit 50)" in " ".join("".join(ET.parse(out).getroot().itertext()).split())
