@@ -19,7 +19,6 @@ Map units in a map SVG carry a *class* (:func:`class_of`), which the styles file
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
