@@ -71,6 +71,8 @@ REGION_FLATNESS = 1e-5
 ORIGIN_DECIMALS = 4
 #: Most points one footprint may have: a guard against ``<use>`` fan-out ("billion laughs").
 MAX_COORDINATES = 200_000
+#: Largest coordinate of an input region or tile, user units: beyond it areas overflow.
+MAX_COORDINATE = 1e100
 #: Deepest chain of ``<use>`` references followed.
 MAX_USE_DEPTH = 32
 #: Presentation properties that are not inherited but change how a plain motif looks.
@@ -924,6 +926,8 @@ class _Reader:
                 x, y, w, h = (float(v) for v in re.split(r"[\s,]+", box.strip()))
             except ValueError:
                 raise self.error(f"unreadable root viewBox {box!r}") from None
+            if not all(map(math.isfinite, (x, y, w, h))):
+                raise self.error(f"the root viewBox {box!r} is not finite")
             return self._checked_region(shapely.box(x, y, x + max(w, 0), y + max(h, 0)), "the root viewBox")
         w, h = self.root.attrib.get("width"), self.root.attrib.get("height")
         if w and h and "%" not in w + h:
@@ -965,6 +969,9 @@ class _Reader:
         return chain[::-1]
 
     def _checked_region(self, geom: shapely.Geometry, what: str) -> shapely.Polygon:
+        coords = shapely.get_coordinates(geom)
+        if not (np.abs(coords) <= MAX_COORDINATE).all():  # also NaN: GEOS would overflow or fail
+            raise self.error(f"the input region ({what}) has coordinates that are not finite or beyond ±{MAX_COORDINATE:g}")
         geom = shapely.union_all(_polygons(shapely.make_valid(geom)))
         if geom.is_empty or geom.area <= 0:
             raise self.error(f"the input region ({what}) has no area")
@@ -1135,6 +1142,11 @@ def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
         raise ExemplarError("elements are nested too deeply", source=source) from None
     footprint = np.empty(len(walk.footprint), dtype=object)
     footprint[:] = walk.footprint
+    if not (np.abs(shapely.get_coordinates(footprint)) <= MAX_COORDINATE).all() or shapely.is_empty(footprint).any():
+        raise ExemplarError(
+            f"a drawn shape has no area or coordinates beyond ±{MAX_COORDINATE:g} (a degenerate viewBox or transform?)",
+            source=source,
+        )
     return TilePieces(
         source, box, footprint, walk.points, np.array(walk.closed, dtype=bool),
         np.array(walk.element, dtype=np.int64), walk.paint, walk.frames, walk.filled_frame,
@@ -1159,8 +1171,9 @@ def _tile_box(root: ET.Element, source: str) -> tuple[float, float, float, float
                 "the tile size is unknown (the root <svg> has no viewBox and no absolute width/height)",
                 source=source,
             ) from None
-    if not (w > 0 and h > 0 and math.isfinite(w) and math.isfinite(h)):
-        raise ExemplarError(f"the tile ({w:g} x {h:g}) has no area", source=source)
+    if not (abs(x) <= MAX_COORDINATE and abs(y) <= MAX_COORDINATE and 0 < w <= MAX_COORDINATE and 0 < h <= MAX_COORDINATE):
+        what = "has no area" if w <= 0 or h <= 0 else f"is not finite or beyond ±{MAX_COORDINATE:g}"
+        raise ExemplarError(f"the tile ({w:g} x {h:g} at {x:g}, {y:g}) {what}", source=source)
     return (x, y, w, h)
 
 

@@ -539,3 +539,17 @@ def test_osm_carto_defs_use_patterns(name, kinds, instances):
                 matches.append(got[0] - start)
         assert matches and np.all(np.abs(matches[0]) < 6)  # the defs draw within a few px of their origin
     assert np.allclose(ex.motifs.angle, 0) and np.allclose(ex.motifs.scale, 1)
+
+
+@pytest.mark.parametrize(
+    ("head", "message"),
+    [
+        ('viewBox="0 0 1e308 1e308"', "beyond ±1e\\+100"),
+        ('viewBox="nan nan inf inf"', "is not finite"),
+        ('viewBox="0 0 1e200 5"', "beyond ±1e\\+100"),
+    ],
+)
+def test_region_with_overflowing_or_non_finite_coordinates_is_refused(head, message):
+    svg = f'<svg xmlns="http://www.w3.org/2000/svg" {head}><circle cx="5" cy="5" r="1"/><circle cx="15" cy="5" r="1"/></svg>'
+    with pytest.raises(ExemplarError, match=message):
+        parse_exemplar(svg, source="big.svg")

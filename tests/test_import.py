@@ -362,3 +362,23 @@ def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused
         accepted += 1
     assert not problems
     assert accepted >= 58  # 61 of 116 at the time of writing; a drop means a regression
+
+
+@pytest.mark.parametrize(
+    ("head", "message"),
+    [
+        ('viewBox="0 0 1e308 1e308"', "tile .* is not finite or beyond"),
+        ('width="1e300" height="5"', "tile .* is not finite or beyond"),
+    ],
+)
+def test_tile_of_overflowing_size_is_refused(head, message):
+    with pytest.raises(ExemplarError, match=message):
+        parse_tile(f'<svg xmlns="http://www.w3.org/2000/svg" {head}><circle cx="5" cy="5" r="1"/></svg>', source="t.svg")
+
+
+def test_shape_blown_up_by_a_degenerate_symbol_viewbox_is_refused():
+    svg = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 50 50">'
+           '<defs><symbol id="d" viewBox="0 0 1e308 1e-308" width="1e308" height="1e308"><circle r="1"/></symbol></defs>'
+           '<use xlink:href="#d" x="5" y="5"/></svg>')  # fmt: skip
+    with pytest.raises(ExemplarError, match="degenerate viewBox"):
+        parse_tile(svg, source="t.svg")
