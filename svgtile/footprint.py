@@ -149,16 +149,35 @@ def near_pairs(
     i, j : (p,) int arrays.
     """
     n = len(xy)
+    empty = np.zeros(0, np.int64), np.zeros(0, np.int64)
     if n < 2:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    rmax = float(np.max(reach))
-    tree = cKDTree(xy)
-    pairs = tree.query_pairs(2 * float(radius.max()) + rmax, output_type="ndarray")
-    if len(pairs) == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    i, j = pairs[:, 0].astype(np.int64), pairs[:, 1].astype(np.int64)
+        return empty
+    # Candidates come from k-d trees per kind, each pair of kinds searched with its own largest
+    # radii and reach: one search with the largest motif's radius would pair every small motif
+    # with all small motifs around it (till: 4 kinds, clasts 10 × the size of the grains).
+    group = np.zeros(n, np.int64) if kind is None else np.asarray(kind)
+    kinds = np.unique(group)
+    members = [np.flatnonzero(group == k) for k in kinds]
+    trees = [cKDTree(xy[m]) for m in members]
+    rmax = [float(radius[m].max()) for m in members]
+    parts = []
+    for a in range(len(kinds)):
+        for b in range(a, len(kinds)):
+            r = reach[kinds[a], kinds[b]] if np.ndim(reach) == 2 else reach
+            bound = rmax[a] + rmax[b] + float(r)
+            if a == b:
+                pairs = trees[a].query_pairs(bound, output_type="ndarray")
+                i, j = members[a][pairs[:, 0]], members[a][pairs[:, 1]]
+            else:
+                found = trees[a].sparse_distance_matrix(trees[b], bound, output_type="ndarray")
+                i, j = members[a][found["i"]], members[b][found["j"]]
+            parts.append((i, j))
+    i = np.concatenate([p[0] for p in parts]).astype(np.int64)
+    j = np.concatenate([p[1] for p in parts]).astype(np.int64)
+    if len(i) == 0:
+        return empty
     gap = np.hypot(*(xy[i] - xy[j]).T) - radius[i] - radius[j]
-    r = reach[kind[i], kind[j]] if np.ndim(reach) == 2 else reach
+    r = reach[group[i], group[j]] if np.ndim(reach) == 2 else reach
     keep = gap < r
     i, j = i[keep], j[keep]
     swap = i > j

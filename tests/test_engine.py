@@ -220,3 +220,21 @@ def test_counter_based_randomness_is_local_and_uniform():
     assert np.array_equal(uniform(11, 0, np.array([7, 8]), 3), a[[5007, 5008]])
     assert not np.array_equal(hash64(11, 0, 1, 2), hash64(11, 1, 1, 2))
     assert not np.array_equal(hash64(11, 0, 1, 2), hash64(12, 0, 1, 2))
+
+
+@pytest.mark.parametrize("per_kind", [True, False])
+def test_near_pairs_finds_exactly_the_pairs_whose_discs_come_within_reach(per_kind):
+    from svgtile.footprint import near_pairs
+
+    rng = np.random.default_rng(3)
+    n = 3000
+    xy = rng.uniform(0, 200, (n, 2))
+    kind = rng.integers(0, 3, n)
+    radius = np.array([0.4, 1.0, 6.0])[kind] * rng.uniform(0.8, 1.2, n)  # very different sizes
+    reach = np.array([[0.2, 0.5, 1.0], [0.5, 0.3, 2.0], [1.0, 2.0, 0.1]]) if per_kind else 0.7
+    i, j = near_pairs(xy, radius, reach, kind)
+    gap = np.hypot(*(xy[:, None] - xy[None]).transpose(2, 0, 1)) - radius[:, None] - radius[None]
+    want = gap < (reach[kind[:, None], kind[None]] if per_kind else reach)
+    want &= np.triu(np.ones((n, n), dtype=bool), 1)
+    assert (i < j).all()
+    assert sorted(zip(i.tolist(), j.tolist())) == sorted(zip(*(a.tolist() for a in np.nonzero(want))))
