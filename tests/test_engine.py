@@ -237,4 +237,5 @@ def test_near_pairs_finds_exactly_the_pairs_whose_discs_come_within_reach(per_ki
     want = gap < (reach[kind[:, None], kind[None]] if per_kind else reach)
     want &= np.triu(np.ones((n, n), dtype=bool), 1)
     assert (i < j).all()
-    assert sorted(zip(i.tolist(), j.tolist())) == sorted(zip(*(a.tolist() for a in np.nonzero(want))))
+    wi, wj = np.nonzero(want)
+    assert sorted(zip(i.tolist(), j.tolist(), strict=True)) == sorted(zip(wi.tolist(), wj.tolist(), strict=True))
