@@ -396,7 +396,7 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
         return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
     if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
-        near, idx = tree.query(new.xy, k=1)
+        near, idx = tree.query(new.xy, k=1, workers=-1)
         inner = np.array([pr.inner for pr in protos])
         a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
@@ -497,7 +497,7 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
     if len(arr):
         radius = motif_radius(arr, protos)
         k = min(6, len(arr))
-        dist, idx = tree.query(pts, k=k)
+        dist, idx = tree.query(pts, k=k, workers=-1)
         dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
         bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
         clear = np.minimum(clear, bound)
