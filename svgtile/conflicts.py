@@ -94,23 +94,36 @@ def _conflicts(arr, protos, distance, geoms) -> Conflicts:
     i[swap], j[swap] = j[swap], i[swap]
     # pairs whose inscribed discs overlap surely share area: no footprint needed
     inner = motif_radius(arr, protos, inner=True)
-    sure = (inner[i] > 0) & (inner[j] > 0) & (np.hypot(*(arr.xy[i] - arr.xy[j]).T) < inner[i] + inner[j])
+    discs = (inner[i] > 0) & (inner[j] > 0)
+    bound = np.hypot(*(arr.xy[i] - arr.xy[j]).T) - inner[i] - inner[j]  # footprint distance is at most this
+    sure = discs & (bound < 0)
+    rule = distance[arr.kind[i], arr.kind[j]] - eps
     need = np.unique(np.concatenate([i[~sure], j[~sure]]))
     if geoms is None:
         geoms = np.empty(len(arr), dtype=object)
         geoms[need] = world_footprints(arr.take(need), protos)
-    close, share = _test_pairs(geoms[i[~sure]], geoms[j[~sure]], distance[arr.kind[i], arr.kind[j]][~sure] - eps)
+    # pairs whose inscribed discs come closer than the rule surely violate it: only overlap is open
+    close, share = _test_pairs(geoms[i[~sure]], geoms[j[~sure]], rule[~sure], (discs & (bound < rule))[~sure])
     violation, overlap = sure.copy(), sure.copy()
     violation[~sure], overlap[~sure] = close, share
     keep = violation | overlap
     return Conflicts(i[keep], j[keep], overlap[keep], violation[keep])
 
 
-def _test_pairs(a: np.ndarray, b: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exact tests of footprint pairs: (closer than ``reach``, sharing area), each (p,) bool."""
+def _test_pairs(
+    a: np.ndarray, b: np.ndarray, reach: np.ndarray, known_close: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Exact tests of footprint pairs: (closer than ``reach``, sharing area), each (p,) bool.
+
+    ``known_close`` (p,) bool marks pairs already known to be closer than ``reach`` (by their
+    inscribed discs), which skip the distance test.
+    """
     positive = reach > 0
     close = np.zeros(len(a), dtype=bool)
-    close[positive] = shapely.dwithin(a[positive], b[positive], reach[positive])
+    test = positive if known_close is None else positive & ~known_close
+    close[test] = shapely.dwithin(a[test], b[test], reach[test])
+    if known_close is not None:
+        close |= known_close & positive
     check = close | ~positive
     share = np.zeros(len(a), dtype=bool)
     share[check] = shapely.intersects(a[check], b[check])
@@ -204,7 +217,8 @@ def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray 
     """
     if prefer is not None:  # prefer dominates: one unit of it outweighs any spread of priority
         priority = priority + prefer * (np.ptp(priority) + 1.0 if len(priority) else 1.0)
-    score = np.argsort(np.argsort(priority, kind="stable"), kind="stable")  # unique ranks: no ties
+    score = np.empty(n, dtype=np.int64)  # unique ranks: no ties
+    score[np.argsort(priority, kind="stable")] = np.arange(n)
     keep = np.ones(n, dtype=bool)
     undecided = np.zeros(n, dtype=bool)
     i, j = conflicts.i, conflicts.j

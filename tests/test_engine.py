@@ -210,8 +210,16 @@ def test_find_conflicts_matches_brute_force_and_bands(monkeypatch):
     keep = i < j
     i, j = i[keep], j[keep]
     dist = shapely.distance(geoms[i], geoms[j])
-    bad = dist < stats.distance[arr.kind[i], arr.kind[j]] - slack(ex.prototypes)
+    rule = stats.distance[arr.kind[i], arr.kind[j]] - slack(ex.prototypes)
+    bad = dist < rule
     assert pairs(whole) == set(zip(i[bad].tolist(), j[bad].tolist(), strict=True))
+    # and each pair's flags: sharing area, and closer than a positive rule
+    share = shapely.intersects(geoms[i], geoms[j]) & ~shapely.touches(geoms[i], geoms[j])
+    flags = {(a, b): (o, v) for a, b, o, v in zip(i.tolist(), j.tolist(), share.tolist(), ((dist < rule) & (rule > 0)).tolist(), strict=True)}
+    got = {(a, b): (o, v) for a, b, o, v in zip(whole.i.tolist(), whole.j.tolist(), whole.overlap.tolist(), whole.violation.tolist(), strict=True)}
+    assert sum(o for o, _ in got.values()) > 0 and sum(v and not o for o, v in got.values()) > 0  # both kinds occur
+    assert all(got[k][0] == flags[k][0] for k in got)
+    assert all(got[k][1] == flags[k][1] for k in got if not flags[k][0])
 
 
 def test_counter_based_randomness_is_local_and_uniform():
