@@ -757,6 +757,8 @@ class _Reader:
             vx, vy, vw, vh = (float(v) for v in re.split(r"[\s,]+", box.strip()))
         except ValueError:
             raise self.error(f"{_describe(target)} has an unreadable viewBox {box!r}") from None
+        if not (vw > 0 and vh > 0 and all(abs(v) <= MAX_COORDINATE for v in (vx, vy, vw, vh))):
+            raise self.error(f"{_describe(target)} has an empty or unbounded viewBox {box!r}")
         w = use.attrib.get("width") or target.attrib.get("width")
         h = use.attrib.get("height") or target.attrib.get("height")
         if not w or not h or "%" in w + h:
@@ -765,8 +767,10 @@ class _Reader:
                 "(svgtile will not guess a percentage viewport)"
             )
         width, height = _number(w, 0), _number(h, 0)
-        if vw <= 0 or vh <= 0 or width <= 0 or height <= 0:
-            raise self.error(f"{_describe(target)} has an empty viewBox or viewport")
+        if not (0 < width <= MAX_COORDINATE and 0 < height <= MAX_COORDINATE):
+            raise self.error(f"{_describe(target)} is used with an empty or unbounded viewport ({w} x {h})")
+        if not all(1 / MAX_COORDINATE <= r <= MAX_COORDINATE for r in (width / vw, height / vh)):
+            raise self.error(f"{_describe(target)}: its viewBox {box!r} in a {w} x {h} viewport scales by more than {MAX_COORDINATE:g}")
         par = (target.attrib.get("preserveAspectRatio") or "").split()
         if par and par[0] == "defer":
             par = par[1:]

@@ -10,6 +10,7 @@ ones (``world_footprints``) allow the prototype's tolerance.
 from __future__ import annotations
 
 import math
+import re
 import socket
 import time
 import urllib.request
@@ -197,6 +198,22 @@ def test_symbol_viewbox_without_width_height_is_refused_naming_the_symbol():
     sym = '<defs><symbol id="star" viewBox="0 0 10 10"><rect width="10" height="10"/></symbol></defs>'
     with pytest.raises(ExemplarError, match=r"symbol id='star'.*width and height"):
         parse_exemplar(svg(sym + '<use xlink:href="#star" x="20" y="30"/>'))
+
+
+@pytest.mark.parametrize(
+    ("view", "size", "message"),
+    [
+        ("0 0 0 0", "", "empty or unbounded viewBox '0 0 0 0'"),
+        ("0 0 -5 nan", "", "empty or unbounded viewBox"),
+        ("0 0 1e308 1e-308", 'width="1e308" height="1e308"', "empty or unbounded viewBox"),
+        ("0 0 10 10", 'width="0" height="4"', "empty or unbounded viewport"),
+        ("0 0 1e-300 1e-300", 'width="2" height="2"', "scales by more than"),
+    ],
+)
+def test_degenerate_symbol_viewbox_is_refused_naming_it(view, size, message):
+    sym = f'<defs><symbol id="star" viewBox="{view}"><rect width="10" height="10"/></symbol></defs>'
+    with pytest.raises(ExemplarError, match=r"symbol id='star'.*" + re.escape(message)):
+        parse_exemplar(svg(sym + f'<use xlink:href="#star" x="20" y="30" {size}/>'))
 
 
 @pytest.mark.parametrize(
