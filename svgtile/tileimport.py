@@ -203,8 +203,10 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
 
     # 4b. parts that always occur together at the same offset are one motif
     part_paint = _paints(tile, idx, base[members], part, n_parts)
-    pkind, pangle = _kinds(_moved(part_fp, pmove - pxy), part_paint)
-    motif_of, join = _repeat_groups(pxy, pkind, pangle, _radii(part_fp, pmove - pxy), period, origin)
+    pcentred = _moved(part_fp, pmove - pxy)
+    pkind, pangle = _kinds(pcentred, part_paint)
+    order = _symmetry(pcentred[np.unique(pkind, return_index=True)[1]])
+    motif_of, join = _repeat_groups(pxy, pkind, pangle, _radii(part_fp, pmove - pxy), period, origin, order)
     n_motifs = int(motif_of.max(initial=-1)) + 1
     motif = motif_of[part]
     footprint = _group_union(_moved(part_fp, pmove + join), motif_of, n_motifs) if n_motifs < n_parts else _moved(part_fp, pmove)
@@ -312,8 +314,9 @@ def _radii(geoms: np.ndarray, by: np.ndarray) -> np.ndarray:
 
 
 def _repeat_groups(
-    xy: np.ndarray, kind: np.ndarray, angle: np.ndarray, radius: np.ndarray, period: np.ndarray, origin: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+    xy: np.ndarray, kind: np.ndarray, angle: np.ndarray, radius: np.ndarray, period: np.ndarray, origin: np.ndarray,
+    order: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Join parts that always occur together: the motifs of a tile whose parts do not touch.
 
     A tuft of separate blades (osm-carto marsh) or a shape beside a dot (swamp) is drawn as parts
@@ -325,6 +328,12 @@ def _repeat_groups(
     part kinds, within :data:`REPEAT_TOLERANCE` of the larger kind's radius and
     :data:`REPEAT_TURN` degrees; a cluster holding at least :data:`REPEAT_SHARE` of either kind's
     parts (and :data:`MIN_REPEATS`) is a *recurring offset*, and its pairs are links.
+
+    A part with rotational symmetry (a dash, a cross) has its angle only up to that symmetry, so
+    offsets from it are taken in its frame with their direction folded into one sector of the
+    symmetry; offsets from a round part (a dot) are taken in its partner's frame (in the tile's
+    if both are round), and relative rotations are folded the same way: rotated copies of an
+    L-and-dot motif still share one offset.
 
     A regular lattice makes every neighbour offset recur, so a recurring offset is kept only if it
     is one-to-one (at most :data:`AMBIGUOUS` of its parts have a partner both ways, as every
@@ -339,6 +348,8 @@ def _repeat_groups(
     kind : (n,) part kinds; angle : (n,) degrees, each part's rotation from its kind's first part
     radius : (n,) each part's farthest outline point from its centroid, user units
     period, origin : (2,) the tile's size and corner
+    order : (k,) each kind's order of rotational symmetry (1 none, 0 round; see
+        :func:`_symmetry`); default all 1
 
     Returns
     -------
@@ -357,17 +368,29 @@ def _repeat_groups(
     ok = (j < n) & (j != i)
     i, j, dist = i[ok], j[ok], dist[ok]
     d = _min_image(pos[j] - pos[i], period)
-    t = np.radians(angle[i])
-    c, s = np.cos(t), np.sin(t)
-    local = np.c_[c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]]
-    kind_radius = np.zeros(int(kind.max()) + 1)
+    order = np.ones(int(kind.max()) + 1, dtype=np.int64) if order is None else np.asarray(order)
+    # each part's angle is known up to its symmetry's sector (360° / order; a round part: none)
+    sector_i = np.where(order[kind[i]] > 0, 360.0 / np.maximum(order[kind[i]], 1), 0.0)
+    sector_j = np.where(order[kind[j]] > 0, 360.0 / np.maximum(order[kind[j]], 1), 0.0)
+    # the frame of the offset: the first part's, else (round) its partner's, else (both round)
+    # the tile's, whose copies then must not be turned
+    length_d = np.hypot(d[:, 0], d[:, 1])
+    frame = np.where(sector_i > 0, angle[i], np.where(sector_j > 0, angle[j], 0.0))
+    sector = np.where(sector_i > 0, sector_i, np.where(sector_j > 0, sector_j, 360.0))
+    direction = np.mod(np.degrees(np.arctan2(d[:, 1], d[:, 0])) - frame, sector)
+    t = np.radians(direction)
+    local = np.c_[length_d * np.cos(t), length_d * np.sin(t)]
+    kind_radius = np.zeros(len(order))
     np.maximum.at(kind_radius, kind, radius)
     scale = REPEAT_TOLERANCE * np.maximum(kind_radius[kind[i]], kind_radius[kind[j]])
-    turn = (angle[j] - angle[i] + 180.0) % 360.0 - 180.0
+    # the relative rotation is known up to the sectors of both parts (their gcd; none if round)
+    fold = np.where((sector_i > 0) & (sector_j > 0), np.gcd(sector_i.astype(np.int64), sector_j.astype(np.int64)), 0)
+    turn = np.where(fold > 0, np.mod(angle[j] - angle[i], np.where(fold > 0, fold, 360.0)), 0.0)
+    turn = np.where(turn > fold / 2, turn - fold, turn)
     # in these coordinates two links repeat each other when no coordinate differs by more than 1
     feat = np.c_[local / np.maximum(scale, 1e-12)[:, None], turn / REPEAT_TURN, 3.0 * kind[i], 3.0 * kind[j]]
     links = cKDTree(feat)
-    support = links.query_ball_point(feat, r=1.0, p=np.inf, return_length=True)
+    support = _support(feat)
     per_kind = np.bincount(kind)
     need = np.maximum(MIN_REPEATS, REPEAT_SHARE * np.maximum(per_kind[kind[i]], per_kind[kind[j]]))
     recurring = np.flatnonzero(support >= need)
@@ -427,6 +450,40 @@ def _repeat_groups(
             return group, join
         active = active[:-1]
     return alone
+
+
+def _support(feat: np.ndarray) -> np.ndarray:
+    """(m,) how many of the rows of ``feat`` (m, f) lie within 1 of each row (max norm, itself
+    included).
+
+    The links of a lattice all sit at a few points, so counting pairs of links directly costs
+    O(m²); rows are counted instead as distinct points on a grid of 0.1 with their
+    multiplicities, so the count is exact to that grid and costs O(distinct points × neighbours).
+    """
+    cell, inverse, weight = np.unique(np.round(feat * 10.0).astype(np.int64), axis=0, return_inverse=True, return_counts=True)
+    centres = cell / 10.0
+    tree = cKDTree(centres)
+    pairs = tree.sparse_distance_matrix(tree, 1.0 + 1e-9, p=np.inf, output_type="ndarray")
+    same = pairs["i"] == pairs["j"]
+    count = np.bincount(pairs["i"][~same], weights=weight[pairs["j"][~same]], minlength=len(cell)) + weight
+    return count[inverse.reshape(-1)]
+
+
+def _symmetry(centred: np.ndarray) -> np.ndarray:
+    """(k,) order of rotational symmetry of each centred footprint: 0 if round (it matches
+    itself turned by any angle), else the largest of 6, 4, 3, 2 it matches itself turned by
+    360° / order, else 1; within :data:`KIND_TOLERANCE` / 2 × its radius."""
+    radius = np.maximum(_radii(centred, np.zeros((len(centred), 2))), 1e-12)
+    order = np.ones(len(centred), dtype=np.int64)
+    undecided = np.ones(len(centred), dtype=bool)
+    for m, turn in ((0, 37.0), (6, 60.0), (4, 90.0), (3, 120.0), (2, 180.0)):
+        t = np.radians(turn)
+        rot = np.array([[np.cos(t), np.sin(t)], [-np.sin(t), np.cos(t)]])
+        turned = shapely.transform(centred[undecided], lambda p, rot=rot: p @ rot)
+        same = shapely.hausdorff_distance(centred[undecided], turned) <= 0.5 * KIND_TOLERANCE * radius[undecided]
+        order[np.flatnonzero(undecided)[same]] = m
+        undecided[np.flatnonzero(undecided)[same]] = False
+    return order
 
 
 def _min_image(d: np.ndarray, period: np.ndarray) -> np.ndarray:

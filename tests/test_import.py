@@ -135,6 +135,36 @@ def test_parts_at_a_recurring_offset_are_one_motif():
     assert set(t.pieces.tolist()) == {3}  # the cross's two strokes and the dot
 
 
+L_SHAPE = '<path d="M-1.5 -1 L1.5 -1 L1.5 -0.3 L-0.8 -0.3 L-0.8 1.5 L-1.5 1.5 Z" fill="#000"/>'
+
+
+@pytest.mark.parametrize("turns", [0.0, 37.0, None])
+def test_a_round_part_beside_a_shape_is_joined_in_rotated_copies(turns):
+    """A dot's angle means nothing: the offset to it is taken in its partner's frame (reviewer's
+    case: L + dot under rotate(37 k) or random angles came out as 24 one-part motifs)."""
+    rng = np.random.default_rng(5)
+    xy = []
+    while len(xy) < 12:
+        p = rng.uniform(3, 37, 2)
+        if all(np.hypot(*((p - q + 20) % 40 - 20)) > 9 for q in xy):  # apart across the edges too
+            xy.append(p)
+    angles = np.random.default_rng(7).uniform(0, 360, 12) if turns is None else turns * np.arange(12)
+    body = "".join(f'<g transform="translate({x:.3f} {y:.3f}) rotate({a:.3f})">{L_SHAPE}<circle cx="3" cy="1" r="0.4" fill="#000"/></g>'
+                   for (x, y), a in zip(xy, angles, strict=True))  # fmt: skip
+    t = tile("", head='<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 40 40">' + body)
+    assert len(t) == 12 and t.kinds == 1 and set(t.pieces.tolist()) == {2}
+
+
+def test_support_counts_links_within_one_on_every_coordinate():
+    from svgtile.tileimport import _support
+
+    rng = np.random.default_rng(2)
+    feat = np.round(rng.uniform(0, 4, (400, 3)), 1)  # on the 0.1 grid, where the count is exact
+    feat = np.r_[feat, np.repeat(feat[:5], 50, axis=0)]  # lattice-like pile-ups of one point
+    want = (np.abs(feat[:, None] - feat[None]).max(axis=2) <= 1.0 + 1e-9).sum(axis=1)
+    assert np.array_equal(_support(feat), want)
+
+
 def test_a_lattice_of_parts_is_not_joined():
     dots = "".join(f'<circle cx="{x}" cy="{y}" r="0.4" fill="#000"/>' for x in (2.5, 7.5) for y in (2.5, 7.5))
     t = tile(dots + f'<path d="M4 5H6" {STROKE}/>')
