@@ -44,6 +44,7 @@ from scipy.spatial import cKDTree
 
 from .errors import ExemplarError
 from .exemplar import PERIOD_ATTR, SVG_NS, XLINK_NS, TilePieces, match_kinds, parse_tile
+from .footprint import rotation
 from .output import fmt, fmt_array
 
 #: Two parallel straight strokes closer than this share of the shorter one's length belong to one
@@ -206,7 +207,7 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     pcentred = _moved(part_fp, pmove - pxy)
     pkind, pangle = _kinds(pcentred, part_paint)
     order = _symmetry(pcentred[np.unique(pkind, return_index=True)[1]])
-    motif_of, join = _repeat_groups(pxy, pkind, pangle, _radii(part_fp, pmove - pxy), period, origin, order)
+    motif_of, join = _repeat_groups(pxy, pkind, pangle, _radii(pcentred), period, origin, order)
     n_motifs = int(motif_of.max(initial=-1)) + 1
     motif = motif_of[part]
     footprint = _group_union(_moved(part_fp, pmove + join), motif_of, n_motifs) if n_motifs < n_parts else _moved(part_fp, pmove)
@@ -280,7 +281,7 @@ def _kinds(centred: np.ndarray, paints: list[tuple]) -> tuple[np.ndarray, np.nda
     matched up to rotation, and the others take its kind and angle.  Returns (n,) kinds numbered
     in order of first appearance and (n,) angles, degrees.
     """
-    radius = _radii(centred, np.zeros((len(centred), 2)))
+    radius = _radii(centred)
     coords, index = shapely.get_coordinates(centred, return_index=True)
     step = COPY_GRID * np.maximum(radius, 1e-12)
     cells = np.round(coords / step[index, None]).astype(np.int64)
@@ -305,9 +306,9 @@ def _paints(tile: TilePieces, idx: np.ndarray, piece: np.ndarray, group: np.ndar
     return [tuple(sorted(s)) for s in sets]
 
 
-def _radii(geoms: np.ndarray, by: np.ndarray) -> np.ndarray:
-    """(n,) farthest outline point of each geometry, translated by ``by`` (n, 2), from the origin."""
-    coords, index = shapely.get_coordinates(_moved(geoms, by), return_index=True)
+def _radii(geoms: np.ndarray) -> np.ndarray:
+    """(n,) farthest outline point of each geometry from the origin."""
+    coords, index = shapely.get_coordinates(geoms, return_index=True)
     out = np.zeros(len(geoms))
     np.maximum.at(out, index, np.hypot(coords[:, 0], coords[:, 1]))
     return out
@@ -370,8 +371,8 @@ def _repeat_groups(
     d = _min_image(pos[j] - pos[i], period)
     order = np.ones(int(kind.max()) + 1, dtype=np.int64) if order is None else np.asarray(order)
     # each part's angle is known up to its symmetry's sector (360° / order; a round part: none)
-    sector_i = np.where(order[kind[i]] > 0, 360.0 / np.maximum(order[kind[i]], 1), 0.0)
-    sector_j = np.where(order[kind[j]] > 0, 360.0 / np.maximum(order[kind[j]], 1), 0.0)
+    sector_of = np.where(order > 0, 360.0 / np.maximum(order, 1), 0.0)
+    sector_i, sector_j = sector_of[kind[i]], sector_of[kind[j]]
     # the frame of the offset: the first part's, else (round) its partner's, else (both round)
     # the tile's, whose copies then must not be turned
     length_d = np.hypot(d[:, 0], d[:, 1])
@@ -411,7 +412,6 @@ def _repeat_groups(
     ci, a, b, length, step = cluster[use], i[use], j[use], dist[use], d[use]
 
     # one-to-one: a part with two partners under one offset is a lattice point
-    ends = np.r_[ci * n + a, ci * n + b]
     # a pair seen from both sides (i -> j and j -> i) counts once
     key = ci * n * n + np.minimum(a, b) * n + np.maximum(a, b)
     _, unique = np.unique(key, return_index=True)
@@ -473,16 +473,16 @@ def _symmetry(centred: np.ndarray) -> np.ndarray:
     """(k,) order of rotational symmetry of each centred footprint: 0 if round (it matches
     itself turned by any angle), else the largest of 6, 4, 3, 2 it matches itself turned by
     360° / order, else 1; within :data:`KIND_TOLERANCE` / 2 × its radius."""
-    radius = np.maximum(_radii(centred, np.zeros((len(centred), 2))), 1e-12)
+    radius = np.maximum(_radii(centred), 1e-12)
     order = np.ones(len(centred), dtype=np.int64)
     undecided = np.ones(len(centred), dtype=bool)
     for m, turn in ((0, 37.0), (6, 60.0), (4, 90.0), (3, 120.0), (2, 180.0)):
-        t = np.radians(turn)
-        rot = np.array([[np.cos(t), np.sin(t)], [-np.sin(t), np.cos(t)]])
-        turned = shapely.transform(centred[undecided], lambda p, rot=rot: p @ rot)
-        same = shapely.hausdorff_distance(centred[undecided], turned) <= 0.5 * KIND_TOLERANCE * radius[undecided]
-        order[np.flatnonzero(undecided)[same]] = m
-        undecided[np.flatnonzero(undecided)[same]] = False
+        at = np.flatnonzero(undecided)
+        rot = rotation(turn).T
+        turned = shapely.transform(centred[at], lambda p, rot=rot: p @ rot)
+        same = at[shapely.hausdorff_distance(centred[at], turned) <= 0.5 * KIND_TOLERANCE * radius[at]]
+        order[same] = m
+        undecided[same] = False
     return order
 
 
