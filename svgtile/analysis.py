@@ -79,6 +79,18 @@ def analyze(exemplar: Exemplar) -> Stats:
     )
 
 
+def motif_estimate(exemplar: Exemplar, stats: Stats, region) -> float:
+    """About how many motifs synthesis puts in ``region`` (a :class:`svgtile.region.Region`).
+
+    The exemplar's motifs per unit² times the region's area — or, for a strip thinner than the
+    exemplar, the area of the exemplar-sized copies covering its bounds (0.01 × 1e8 costs as much
+    as a strip an exemplar wide), since every engine lays whole copies.
+    """
+    x0, y0, x1, y1 = region.bounds
+    ex0, ey0, ex1, ey1 = exemplar.region.bounds
+    return stats.count_density * max(region.area, max(x1 - x0, ex1 - ex0) * max(y1 - y0, ey1 - ey0))
+
+
 def footprint_areas(arr: Arrangement, protos: list[Prototype]) -> np.ndarray:
     """(n,) footprint area of each motif, square user units."""
     return np.array([p.area for p in protos])[arr.kind] * arr.scale**2

@@ -15,7 +15,7 @@ import click
 import numpy as np
 
 from . import __version__
-from .analysis import Stats, analyze
+from .analysis import Stats, analyze, motif_estimate
 from .engines import ENGINES
 from .errors import ParameterError, SvgtileError
 from .exemplar import Exemplar, read_exemplar
@@ -86,15 +86,10 @@ def _load(path: str) -> tuple[Exemplar, Stats]:
 
 
 def _check_motif_count(ex: Exemplar, stats: Stats, region, where: str, *, force: bool | None = False) -> None:
-    """Refuse a region whose estimated motif count is above :data:`MAX_MOTIFS` (unless ``force``;
-    a command without ``--force`` passes None) or above :data:`HARD_MAX_MOTIFS`.
-
-    The estimate is the motifs of the exemplar-sized copies covering the region's bounds: a strip
-    thinner than the exemplar (0.01 x 1e8) costs as much as one an exemplar wide.
-    """
-    x0, y0, x1, y1 = region.bounds
-    ex0, ey0, ex1, ey1 = ex.region.bounds
-    estimate = stats.count_density * max(region.area, max(x1 - x0, ex1 - ex0) * max(y1 - y0, ey1 - ey0))
+    """Refuse a region whose estimated motif count (:func:`svgtile.analysis.motif_estimate`) is
+    above :data:`MAX_MOTIFS` (unless ``force``; a command without ``--force`` passes None) or above
+    :data:`HARD_MAX_MOTIFS`."""
+    estimate = motif_estimate(ex, stats, region)
     if not estimate <= HARD_MAX_MOTIFS:
         about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
         raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory")

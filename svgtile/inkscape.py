@@ -256,7 +256,7 @@ def fill(
     Each file is what ``svgtile synth`` writes for that container's area (its bounding box is the
     viewBox, the clip path is the container's area in document coordinates).
     """
-    from .analysis import analyze
+    from .analysis import analyze, motif_estimate
     from .engines import ENGINES
     from .exemplar import read_exemplar
     from .output import svg_document, write_text
@@ -274,7 +274,7 @@ def fill(
             region = Region(shape)
         except RegionError:
             raise RegionError(f"the shape {ident!r} encloses no area to fill") from None
-        estimate = stats.count_density * region.area
+        estimate = motif_estimate(ex, stats, region)
         if not estimate <= max_motifs:
             raise ParameterError(
                 f"the shape {ident!r} would hold about {estimate:,.0f} motifs (limit {max_motifs:,.0f}); "

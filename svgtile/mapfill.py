@@ -40,7 +40,7 @@ import numpy as np
 import shapely
 
 from . import geojson
-from .analysis import Stats, analyze
+from .analysis import Stats, analyze, motif_estimate
 from .arrangement import Arrangement
 from .engines import ENGINES
 from .engines.common import CommonParams
@@ -211,7 +211,7 @@ def fill_region(
     unit = style.unit
     region = Region.from_geometry(geojson.to_working(shape, unit),
                                   avoid=None if avoid is None else geojson.to_working(avoid, unit))  # fmt: skip
-    estimate = stats.count_density * region.area
+    estimate = motif_estimate(ex, stats, region)
     if not estimate <= max_motifs:
         about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
         raise ParameterError(f"the region would hold {about} motifs (limit {max_motifs:,.0f}); "

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis import analyze
+from .analysis import analyze, motif_estimate
 from .engines import ENGINES
 from .errors import ExemplarError, OutputError, SvgtileError
 from .exemplar import SVG_NS, XLINK_NS, parse_exemplar
@@ -184,7 +184,7 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         exemplar = parse_exemplar(imported.text, source=str(path))
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
-        estimate = stats.count_density * region.area
+        estimate = motif_estimate(exemplar, stats, region)
         if not estimate <= max_motifs:
             about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
             raise ExemplarError(f"the swatch would hold {about} motifs (limit {max_motifs:,.0f}); choose a smaller --size")

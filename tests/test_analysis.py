@@ -15,7 +15,7 @@ import pytest
 import shapely
 import shapely.affinity
 
-from svgtile.analysis import analyze, distance_matrix, in_arcs, orientation_arcs
+from svgtile.analysis import analyze, distance_matrix, in_arcs, motif_estimate, orientation_arcs
 from svgtile.arrangement import Arrangement
 from svgtile.exemplar import parse_exemplar
 from svgtile.footprint import Prototype, world_footprints
@@ -244,3 +244,15 @@ def test_orientation_arcs_random(seed):
     assert not in_arcs((start[kind] - 0.01)[narrow], kind[narrow], stats).any()
     assert not in_arcs((start[kind] + width[kind] + 0.01)[narrow], kind[narrow], stats).any()
     assert in_arcs(np.round(angle, 4), kind, stats).all()
+
+
+def test_motif_estimate_is_area_times_density_but_a_thin_strip_costs_whole_copies():
+    from svgtile.region import Region
+
+    ex = parse_exemplar('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 20">'
+                        + "".join(f'<circle cx="{x}" cy="{y}" r="1"/>' for x in (2, 7) for y in (3, 9, 15)) + "</svg>")  # fmt: skip
+    stats = analyze(ex)
+    assert stats.count_density == pytest.approx(6 / 200)
+    assert motif_estimate(ex, stats, Region.rectangle(100, 50)) == pytest.approx(6 / 200 * 5000)
+    # 0.01 wide: the copies laid along it are 10 wide
+    assert motif_estimate(ex, stats, Region.rectangle(0.01, 1000)) == pytest.approx(6 / 200 * 10 * 1000)
