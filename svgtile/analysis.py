@@ -10,10 +10,15 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 
 from .arrangement import Arrangement
 from .exemplar import Exemplar
 from .footprint import Prototype, motif_radius, near_pairs, overlapping, world_footprints
+
+#: An ordered kind pair (i, j) has a nearest-gap distribution only if at least this many exemplar
+#: motifs of kind i have a motif of kind j to measure to (each gives one sample of it).
+GAP_MIN_SAMPLES = 5
 
 
 @dataclass(frozen=True, eq=False)
@@ -290,6 +295,124 @@ def _kind_pairs(kind: np.ndarray, ids: np.ndarray):
         t = ids[kind[i], kind[j]]
         keep = (i < j) & (t >= 0)
         yield i[keep], j[keep], t[keep]
+
+
+def nearest_gaps(
+    arr: Arrangement, protos: list[Prototype], sources: np.ndarray, kind: int, *, geoms: np.ndarray | None = None
+) -> np.ndarray:
+    """Footprint distance from each source motif to the nearest other motif of ``kind``.
+
+    Parameters
+    ----------
+    arr : Arrangement of n motifs
+    protos : kind prototypes
+    sources : (m,) int array, indices into ``arr``
+    kind : the kind of the neighbours
+    geoms : (n,) world footprints, if built
+
+    Returns
+    -------
+    (m,) float array, user units (0 for an overlap); ``inf`` where there is no such neighbour.
+    """
+    targets = np.flatnonzero(arr.kind == kind)
+    if len(sources) == 0 or len(targets) == 0:
+        return np.full(len(sources), np.inf)
+    radius = motif_radius(arr, protos)
+    if geoms is None:
+        need = np.unique(np.concatenate([sources, targets]))
+        geoms = np.empty(len(arr), dtype=object)
+        geoms[need] = world_footprints(arr.take(need), protos)
+    tree = cKDTree(arr.xy[targets])
+    return nearest_distances(
+        arr.xy[sources], radius[sources], geoms[sources], tree, radius[targets], geoms[targets],
+        ids=(sources, targets),
+    )  # fmt: skip
+
+
+def nearest_distances(
+    xy: np.ndarray, r: np.ndarray, geom: np.ndarray, tree: cKDTree, t_r: np.ndarray, t_geom: np.ndarray,
+    *, ids: tuple[np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:  # fmt: skip
+    """(m,) exact distance from each source geometry to the nearest target geometry.
+
+    Targets are tried in order of the k nearest centroids (k doubling until sure): exact GEOS
+    distances are taken only for candidates whose bounding-disc gap ``|x_a − x_b| − r_a − r_b``
+    is below the best distance found, and a source is done once the k-th centroid is too far
+    for any target beyond it to come closer.  With ``ids = (source ids, target ids)``, a target
+    with the same id as the source (the motif itself) is skipped.
+    """
+    m, n = len(xy), tree.n
+    best = np.full(m, np.inf)
+    if m == 0 or n == 0:
+        return best
+    r_max = float(t_r.max())
+    todo = np.arange(m)
+    k = min(8, n)
+    while len(todo):
+        d, idx = tree.query(xy[todo], k=k)
+        d, idx = d.reshape(len(todo), k), idx.reshape(len(todo), k)
+        lower = d - r[todo, None] - t_r[idx]
+        if ids is not None:
+            lower[ids[1][idx] == ids[0][todo, None]] = np.inf
+        rows = np.arange(len(todo))
+        first = np.argmin(lower, axis=1)
+        b = np.full(len(todo), np.inf)
+        ok = np.isfinite(lower[rows, first])
+        b[ok] = shapely.distance(geom[todo[ok]], t_geom[idx[rows[ok], first[ok]]])
+        more = lower < b[:, None]
+        more[rows, first] = False
+        a, c = np.nonzero(more)
+        if len(a):
+            np.minimum.at(b, a, shapely.distance(geom[todo[a]], t_geom[idx[a, c]]))
+        best[todo] = np.minimum(best[todo], b)
+        if k >= n:
+            break
+        todo = todo[d[:, -1] - r[todo] - r_max < best[todo]]
+        k = min(2 * k, n)
+    return best
+
+
+def junction_distance(exemplar: Exemplar, stats: Stats, quantile: float) -> np.ndarray:
+    """(k, k) distance, user units, that motifs placed independently of each other must keep.
+
+    The distance rule ``d_ij`` is the *smallest* gap the exemplar shows; the typical gap is
+    larger.  Where two exemplar copies meet, or a pasted disc meets the texture (almeraj2013
+    §3.3, §3.4), the rule alone lets motifs of the two pack at ``d_ij``, and the seam shows as a
+    band of gaps smaller than the exemplar's.  The junction rule asks them to keep the
+    ``quantile`` of the exemplar's nearest gaps instead:
+
+    ``J_ij = max(d_ij, min(Q_ij(q), Q_ji(q)))``,
+
+    ``Q_ij(q)`` the q-quantile of the footprint distances from each exemplar motif of kind i to
+    its nearest other motif of kind j (:func:`nearest_gaps`; across the tile's edges for a
+    repeating tile).  Where only one direction has :data:`GAP_MIN_SAMPLES` gaps, its quantile is
+    taken; where neither has, ``d_ij`` is kept; ``quantile = 0`` gives ``d_ij`` everywhere.  ``J``
+    is symmetric and ``J ≥ d``, so an arrangement that keeps ``J`` keeps the distance rule.
+    """
+    d = stats.distance
+    if quantile <= 0:
+        return d.copy()
+    ex, protos = exemplar.motifs, exemplar.prototypes
+    k, n = len(protos), len(ex)
+    period = getattr(exemplar, "period", None)
+    if period is not None:  # the tile amid its eight neighbours: gaps across the edges are seen
+        shifts = np.array([(0, 0)] + [(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1) if (i, j) != (0, 0)], float)
+        shifts *= np.asarray(period, dtype=np.float64)
+        ex = Arrangement(
+            np.tile(ex.kind, 9), (ex.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
+            np.tile(ex.angle, 9), np.tile(ex.scale, 9),
+        )  # fmt: skip
+    geoms = world_footprints(ex, protos)
+    q = np.full((k, k), np.nan)
+    for i in range(k):
+        sources = np.flatnonzero(ex.kind[:n] == i)
+        for j in range(k):
+            gaps = nearest_gaps(ex, protos, sources, j, geoms=geoms)
+            gaps = gaps[np.isfinite(gaps)]
+            if len(gaps) >= GAP_MIN_SAMPLES:
+                q[i, j] = np.quantile(gaps, quantile)
+    pair = np.fmin(q, q.T)  # nan only where neither direction was measured
+    return np.where(np.isnan(pair), d, np.maximum(d, pair))
 
 
 def orientation_arcs(angle: np.ndarray, kind: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:

@@ -17,6 +17,7 @@ import numpy as np
 from . import __version__
 from .analysis import Stats, analyze, motif_estimate
 from .engines import ENGINES
+from .engines.patch import PatchParams
 from .errors import ParameterError, SvgtileError
 from .exemplar import Exemplar, read_exemplar
 from .geojson import exemplar_placements
@@ -135,10 +136,12 @@ def cli() -> None:
               help="Synthesis algorithm: patch = copies of the exemplar blended without seams (AlMeraj et al. 2013); tile = plain repeated copies and random = scattered motifs, both for comparison.")
 @click.option("--grid", type=click.Choice(["square", "hex"]), default="square", show_default=True,
               help="Layout of the exemplar copies; hex suits round exemplars.")
-@click.option("--overlap", type=float, default=0.3, show_default=True,
+@click.option("--overlap", type=float, default=PatchParams.overlap, show_default=True,
               help="How much neighbouring exemplar copies overlap, 0 to 0.5. More overlap hides seams but removes more motifs.")
-@click.option("--max-rotation", type=float, default=30.0, show_default=True,
+@click.option("--max-rotation", type=float, default=PatchParams.max_rotation, show_default=True,
               help="Each exemplar copy is turned by a random angle up to this many degrees (0 to 180); motifs keep their own orientation. 0 keeps copies square to the page.")
+@click.option("--junction", type=float, default=PatchParams.junction, show_default=True,
+              help="Where copies meet, motifs keep this quantile (0 to <1) of the exemplar's nearest gaps apart; 0 = only its smallest gap (the paper's rule).")
 @click.option("--vary-orientation", is_flag=True,
               help="Give every motif a new orientation, drawn from the range its kind shows in the exemplar.")
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip", show_default=True,
@@ -149,7 +152,7 @@ def cli() -> None:
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid, overlap, max_rotation,
-          vary_orientation, boundary, seed, force, as_tile):
+          junction, vary_orientation, boundary, seed, force, as_tile):
     """Synthesize a texture like EXEMPLAR and write it as SVG.
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -161,6 +164,8 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
         raise ParameterError(f"--overlap must be between 0 and 0.5, not {overlap:g}")
     if not 0.0 <= max_rotation <= 180.0:
         raise ParameterError(f"--max-rotation must be between 0 and 180 degrees, not {max_rotation:g}")
+    if not 0.0 <= junction < 1.0:
+        raise ParameterError(f"--junction must be at least 0 and below 1, not {junction:g}")
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after
@@ -174,7 +179,7 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
-    params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation,
+    params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation, junction=junction,
                   vary_orientation=vary_orientation, boundary=boundary)  # fmt: skip
     arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, progress=_progress(), **params)
     _Stderr.clear()

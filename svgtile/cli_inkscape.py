@@ -9,6 +9,7 @@ import click
 from . import inkscape as ink
 from .cli import MAX_MOTIFS, _load
 from .engines import ENGINES
+from .engines.patch import PatchParams
 from .errors import ParameterError
 from .region import BOUNDARY_MODES
 
@@ -49,8 +50,8 @@ def uninstall(user_dir):
 @click.option("--out-dir", required=True, type=click.Path(file_okay=False, exists=True))
 @click.option("--engine", type=click.Choice(sorted(ENGINES)), default="patch")
 @click.option("--grid", type=click.Choice(["square", "hex"]), default="square")
-@click.option("--overlap", type=float, default=0.3)
-@click.option("--max-rotation", type=float, default=30.0)
+@click.option("--overlap", type=float, default=PatchParams.overlap)
+@click.option("--max-rotation", type=float, default=PatchParams.max_rotation)
 @click.option("--vary-orientation", is_flag=True)
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip")
 @click.option("--seed", type=click.IntRange(min=0), required=True)

@@ -56,8 +56,9 @@ BAND_MOTIFS = 150_000
 
 
 def find_conflicts(
-    arr: Arrangement, protos: list[Prototype], distance: np.ndarray, geoms: np.ndarray | None = None
-) -> Conflicts:
+    arr: Arrangement, protos: list[Prototype], distance: np.ndarray, geoms: np.ndarray | None = None, *,
+    group: np.ndarray | None = None, junction: np.ndarray | None = None,
+) -> Conflicts:  # fmt: skip
     """All overlapping or rule-violating pairs of ``arr``.
 
     Parameters
@@ -68,10 +69,17 @@ def find_conflicts(
     geoms : (n,) world footprints of ``arr`` if already built; otherwise they are built band by
         band (horizontal bands of :data:`BAND_MOTIFS` motifs plus a halo as wide as the largest
         possible conflict), and a pair is reported by the band of its lower motif only.
+    group, junction : optional (n,) int array and (k, k) float array ≥ ``distance``: two motifs
+        of different groups (say, of different exemplar copies) must keep ``junction`` apart
+        instead of ``distance`` (:func:`svgtile.analysis.junction_distance`); a pair that keeps
+        ``distance`` but not ``junction`` is a violation.
     """
+    if (group is None) != (junction is None):
+        raise ValueError("group and junction go together")
     if geoms is not None or len(arr) <= BAND_MOTIFS:
-        return _conflicts(arr, protos, distance, geoms)
-    reach = 2 * motif_radius(arr, protos).max() + distance.max() + 2 * slack(protos)
+        return _conflicts(arr, protos, distance, geoms, group, junction)
+    widest = distance if junction is None else junction
+    reach = 2 * motif_radius(arr, protos).max() + widest.max() + 2 * slack(protos)
     y = arr.xy[:, 1]
     edges = np.quantile(y, np.linspace(0, 1, len(arr) // BAND_MOTIFS + 2)[1:-1])
     band = np.searchsorted(edges, y, side="right")
@@ -79,17 +87,18 @@ def find_conflicts(
     parts = []
     for b in range(len(edges) + 1):
         sel = np.flatnonzero((y >= bounds[b] - reach) & (y < bounds[b + 1] + reach))
-        c = _conflicts(arr.take(sel), protos, distance, None)
+        c = _conflicts(arr.take(sel), protos, distance, None, None if group is None else group[sel], junction)
         gi, gj = sel[c.i], sel[c.j]
         mine = np.minimum(band[gi], band[gj]) == b
         parts.append(Conflicts(gi[mine], gj[mine], c.overlap[mine], c.violation[mine]))
     return Conflicts(*(np.concatenate([getattr(p, f) for p in parts]) for f in ("i", "j", "overlap", "violation")))
 
 
-def _conflicts(arr, protos, distance, geoms) -> Conflicts:
+def _conflicts(arr, protos, distance, geoms, group, junction) -> Conflicts:
     """:func:`find_conflicts` in one pass."""
     eps = slack(protos)
-    i, j = near_pairs(arr.xy, motif_radius(arr, protos), distance + eps, arr.kind)
+    widest = distance if junction is None else junction
+    i, j = near_pairs(arr.xy, motif_radius(arr, protos), widest + eps, arr.kind)
     swap = i > j
     i[swap], j[swap] = j[swap], i[swap]
     # pairs whose inscribed discs overlap surely share area: no footprint needed
@@ -98,6 +107,9 @@ def _conflicts(arr, protos, distance, geoms) -> Conflicts:
     bound = np.hypot(*(arr.xy[i] - arr.xy[j]).T) - inner[i] - inner[j]  # footprint distance is at most this
     sure = discs & (bound < 0)
     rule = distance[arr.kind[i], arr.kind[j]] - eps
+    if junction is not None:
+        apart = group[i] != group[j]
+        rule[apart] = junction[arr.kind[i[apart]], arr.kind[j[apart]]] - eps
     need = np.unique(np.concatenate([i[~sure], j[~sure]]))
     if geoms is None:
         geoms = np.empty(len(arr), dtype=object)
@@ -241,18 +253,21 @@ def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray 
 def resolve(
     arr: Arrangement, protos: list[Prototype], distance: np.ndarray, priority: np.ndarray, *,
     frequency: np.ndarray | None = None, balance_rounds: int = 4,
+    group: np.ndarray | None = None, junction: np.ndarray | None = None,
 ) -> np.ndarray:  # fmt: skip
     """Overlap resolution then the distance rule (almeraj2013 §3.3, §3.1); returns the kept mask.
 
     First every overlapping pair loses one motif, preferring a motif that violates the distance
-    rule against its non-overlapping neighbours; then the remaining violations are broken.
+    rule against its non-overlapping neighbours; then the remaining violations are broken.  With
+    ``group`` and ``junction`` (:func:`find_conflicts`), motifs of different groups are held to
+    the junction rule.
 
     Large motifs meet more conflicts than small ones, so plain culling skews the kind mix.  Given
     the exemplar's kind ``frequency``, the culling is re-run ``balance_rounds`` times with a
     per-kind shift of the removal order, each time moving the kept frequencies towards the
     exemplar's (the conflicts are found once; re-culling is cheap).
     """
-    found = find_conflicts(arr, protos, distance)
+    found = find_conflicts(arr, protos, distance, group=group, junction=junction)
     n = len(arr)
     violator = np.zeros(n)
     side = found.violation & ~found.overlap

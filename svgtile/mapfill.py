@@ -13,8 +13,9 @@ A *styles file* (TOML) maps classes to exemplars and parameters::
     exemplar = "exemplars/gravel.svg"   # relative to the styles file
     engine = "patch"                    # patch, tile or random
     grid = "hex"
-    overlap = 0.3
+    overlap = 0.1
     max_rotation = 30
+    junction = 0.6
     vary_orientation = false
     boundary = "inside"
     unit = 1.0                          # map units per exemplar user unit
@@ -63,7 +64,7 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 #: Keys of a class table passed to the engine.
-ENGINE_KEYS = ("grid", "overlap", "max_rotation", "vary_orientation", "boundary")
+ENGINE_KEYS = ("grid", "overlap", "max_rotation", "junction", "vary_orientation", "boundary")
 #: Every key a class table (or the defaults) may have.
 CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit")
 #: Keys only the top level may have.
@@ -81,8 +82,8 @@ class Style:
     cls : the class name
     exemplar : path of the exemplar SVG
     engine : name in :data:`svgtile.engines.ENGINES`
-    params : engine parameters (``grid``, ``overlap``, ``max_rotation``, ``vary_orientation``,
-        ``boundary``)
+    params : engine parameters (``grid``, ``overlap``, ``max_rotation``, ``junction``,
+        ``vary_orientation``, ``boundary``)
     seed : int or None (the run's seed)
     unit : map units per exemplar user unit
     """
@@ -163,7 +164,8 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
     if engine not in ENGINES:
         raise ParameterError(f"{where}: engine must be one of {', '.join(sorted(ENGINES))}, not {engine!r}", source=source)
     params = {k: t[k] for k in ENGINE_KEYS if k in t}
-    types = {"grid": str, "overlap": (int, float), "max_rotation": (int, float), "vary_orientation": bool, "boundary": str}
+    number = (int, float)
+    types = {"grid": str, "overlap": number, "max_rotation": number, "junction": number, "vary_orientation": bool, "boundary": str}
     for key, value in params.items():
         if not isinstance(value, types[key]) or (isinstance(value, bool) and key != "vary_orientation"):
             raise ParameterError(f"{where}: {key} has the wrong type ({value!r})", source=source)

@@ -40,7 +40,14 @@ import shapely
 from scipy.ndimage import distance_transform_edt
 from scipy.spatial import cKDTree
 
-from .analysis import Stats, footprint_areas, in_arcs
+from .analysis import (
+    GAP_MIN_SAMPLES,
+    Stats,
+    footprint_areas,
+    in_arcs,
+    nearest_distances,
+    nearest_gaps,
+)
 from .arrangement import Arrangement
 from .cellrng import hash64
 from .conflicts import find_conflicts
@@ -48,9 +55,6 @@ from .exemplar import Exemplar
 from .footprint import Prototype, motif_radius, world_footprints
 from .region import Region
 
-#: An ordered kind pair (i, j) enters the gap distance only if at least this many exemplar motifs
-#: of kind i have a motif of kind j to measure to (each gives one sample of the distribution).
-GAP_MIN_SAMPLES = 5
 #: At most this many texture motifs per kind are measured for nearest gaps.
 GAP_SAMPLES = 4000
 #: Draws of the nearest-gap sampling noise (:func:`sampling_noise`), and their fixed seed.
@@ -506,81 +510,6 @@ def wasserstein(u: np.ndarray, v: np.ndarray) -> float:
     return float(np.sum(np.abs(fu - fv) * np.diff(t)))
 
 
-def nearest_gaps(
-    arr: Arrangement, protos: list[Prototype], sources: np.ndarray, kind: int, *, geoms: np.ndarray | None = None
-) -> np.ndarray:
-    """Footprint distance from each source motif to the nearest other motif of ``kind``.
-
-    Parameters
-    ----------
-    arr : Arrangement of n motifs
-    protos : kind prototypes
-    sources : (m,) int array, indices into ``arr``
-    kind : the kind of the neighbours
-    geoms : (n,) world footprints, if built
-
-    Returns
-    -------
-    (m,) float array, user units (0 for an overlap); ``inf`` where there is no such neighbour.
-    """
-    targets = np.flatnonzero(arr.kind == kind)
-    if len(sources) == 0 or len(targets) == 0:
-        return np.full(len(sources), np.inf)
-    radius = motif_radius(arr, protos)
-    if geoms is None:
-        need = np.unique(np.concatenate([sources, targets]))
-        geoms = np.empty(len(arr), dtype=object)
-        geoms[need] = world_footprints(arr.take(need), protos)
-    tree = cKDTree(arr.xy[targets])
-    return _nearest(
-        arr.xy[sources], radius[sources], geoms[sources], tree, radius[targets], geoms[targets],
-        ids=(sources, targets),
-    )  # fmt: skip
-
-
-def _nearest(
-    xy: np.ndarray, r: np.ndarray, geom: np.ndarray, tree: cKDTree, t_r: np.ndarray, t_geom: np.ndarray,
-    *, ids: tuple[np.ndarray, np.ndarray] | None = None,
-) -> np.ndarray:  # fmt: skip
-    """(m,) exact distance from each source geometry to the nearest target geometry.
-
-    Targets are tried in order of the k nearest centroids (k doubling until sure): exact GEOS
-    distances are taken only for candidates whose bounding-disc gap ``|x_a − x_b| − r_a − r_b``
-    is below the best distance found, and a source is done once the k-th centroid is too far
-    for any target beyond it to come closer.  With ``ids = (source ids, target ids)``, a target
-    with the same id as the source (the motif itself) is skipped.
-    """
-    m, n = len(xy), tree.n
-    best = np.full(m, np.inf)
-    if m == 0 or n == 0:
-        return best
-    r_max = float(t_r.max())
-    todo = np.arange(m)
-    k = min(8, n)
-    while len(todo):
-        d, idx = tree.query(xy[todo], k=k)
-        d, idx = d.reshape(len(todo), k), idx.reshape(len(todo), k)
-        lower = d - r[todo, None] - t_r[idx]
-        if ids is not None:
-            lower[ids[1][idx] == ids[0][todo, None]] = np.inf
-        rows = np.arange(len(todo))
-        first = np.argmin(lower, axis=1)
-        b = np.full(len(todo), np.inf)
-        ok = np.isfinite(lower[rows, first])
-        b[ok] = shapely.distance(geom[todo[ok]], t_geom[idx[rows[ok], first[ok]]])
-        more = lower < b[:, None]
-        more[rows, first] = False
-        a, c = np.nonzero(more)
-        if len(a):
-            np.minimum.at(b, a, shapely.distance(geom[todo[a]], t_geom[idx[a, c]]))
-        best[todo] = np.minimum(best[todo], b)
-        if k >= n:
-            break
-        todo = todo[d[:, -1] - r[todo] - r_max < best[todo]]
-        k = min(2 * k, n)
-    return best
-
-
 def pair_correlation(
     xy: np.ndarray, kind: np.ndarray, k: int, window: shapely.Geometry, reach: float,
     bins: int = PAIR_BINS, *, sample: int | None = None,
@@ -773,10 +702,11 @@ def largest_empty_disc(
     radius is a lower bound within ``step / 4**COVER_LEVELS / √2`` of the true one, unless more
     than :data:`COVER_KEEP` points compete for the best.
 
-    Exact GEOS distances (:func:`_nearest`) are taken on few points of the first grid: a distance
-    transform of a raster of pixel ``step`` (pixels holding a point of a footprint's outline, or
-    outside ``within``, are features; :func:`scipy.ndimage.distance_transform_edt`) gives each
-    grid point an estimate ``e ≥ c − step/√2``; points are measured exactly in decreasing order of
+    Exact GEOS distances (:func:`~svgtile.analysis.nearest_distances`) are taken on few points of
+    the first grid: a distance transform of a raster of pixel ``step`` (pixels holding a point of
+    a footprint's outline, or outside ``within``, are features;
+    :func:`scipy.ndimage.distance_transform_edt`) gives each grid point an estimate
+    ``e ≥ c − step/√2``; points are measured exactly in decreasing order of
     ``e`` until no point left can be within ``step/√2`` of the best clearance found, or
     :data:`COVER_EXACT` points were measured (a texture as regular as a tiling has as many
     holes as large as the largest: one of them is enough).
@@ -813,7 +743,7 @@ def largest_empty_disc(
         pts = shapely.points(p)
         c = shapely.distance(edge, pts)
         if len(arr):
-            c = np.minimum(c, _nearest(p, np.zeros(len(p)), pts, tree, radius, geoms))
+            c = np.minimum(c, nearest_distances(p, np.zeros(len(p)), pts, tree, radius, geoms))
         return c
 
     p, e = _raster_clearance(arr, protos, centres, within, step)

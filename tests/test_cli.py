@@ -75,6 +75,9 @@ BAD_OPTIONS = {
     "rotation-low": (["--max-rotation", "-1"], "--max-rotation"),
     "rotation-high": (["--max-rotation", "180.5"], "--max-rotation"),
     "rotation-nan": (["--max-rotation", "nan"], "--max-rotation"),
+    "junction-low": (["--junction", "-0.1"], "--junction"),
+    "junction-one": (["--junction", "1"], "--junction"),
+    "junction-nan": (["--junction", "nan"], "--junction"),
     "avoid-margin-nan": (["--avoid-margin", "nan"], "--avoid-margin"),
     "avoid-margin-huge": (["--avoid-margin", "1e300"], "--avoid-margin"),  # grown zones overflow
     "seed-negative": (["--seed", "-1"], "--seed"),
@@ -225,15 +228,15 @@ def test_synth_writes_svg_and_nothing_else(capsys, tiny, tmp_path):
 
 def test_options_are_recorded_in_metadata(capsys, tiny, tmp_path):
     out = tmp_path / "out.svg"
-    args = ["--seed", "11", "--grid", "hex", "--overlap", "0.2", "--max-rotation", "15",
+    args = ["--seed", "11", "--grid", "hex", "--overlap", "0.2", "--max-rotation", "15", "--junction", "0.3",
             "--vary-orientation", "--boundary", "centroid"]  # fmt: skip
     rc, _, _ = synth(capsys, tiny, out, *args, size="50x30")
     assert rc == 0
     run_ = ET.parse(out).getroot().find(f"{{{SVG_NS}}}metadata/{META}")
     assert run_.attrib == {
         "engine": "patch", "seed": "11", "exemplar": "tiny.svg", "size": "50x30", "grid": "hex",
-        "overlap": "0.2", "max_rotation": "15.0", "vary_orientation": "True", "boundary": "centroid",
-        "motifs": str(len(uses(out))),
+        "overlap": "0.2", "max_rotation": "15.0", "junction": "0.3", "vary_orientation": "True",
+        "boundary": "centroid", "motifs": str(len(uses(out))),
     }  # fmt: skip
 
 

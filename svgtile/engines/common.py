@@ -10,8 +10,9 @@ Every engine returns an :class:`~svgtile.arrangement.Arrangement` that
 * draws one key from the caller's ``rng`` and derives every random choice from it with
   world-anchored hashes (:mod:`svgtile.cellrng`): the same seed gives the same texture.
 
-The CLI passes ``grid``, ``overlap``, ``max_rotation``, ``vary_orientation`` and ``boundary`` to
-every engine; :class:`CommonParams` accepts them all, and each engine documents which it uses.
+The CLI passes ``grid``, ``overlap``, ``max_rotation``, ``vary_orientation``, ``junction`` and
+``boundary`` to every engine; :class:`CommonParams` accepts them all, and each engine documents
+which it uses.
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ class CommonParams:
 
     Attributes
     ----------
-    grid, overlap, max_rotation, vary_orientation
+    grid, overlap, max_rotation, vary_orientation, junction
         Parameters of the patch engine (:class:`svgtile.engines.patch.PatchParams`).  Engines
         that have no use for them accept and ignore them, so one command line works with every
         engine; their values are not checked here (the CLI checks their ranges).
@@ -43,10 +44,11 @@ class CommonParams:
     """
 
     grid: str = "square"
-    overlap: float = 0.3
+    overlap: float = 0.1
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"
+    junction: float = 0.6
 
     def __post_init__(self) -> None:
         if self.boundary not in BOUNDARY_MODES:

@@ -11,6 +11,18 @@ Start from a Tiling of the exemplar and remove the order that betrays it:
    density ρ by random removal or by pasting discs of the exemplar into the largest empty disc
    (§3.4).
 
+The structure of the texture is the exemplar's inside each copy and is made where copies meet
+and where discs are pasted.  Three choices keep those junctions like the exemplar (issue 3,
+measured by the nearest-gap distance of :func:`svgtile.metrics.structure`; README, "Likeness"):
+
+* the *junction rule* (:func:`svgtile.analysis.junction_distance`): motifs of different copies,
+  and pasted motifs and the texture, keep the q-quantile of the exemplar's nearest gaps rather
+  than its smallest gap ``d_ij``, which packed seams tighter than the exemplar ever is; density
+  repair relaxes it to ``d_ij`` step by step for the holes it leaves;
+* a motif whose turned orientation stays in its kind's arc turns with its copy (:func:`turn`), so
+  a copy of motifs drawn at all angles is rigid and keeps its gaps;
+* σ = 0.1 by default: less overlap, fewer motifs at seams (the paper suggests 0.3).
+
 Every random choice is a hash of the run's key and world-anchored integer coordinates (grid cell,
 motif, density window; see :mod:`svgtile.cellrng`), so the texture at a place does not depend on
 how far the output region extends.
@@ -21,13 +33,16 @@ Deviations from the paper, each to make the result hold for any region and exemp
 * when none of the tried exemplar discs can be pasted whole (§3.4), the largest subset of the best
   one that keeps the rule is pasted, so density repair always makes progress;
 * windows alternate between four half-window offsets, so the seams of one window grid are the
-  centres of the next.
+  centres of the next;
+* every other disc try is centred on a motif of the kind the texture lacks most and pasted where
+  that kind has the most room under the rule (:func:`_roomiest`), not at the largest empty disc
+  — which suits small motifs — and a round adds no kind beyond its share (:data:`KIND_CAP`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +50,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from .. import cellrng
-from ..analysis import Stats, analyze, footprint_areas
+from ..analysis import Stats, analyze, footprint_areas, in_arcs, junction_distance
 from ..arrangement import Arrangement
 from ..conflicts import cross_conflicts, cross_pairs, cull, find_conflicts, resolve
 from ..errors import ParameterError
@@ -59,6 +74,17 @@ LACK_WEIGHT = 3.0
 #: At most this many motifs may be displaced by one motif of a lacking kind (§3.4 insertion).
 DISPLACE_MAX = 5
 
+#: A density-repair round adds no more motifs of a kind than keep it within this fraction above
+#: its exemplar frequency (§3.4).
+KIND_CAP = 0.05
+
+#: The roomiest spot for a lacking kind is refined around this many samples per window, on a grid
+#: this many times finer (:func:`_roomiest`).
+REFINE_KEEP, REFINE = 3, 4
+
+#: Steps from the junction rule to the distance rule over the density rounds (§3.4).
+JUNCTION_STEPS = 4
+
 
 
 @dataclass(frozen=True)
@@ -77,6 +103,11 @@ class PatchParams:
         Draw each motif's orientation from its kind's exemplar arc (§3.5).
     boundary : one of ``inside``, ``centroid``, ``clip``, ``none``
         How motifs meet the output region's boundary (see :mod:`svgtile.region`).
+    junction : float in [0, 1)
+        q, motifs of different copies, and pasted motifs and the texture, keep the q-quantile of
+        the exemplar's nearest gaps apart (:func:`svgtile.analysis.junction_distance`) rather
+        than the smallest gap ``d_ij``; 0 is the paper's distance rule alone.  Density repair
+        relaxes it to ``d_ij`` in :data:`JUNCTION_STEPS` steps, for holes too small for it.
     coherence : float in [0, 1]
         Weight, against chance, of removing the motif farther from its own copy's centre when
         two conflict (§3.3): copies stay whole near their centres and meet along seams.
@@ -89,13 +120,14 @@ class PatchParams:
     """
 
     grid: str = "square"
-    overlap: float = 0.3
+    overlap: float = 0.1
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"
+    junction: float = 0.6
     coherence: float = 0.5
     density_tolerance: float = 0.1
-    density_rounds: int = 8
+    density_rounds: int = 12
     disc_tries: int = 6
 
     def __post_init__(self) -> None:
@@ -109,6 +141,10 @@ class PatchParams:
             raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {self.boundary!r}")
         if not 0.0 <= self.coherence <= 1.0:
             raise ParameterError(f"coherence must be between 0 and 1, not {self.coherence:g}")
+        if not 0.0 <= self.junction < 1.0:
+            raise ParameterError(
+                f"--junction must be at least 0 and below 1, not {self.junction:g}"
+            )
         if not 0.0 < self.density_tolerance < 1.0:
             raise ParameterError("density tolerance must be between 0 and 1")
 
@@ -144,17 +180,24 @@ def synthesize(
     protos = exemplar.prototypes
 
     report("grid", 0.0)
-    arr, cell = grid(exemplar, region, key=key, grid_kind=p.grid, overlap=p.overlap, max_rotation=p.max_rotation)
+    arr, cell = grid(
+        exemplar, region, key=key, grid_kind=p.grid, overlap=p.overlap, max_rotation=p.max_rotation, stats=stats
+    )
     if p.vary_orientation:
         arr = vary_orientations(arr, stats, _uniform(key, _ORIENT, cell))
     inside = region.keep(arr, protos, p.boundary)
     arr, cell = arr.take(inside), cell[inside]
 
     report("overlaps", 0.2)
+    # the junction rule, relaxed in equal steps to the distance rule over the density rounds
+    steps = p.junction * (1 - np.arange(JUNCTION_STEPS) / (JUNCTION_STEPS - 1))
+    rules = [junction_distance(exemplar, stats, q) for q in steps]
     priority = p.coherence * _from_centre(exemplar)[cell[:, 2]] + (1 - p.coherence) * _uniform(key, _PRIORITY, cell)
-    arr = arr.take(resolve(arr, protos, stats.distance, priority, frequency=stats.frequency))
+    copy = np.unique(cell[:, :2], axis=0, return_inverse=True)[1].ravel()
+    keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy, junction=rules[0])
+    arr = arr.take(keep)
 
-    arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report)
+    arr = adjust_density(arr, exemplar, stats, region, p, key=key, progress=report, rules=rules)
     arr = reading_order(arr)
     report("done", 1.0)
     return arr
@@ -164,14 +207,17 @@ def synthesize(
 
 
 def grid(
-    exemplar: Exemplar, region: Region, *, key: int, grid_kind: str, overlap: float, max_rotation: float
-) -> tuple[Arrangement, np.ndarray]:
+    exemplar: Exemplar, region: Region, *, key: int, grid_kind: str, overlap: float, max_rotation: float,
+    stats: Stats | None = None,
+) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
     """Overlapping, rotated copies of the exemplar covering the region (almeraj2013 §3.2).
 
     Copies sit at ``(a·sx, b·sy)`` in world coordinates, ``sx = w(1 − σ)``, ``sy = h(1 − σ)`` for
     an input region of bounding size ``w × h``; the hexagonal layout shifts odd rows by ``sx/2``
     and packs rows ``√3/2`` closer.  Copy ``(a, b)`` is rotated by θ = M(2u − 1), u a hash of the
-    cell, about its centre; each motif keeps its exemplar orientation (it is turned by −θ).
+    cell, about its centre; each motif keeps its exemplar orientation (it is turned by −θ), as in
+    the paper, unless ``stats`` is given: then a motif whose orientation turned by θ is still
+    in its kind's exemplar arc turns with its copy (:func:`turn`).
 
     Returns
     -------
@@ -201,9 +247,9 @@ def grid(
     rot = rotation(theta)  # (c, 2, 2)
     xy = np.matmul(rot, local.T).transpose(0, 2, 1) + np.stack([cx, cy], -1)[:, None, :]
     c, m = len(A), len(motifs)
-    arr = Arrangement(
-        np.tile(motifs.kind, c), xy.reshape(-1, 2), np.tile(motifs.angle, c), np.tile(motifs.scale, c)
-    ).quantized(DECIMALS)
+    kind = np.tile(motifs.kind, c)
+    angle = turn(kind, np.tile(motifs.angle, c), np.repeat(theta, m), stats)
+    arr = Arrangement(kind, xy.reshape(-1, 2), angle, np.tile(motifs.scale, c)).quantized(DECIMALS)
     cell = np.stack([np.repeat(A, m), np.repeat(B, m), np.tile(np.arange(m), c)], -1)
     radius = motif_radius(arr, exemplar.prototypes)
     touch = (
@@ -211,6 +257,22 @@ def grid(
         & (arr.xy[:, 1] + radius > Y0) & (arr.xy[:, 1] - radius < Y1)
     )  # fmt: skip
     return arr.take(touch), cell[touch]
+
+
+def turn(kind: np.ndarray, angle: np.ndarray, theta: np.ndarray, stats: Stats | None) -> np.ndarray:
+    """Orientations, degrees, of motifs whose copy is turned by ``theta`` (all arrays (n,)).
+
+    The paper turns every motif back by −θ, so the copy's rotation does not carry the
+    orientations out of the exemplar's (§3.2); that changes the gaps between elongated motifs,
+    whose positions turn but whose orientations do not.  Where ``angle + theta`` is still in the
+    kind's exemplar arc (§3.5; e.g. any orientation of a kind drawn at all angles), turning the
+    motif with its copy keeps the orientations inside the arcs *and* the copy rigid, so its gaps
+    are the exemplar's.  Other motifs (and all of them without ``stats``) keep ``angle``.
+    """
+    if stats is None:
+        return angle
+    turned = (angle + theta + 180.0) % 360.0 - 180.0
+    return np.where(in_arcs(turned, kind, stats, tol=0.0), turned, angle)
 
 
 # ----------------------------------------------------------------------------- §3.5
@@ -234,7 +296,7 @@ def vary_orientations(arr: Arrangement, stats: Stats, u: np.ndarray) -> Arrangem
 
 def adjust_density(
     arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, p: PatchParams, *,
-    key: int, progress: Progress,
+    key: int, progress: Progress, rules: Sequence[np.ndarray] = (),
 ) -> Arrangement:  # fmt: skip
     """Bring every exemplar-sized window to density ρ (almeraj2013 §3.4).
 
@@ -245,7 +307,13 @@ def adjust_density(
     the window's largest empty disc and placed at random over the exemplar, if they break neither
     the overlap nor the distance rule.  Rounds stop when all windows are within tolerance for a
     full cycle of offsets, or after ``p.density_rounds`` rounds.
+
+    ``rules`` are (k, k) distances (user units) pasted motifs keep from the texture, used in equal
+    shares of the rounds in turn (default: ``d_ij`` throughout).  The patch engine passes the
+    junction rule relaxed step by step to ``d_ij`` (:func:`svgtile.analysis.junction_distance`):
+    holes too small for one step are filled at the next.
     """
+    rules = list(rules) or [stats.distance]
     x0, y0, x1, y1 = exemplar.region.bounds
     size = np.array([x1 - x0, y1 - y0])
     offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
@@ -274,7 +342,10 @@ def adjust_density(
             win = _window_of(arr.xy, origin, size, ids)
             covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
             deficit = (stats.density * area - covered)[sparse]
-            new, removed = _fill(arr, exemplar, stats, region, p, origin, size, ids[sparse], deficit, key=key, rnd=rnd)
+            rule = rules[min(len(rules) - 1, len(rules) * rnd // p.density_rounds)]
+            new, removed = _fill(
+                arr, exemplar, stats, region, p, origin, size, ids[sparse], deficit, key=key, rnd=rnd, rule=rule
+            )
             arr = Arrangement.concat([arr.take(~removed), new])
     return arr
 
@@ -341,19 +412,22 @@ def _cell_key(xy: np.ndarray) -> np.ndarray:
     return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
 
 
-def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: int, rnd: int):
+def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: int, rnd: int, rule: np.ndarray):
     """The motifs to insert into each sparse window (almeraj2013 §3.4, "too sparse").
 
     For each window, the largest empty disc is found and a congruent disc is placed at random
     over the exemplar, as in the paper; the exemplar is then superimposed so that the two discs
-    coincide (turned by θ ~ U[−M, M], motifs turned back, as for the grid copies).  Its motifs
-    inside the window are the candidates: those in the empty disc first (the paper's insertion),
-    then the rest, which fill the window's smaller holes in the same pass.  A candidate is
-    rejected if it would overlap or break the distance rule (motif by motif, so one bad motif at
-    the rim does not waste the whole disc); of the rest, a conflict-free set is taken, favouring
+    coincide (turned by θ ~ U[−M, M], motifs turned as for the grid copies, :func:`turn`).  Its
+    motifs inside the window are the candidates: those in the empty disc first (the paper's
+    insertion), then the rest, which fill the window's smaller holes in the same pass.  A
+    candidate is rejected if it would overlap the texture or come closer to it than ``rule``
+    (motif by motif, so one bad motif at the rim does not waste the whole disc); of the rest, a
+    conflict-free set is taken, favouring
     kinds the texture lacks, until the window's ``deficit`` of footprint area is met.
     ``p.disc_tries`` placements are tried per window; every other one is centred on a motif of
     the kind the texture lacks most, which may displace a few motifs (see :func:`_displacement`).
+    Candidates of different placements are held to ``rule`` too, those of one placement to
+    ``d_ij``.
 
     Returns
     -------
@@ -378,35 +452,40 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))
     lacking = np.flatnonzero(ex.kind == int(np.argmin(np.where(stats.frequency > 0, lack, np.inf))))
     pick = lacking[(u[:, 0] * len(lacking)).astype(np.int64) % len(lacking)]
-    source = np.where((tid % 2 == 1)[:, None], ex.xy[pick], source)
+    odd = tid % 2 == 1
+    source = np.where(odd[:, None], ex.xy[pick], source)
+    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, int(ex.kind[lacking[0]]), rule, ex)
+    centre = np.where(odd[:, None], spot[wid], centre[wid])  # (tries, 2): where each try is pasted
+    radius = np.where(odd, room[wid], radius[wid])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
 
     # every exemplar motif of every placement, then those whose centroid falls in the window
     t_of = np.repeat(np.arange(len(wid)), m)
     e_of = np.tile(np.arange(m), len(wid))
     offset = np.matmul(rotation(theta)[t_of], (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
-    xy = centre[wid[t_of]] + offset
+    xy = centre[t_of] + offset
     lo = origin + ids[wid[t_of]] * size
     inside = ((xy >= lo) & (xy < lo + size)).all(axis=1)
     t_of, e_of, xy = t_of[inside], e_of[inside], xy[inside]
-    new = Arrangement(ex.kind[e_of], xy, ex.angle[e_of], ex.scale[e_of]).quantized(DECIMALS)
+    angle = turn(ex.kind[e_of], ex.angle[e_of], theta[t_of], stats)
+    new = Arrangement(ex.kind[e_of], xy, angle, ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
         new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
     if len(new) == 0:
         return new, np.zeros(len(arr), dtype=bool)
-    in_disc = np.hypot(*(new.xy - centre[wid[t_of]]).T) <= radius[wid[t_of]]
+    in_disc = np.hypot(*(new.xy - centre[t_of]).T) <= radius[t_of]
     if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
         near, idx = tree.query(new.xy, k=1, workers=-1)
         inner = np.array([pr.inner for pr in protos])
         a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
-        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(stats.distance[new.kind, arr.kind[idx]], 0))
+        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
-    free = ~cross_conflicts(new, arr, protos, stats.distance, tree)
+    free = ~cross_conflicts(new, arr, protos, rule, tree)
     inside = region.keep(new, protos, p.boundary)
     candidate = in_disc & ~free & inside & (tid[t_of] % 2 == 1)
-    displace, victim_of = _displacement(new, arr, stats, protos, tree, lack, candidate, wid[t_of])
+    displace, victim_of = _displacement(new, arr, rule, protos, tree, lack, candidate, wid[t_of])
     ok = (free & inside) | displace
 
     # a conflict-free subset: displacing motifs, then motifs of the empty disc, then kinds the
@@ -418,22 +497,28 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
         + LACK_WEIGHT * (np.clip(lack[new.kind], -1, 1) - 2.0 * in_disc)
         - 8.0 * LACK_WEIGHT * displace
     )
-    keep = cull(len(new), find_conflicts(new, protos, stats.distance), score)
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance, group=t_of, junction=rule), score)
     new, score, w, orig, displace = new.take(keep), score[keep], wid[t_of[keep]], orig[keep], displace[keep]
 
     # per window, in score order, until its deficit of covered area is met
     order = np.lexsort((score, w))
-    new, w, orig, displace = new.take(order), w[order], orig[order], displace[order]
+    new, w, orig, displace, score = new.take(order), w[order], orig[order], displace[order], score[order]
     area = footprint_areas(new, protos)
     csum = np.cumsum(area)
     starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1] if len(w) else np.zeros(0, np.int64)
     before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
     take = (before < deficit[w]) | displace
+    # no kind beyond its share: small kinds fit every hole, and would stand in for the large
+    added = np.flatnonzero(take & ~displace)
+    have = np.bincount(arr.kind, minlength=len(protos))
+    room_for = np.ceil(stats.frequency * (len(arr) + len(added)) * (1 + KIND_CAP)) - have
+    added = added[np.argsort(score[added], kind="stable")]  # the best of each kind first
+    take[added[_rank_within(new.kind[added]) >= room_for[new.kind[added]]]] = False
     removed = np.isin(victim_of, orig[take & displace]) & (victim_of >= 0)
     return new.take(take), removed
 
 
-def _displacement(new, arr, stats, protos, tree, lack, candidate, window):
+def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
     """Which candidates may take their place by removing the few motifs in their way.
 
     A kind hard to place (large, with wide distances) finds no empty disc big enough once
@@ -452,7 +537,7 @@ def _displacement(new, arr, stats, protos, tree, lack, candidate, window):
     idx = np.flatnonzero(candidate)
     if len(idx) == 0:
         return displace, victim_of
-    a, b = cross_pairs(new.take(idx), arr, protos, stats.distance, tree)
+    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree)
     area_new = footprint_areas(new, protos)[idx]
     area_old = footprint_areas(arr, protos)
     count = np.bincount(a, minlength=len(idx))
@@ -506,6 +591,69 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
     last = np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]
     best = order[last]
     return pts[best], np.maximum(clear[best], 0.0)
+
+
+def _rank_within(labels: np.ndarray) -> np.ndarray:
+    """(n,) int: how many earlier entries share each entry's label (0 for the first of each)."""
+    order = np.argsort(labels, kind="stable")
+    rank = np.empty(len(labels), dtype=np.int64)
+    rank[order] = np.arange(len(labels)) - np.searchsorted(labels[order], labels[order])
+    return rank
+
+
+def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, rule, ex, samples: int = 12):
+    """Per window, the point where a motif of ``kind`` has the most room under ``rule``.
+
+    The largest empty disc (§3.4) is where a small motif fits best, not a large one with wide
+    distances: a motif of kind L at p keeps ``rule`` from every motif m if
+    ``|p − x_m| − r_m − r_L ≥ rule[L, kind m]`` (bounding radii: a lower bound of the footprint
+    distance), so its room at p is the smallest left-hand minus right-hand side.  The nearest
+    motif of each kind is found in that kind's own k-d tree (the nearest motif overall may not
+    be the binding one) and taken at the kind's largest radius.  Each window is sampled on a
+    ``samples × samples`` grid, then around its :data:`REFINE_KEEP` roomiest samples on a grid
+    :data:`REFINE` times finer.
+
+    Returns
+    -------
+    spot : (w, 2) the roomiest sample of each window
+    clear : (w,) its clearance to every footprint (the empty-disc radius there), ≥ 0
+    """
+    radius = motif_radius(arr, protos)
+    own = protos[kind].radius * float(ex.scale[ex.kind == kind].max())
+    trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(radius[arr.kind == j].max())) for j in np.unique(arr.kind)]
+    lo = origin + ids * size  # (w, 2)
+
+    def measure(pts, owner):
+        inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
+        room = np.where(inside, np.inf, -np.inf)
+        clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
+        q = np.flatnonzero(inside)
+        for j, t, r_j in trees:
+            far = own + float(rule[kind, j]) + r_j + float(size.max())  # room beyond: more than enough
+            d, _ = t.query(pts[q], k=1, distance_upper_bound=far, workers=-1)
+            clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
+            room[q] = np.minimum(room[q], d - r_j - own - rule[kind, j])
+        return room, clear
+
+    g = (np.arange(samples) + 0.5) / samples
+    cell = np.stack([v.ravel() for v in np.meshgrid(g, g)], -1)  # (s², 2) in window units
+    pts = (lo[:, None, :] + cell[None, :, :] * size).reshape(-1, 2)
+    owner = np.repeat(np.arange(len(ids)), len(cell))
+    room, clear = measure(pts, owner)
+    # the best few samples of each window, each refined on a finer grid over its own cell
+    keep = min(REFINE_KEEP, len(cell))
+    best = np.argsort(-room.reshape(len(ids), len(cell)), axis=1, kind="stable")[:, :keep]
+    f = ((np.arange(REFINE) + 0.5) / REFINE - 0.5) / samples
+    sub = np.stack([v.ravel() for v in np.meshgrid(f, f)], -1)  # (REFINE², 2)
+    centre = cell[best]  # (w, keep, 2)
+    fine = (lo[:, None, None, :] + (centre[:, :, None, :] + sub[None, None, :, :]) * size).reshape(-1, 2)
+    fine_owner = np.repeat(np.arange(len(ids)), keep * len(sub))
+    f_room, f_clear = measure(fine, fine_owner)
+    pts, owner = np.concatenate([pts, fine]), np.concatenate([owner, fine_owner])
+    room, clear = np.concatenate([room, f_room]), np.concatenate([clear, f_clear])
+    order = np.lexsort((room, owner))
+    top = order[np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]]
+    return pts[top], np.maximum(clear[top], 0.0)
 
 
 # ----------------------------------------------------------------------------- final check
