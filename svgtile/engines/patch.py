@@ -82,6 +82,10 @@ KIND_CAP = 0.05
 #: this many times finer (:func:`_roomiest`).
 REFINE_KEEP, REFINE = 3, 4
 
+#: … after the room is measured only at the samples (this many per window) where the nearest motif
+#: leaves the most (:func:`_roomiest`).
+SCREEN = 24
+
 #: Steps from the junction rule to the distance rule over the density rounds (§3.4).
 JUNCTION_STEPS = 4
 
@@ -639,13 +643,24 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, r
     cell = np.stack([v.ravel() for v in np.meshgrid(g, g)], -1)  # (s², 2) in window units
     pts = (lo[:, None, :] + cell[None, :, :] * size).reshape(-1, 2)
     owner = np.repeat(np.arange(len(ids)), len(cell))
+    if tree is not None and len(cell) > SCREEN:
+        # the nearest motif's term bounds the room from above: only the best bounds are measured
+        d, m = tree.query(pts, k=1, workers=-1)
+        upper = (d - radius[m] - own - rule[kind, arr.kind[m]]).reshape(len(ids), len(cell))
+        pick = np.argsort(-upper, axis=1, kind="stable")[:, :SCREEN]
+        cell_of = pick.ravel()
+        pts = (lo[:, None, :] + cell[pick] * size).reshape(-1, 2)
+        owner = np.repeat(np.arange(len(ids)), SCREEN)
+    else:
+        cell_of = np.tile(np.arange(len(cell)), len(ids))
     room, clear = measure(pts, owner)
     # the best few samples of each window, each refined on a finer grid over its own cell
-    keep = min(REFINE_KEEP, len(cell))
-    best = np.argsort(-room.reshape(len(ids), len(cell)), axis=1, kind="stable")[:, :keep]
+    per = len(pts) // len(ids)
+    keep = min(REFINE_KEEP, per)
+    best = np.argsort(-room.reshape(len(ids), per), axis=1, kind="stable")[:, :keep]
     f = ((np.arange(REFINE) + 0.5) / REFINE - 0.5) / samples
     sub = np.stack([v.ravel() for v in np.meshgrid(f, f)], -1)  # (REFINE², 2)
-    centre = cell[best]  # (w, keep, 2)
+    centre = cell[cell_of.reshape(len(ids), per)[np.arange(len(ids))[:, None], best]]  # (w, keep, 2)
     fine = (lo[:, None, None, :] + (centre[:, :, None, :] + sub[None, None, :, :]) * size).reshape(-1, 2)
     fine_owner = np.repeat(np.arange(len(ids)), keep * len(sub))
     f_room, f_clear = measure(fine, fine_owner)
