@@ -131,7 +131,7 @@ class FillWithTexture(inkex.EffectExtension):
         pars.add_argument("--tab", default="options")
         pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random"])
         pars.add_argument("--grid", default="square", choices=["square", "hex"])
-        pars.add_argument("--overlap", type=float, default=0.1)
+        pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
         pars.add_argument("--boundary", default="clip", choices=["clip", "inside", "centroid", "none"])

@@ -37,12 +37,16 @@ class Prototype:
     inner : float
         Radius of the largest disc about the origin inside the footprint (0 if the origin is
         outside it), user units: two motifs whose such discs overlap surely overlap.
+    excess : float
+        How far the outline may reach beyond the exact footprint, user units (simplified within
+        a tolerance, then grown by it: at most twice the tolerance).
     """
 
     rings: tuple[np.ndarray, ...]
     area: float
     radius: float
     inner: float
+    excess: float = 0.0
 
     @classmethod
     def from_geometry(cls, geom: shapely.Geometry, tolerance: float = SIMPLIFY) -> Prototype:
@@ -75,7 +79,7 @@ class Prototype:
         if not filled.contains(origin):
             inner = 0.0
         radius = float(np.hypot(pts[:, 0], pts[:, 1]).max())
-        return cls(rings, float(exact.area), radius, inner)
+        return cls(rings, float(exact.area), radius, inner, 2.0 * max(tol, 0.0))
 
     def geometry(self) -> shapely.Geometry:
         """The footprint as one shapely geometry in the local frame."""

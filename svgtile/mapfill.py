@@ -13,7 +13,7 @@ A *styles file* (TOML) maps classes to exemplars and parameters::
     exemplar = "exemplars/gravel.svg"   # relative to the styles file
     engine = "patch"                    # patch, tile or random
     grid = "hex"
-    overlap = 0.1
+    overlap = 0.05
     max_rotation = 30
     junction = 0.6
     vary_orientation = false

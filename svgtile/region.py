@@ -7,6 +7,10 @@ Boundary modes, as map makers know them from QGIS's fill symbol clipping:
 * ``clip`` — keep every motif that touches the region; the output clips them to it (default);
 * ``none`` — keep every motif that touches the region, unclipped.
 
+"Touches" is decided on footprint outlines, which reach up to :attr:`Prototype.excess
+<svgtile.footprint.Prototype>` beyond the drawn motif; they must meet the region shrunk by that
+much, so every motif kept for ``clip`` or ``none`` really touches it.
+
 A region is any shapely (Multi)Polygon: several parts, and holes (inliers of another map unit),
 whose edges the boundary mode treats like the outer edge.  *Avoid zones* (labels, linework,
 symbols the texture must keep clear of) are cut out of the region, and in every mode a motif
@@ -141,9 +145,13 @@ class Region:
         surely_out = ~shapely.contains_xy(self._grown(r), x, y)
         unsure = np.flatnonzero(~surely_in & ~surely_out)
         found = geoms[unsure] if geoms is not None else world_footprints(arr.take(unsure), protos)
-        test = shapely.contains if mode == "inside" else shapely.intersects
         result = surely_in.copy()
-        result[unsure] = test(self.shape, found)
+        if mode == "inside":
+            result[unsure] = shapely.contains(self.shape, found)
+        else:  # the outline may reach a little beyond the motif: it must meet the region by more
+            excess = np.array([p.excess for p in protos])[arr.kind[unsure]] * arr.scale[unsure]
+            reach = float(excess.max()) if len(excess) else 0.0
+            result[unsure] = shapely.intersects(self._grown(-reach) if reach > 0 else self.shape, found)
         return result
 
     def _grown(self, r: float) -> shapely.Geometry:

@@ -77,7 +77,7 @@ def test_fill_writes_one_texture_per_container(tmp_path):
     first = (tmp_path / "texture-0.svg").read_text()
     assert 'container="a"' in first and "<use" in first
     assert (tmp_path / "texture-1.svg").is_file()
-    xy = np.array([m.split() for m in re.findall(r"translate\(([-\d.]+ [-\d.]+)\) ", first)], float)
+    xy = np.array([m.split() for m in re.findall(r'transform="translate\(([-\d.]+ [-\d.]+)\)', first)], float)
     area = ink.container_shape([np.array(big, float), np.array(hole, float)])
     assert len(xy) > 10 and shapely.contains_xy(area, xy[:, 0], xy[:, 1]).all()
 

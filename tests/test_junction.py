@@ -189,7 +189,7 @@ def test_roomiest_spot_is_where_a_large_kind_has_most_room():
     arr = Arrangement(np.array([0, 1, 1, 1]), xy, np.zeros(4), np.ones(4))
     rule = np.array([[30.0, 0.0], [0.0, 0.0]])
     size, ids = np.array([100.0, 100.0]), np.array([[0, 0]])
-    spot, clear = _roomiest(arr, cKDTree(arr.xy), protos, Region.rectangle(100, 100), np.zeros(2), size, ids, 0, rule, arr)
+    spot, clear = _roomiest(arr, cKDTree(arr.xy), protos, Region.rectangle(100, 100), np.zeros(2), size, ids, np.array([0]), rule, arr)
 
     def room(p):
         d = np.hypot(*(p[:, None, :] - xy[None, :, :]).transpose(2, 0, 1))

@@ -274,3 +274,21 @@ def test_edit_stability_measure_can_fail(monkeypatch):
     monkeypatch.setitem(ENGINES, "patch", unanchored)
     stable, _ = edit_stability(path, radius_widths=4.0)
     assert stable < 0.5
+
+
+@pytest.mark.parametrize("mode", ["clip", "none"])
+def test_a_motif_whose_outline_only_grazes_the_region_is_not_kept(mode):
+    """Footprint outlines reach a little beyond the drawn motif (Prototype.excess): a disc 0.2 %
+    of its radius clear of the region has an outline that meets it, yet is not kept; discs that
+    really cross the edge are."""
+    from svgtile.arrangement import Arrangement
+    from svgtile.footprint import Prototype
+
+    proto = Prototype.from_geometry(shapely.Point(0, 0).buffer(10.0, 256))
+    assert proto.excess > 0.02
+    region = Region(shapely.box(0, 0, 100, 100))
+    xs = np.array([-10.02, -9.0, -5.0, 50.0])  # clear by 0.02, crossing by 1, by 5, inside
+    arr = Arrangement(np.zeros(4, int), np.c_[xs, np.full(4, 50.0)], np.zeros(4), np.ones(4))
+    outline = world_footprints(arr, [proto])
+    assert shapely.intersects(region.shape, outline[0])  # the outline grazes the region …
+    assert region.keep(arr, [proto], mode).tolist() == [False, True, True, True]  # … the disc does not

@@ -44,7 +44,7 @@ class CommonParams:
     """
 
     grid: str = "square"
-    overlap: float = 0.1
+    overlap: float = 0.05
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"

@@ -21,7 +21,7 @@ measured by the nearest-gap distance of :func:`svgtile.metrics.structure`; READM
   repair relaxes it to ``d_ij`` step by step for the holes it leaves;
 * a motif whose turned orientation stays in its kind's arc turns with its copy (:func:`turn`), so
   a copy of motifs drawn at all angles is rigid and keeps its gaps;
-* σ = 0.1 by default: less overlap, fewer motifs at seams (the paper suggests 0.3).
+* σ = 0.05 by default: less overlap, fewer motifs at seams (the paper suggests 0.3).
 
 Every random choice is a hash of the run's key and world-anchored integer coordinates (grid cell,
 motif, density window; see :mod:`svgtile.cellrng`), so the texture at a place does not depend on
@@ -34,9 +34,10 @@ Deviations from the paper, each to make the result hold for any region and exemp
   one that keeps the rule is pasted, so density repair always makes progress;
 * windows alternate between four half-window offsets, so the seams of one window grid are the
   centres of the next;
-* every other disc try is centred on a motif of the kind the texture lacks most and pasted where
+* every other disc try is centred on a motif of the kind the window lacks most and pasted where
   that kind has the most room under the rule (:func:`_roomiest`), not at the largest empty disc
-  — which suits small motifs — and a round adds no kind beyond its share (:data:`KIND_CAP`).
+  — which suits small motifs — and a round adds no kind beyond its share of the window
+  (:data:`KIND_CAP`).
 """
 
 from __future__ import annotations
@@ -68,14 +69,14 @@ _ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
 #: How strongly density thinning favours removing kinds the texture has too many of.
 KIND_BALANCE = 4.0
 
-#: How strongly density filling favours kinds the texture lacks (against chance, which weighs 1).
+#: How strongly density filling favours kinds the window lacks (against chance, which weighs 1).
 LACK_WEIGHT = 3.0
 
 #: At most this many motifs may be displaced by one motif of a lacking kind (§3.4 insertion).
 DISPLACE_MAX = 5
 
-#: A density-repair round adds no more motifs of a kind than keep it within this fraction above
-#: its exemplar frequency (§3.4).
+#: A density-repair round adds no more motifs of a kind to a window than keep it within this
+#: fraction above its exemplar frequency there (§3.4).
 KIND_CAP = 0.05
 
 #: The roomiest spot for a lacking kind is refined around this many samples per window, on a grid
@@ -124,7 +125,7 @@ class PatchParams:
     """
 
     grid: str = "square"
-    overlap: float = 0.1
+    overlap: float = 0.05
     max_rotation: float = 30.0
     vary_orientation: bool = False
     boundary: str = "clip"
@@ -426,12 +427,13 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     insertion), then the rest, which fill the window's smaller holes in the same pass.  A
     candidate is rejected if it would overlap the texture or come closer to it than ``rule``
     (motif by motif, so one bad motif at the rim does not waste the whole disc); of the rest, a
-    conflict-free set is taken, favouring
-    kinds the texture lacks, until the window's ``deficit`` of footprint area is met.
+    conflict-free set is taken, favouring kinds the window lacks, until the window's ``deficit``
+    of footprint area is met, and no kind beyond its share of the window (:data:`KIND_CAP`).
     ``p.disc_tries`` placements are tried per window; every other one is centred on a motif of
-    the kind the texture lacks most, which may displace a few motifs (see :func:`_displacement`).
-    Candidates of different placements are held to ``rule`` too, those of one placement to
-    ``d_ij``.
+    the kind the window lacks most and pasted where that kind has the most room
+    (:func:`_roomiest`); it may displace a few motifs (see :func:`_displacement`).  Candidates
+    of different placements are held to ``rule`` too, those of one placement to ``d_ij``.
+    Kinds are counted per window, so the texture at a place depends on its surroundings only.
 
     Returns
     -------
@@ -450,15 +452,21 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
     r = np.minimum(radius[wid, None], np.array([(x1 - x0) / 2, (y1 - y0) / 2]))
     source = np.array([x0, y0]) + r + u * (np.array([x1 - x0, y1 - y0]) - 2 * r)  # disc centres over the exemplar
-    # every other try centres the exemplar on a motif of the kind the texture lacks most, so the
-    # largest empty disc receives the motif hardest to place (usually the largest)
-    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
-    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))
-    lacking = np.flatnonzero(ex.kind == int(np.argmin(np.where(stats.frequency > 0, lack, np.inf))))
-    pick = lacking[(u[:, 0] * len(lacking)).astype(np.int64) % len(lacking)]
+    # every other try centres the exemplar on a motif of the kind the window lacks most, placed
+    # where that kind has the most room (usually the largest kind, the hardest to place); each
+    # window counts its own kinds, so the texture at a place depends on its surroundings only
+    k = len(protos)
+    mine = _window_of(arr.xy, origin, size, ids)
+    have = np.bincount(mine[mine >= 0] * k + arr.kind[mine >= 0], minlength=wins * k).reshape(wins, k)
+    freq = (have + stats.frequency) / (have.sum(axis=1, keepdims=True) + 1.0)  # one motif of prior
+    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))  # (windows, k)
+    want = np.argmin(np.where(stats.frequency > 0, lack, np.inf), axis=1)  # (windows,)
+    by_kind = np.argsort(ex.kind, kind="stable")
+    first, count = np.searchsorted(ex.kind[by_kind], want), np.bincount(ex.kind, minlength=k)[want]
+    pick = by_kind[first[wid] + (u[:, 0] * count[wid]).astype(np.int64) % count[wid]]
     odd = tid % 2 == 1
     source = np.where(odd[:, None], ex.xy[pick], source)
-    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, int(ex.kind[lacking[0]]), rule, ex)
+    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, want, rule, ex)
     centre = np.where(odd[:, None], spot[wid], centre[wid])  # (tries, 2): where each try is pasted
     radius = np.where(odd, room[wid], radius[wid])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
@@ -493,12 +501,12 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     ok = (free & inside) | displace
 
     # a conflict-free subset: displacing motifs, then motifs of the empty disc, then kinds the
-    # texture lacks
+    # window lacks
     orig = np.flatnonzero(ok)
     new, t_of, in_disc, displace = new.take(ok), t_of[ok], in_disc[ok], displace[ok]
     score = (
         cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
-        + LACK_WEIGHT * (np.clip(lack[new.kind], -1, 1) - 2.0 * in_disc)
+        + LACK_WEIGHT * (np.clip(lack[wid[t_of], new.kind], -1, 1) - 2.0 * in_disc)
         - 8.0 * LACK_WEIGHT * displace
     )
     keep = cull(len(new), find_conflicts(new, protos, stats.distance, group=t_of, junction=rule), score)
@@ -512,12 +520,14 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1] if len(w) else np.zeros(0, np.int64)
     before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
     take = (before < deficit[w]) | displace
-    # no kind beyond its share: small kinds fit every hole, and would stand in for the large
+    # no kind beyond its share in its window: small kinds fit every hole, and would stand in for the
+    # large (counted per window, so that the texture at a place depends on its surroundings only)
     added = np.flatnonzero(take & ~displace)
-    have = np.bincount(arr.kind, minlength=len(protos))
-    room_for = np.ceil(stats.frequency * (len(arr) + len(added)) * (1 + KIND_CAP)) - have
+    total = have.sum(axis=1) + np.bincount(w[added], minlength=len(ids))
+    room_for = np.ceil(stats.frequency[None, :] * total[:, None] * (1 + KIND_CAP)) - have  # (windows, k)
     added = added[np.argsort(score[added], kind="stable")]  # the best of each kind first
-    take[added[_rank_within(new.kind[added]) >= room_for[new.kind[added]]]] = False
+    slot = w[added] * k + new.kind[added]
+    take[added[_rank_within(slot) >= room_for.ravel()[slot]]] = False
     removed = np.isin(victim_of, orig[take & displace]) & (victim_of >= 0)
     return new.take(take), removed
 
@@ -527,8 +537,8 @@ def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
 
     A kind hard to place (large, with wide distances) finds no empty disc big enough once
     culling has packed the small kinds around it, so the texture lacks it for good.  A candidate
-    of the kind the texture lacks most, centred in a window's largest empty disc, may displace up
-    to DISPLACE_MAX conflicting motifs of kinds the texture has enough of and whose area together is
+    of the kind its window lacks most, centred where that kind has the most room, may displace up
+    to DISPLACE_MAX conflicting motifs of kinds the window has enough of and whose area together is
     smaller than its own — one per window and round.
 
     Returns
@@ -546,7 +556,7 @@ def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
     area_old = footprint_areas(arr, protos)
     count = np.bincount(a, minlength=len(idx))
     cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
-    scarce = np.bincount(a, weights=(lack[arr.kind[b]] < 0).astype(float), minlength=len(idx))
+    scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
     good = (count <= DISPLACE_MAX) & (cost < area_new) & (scarce == 0) & (count > 0)
     # one per window: the first good candidate; and no motif displaced twice
     first = np.full(window.max() + 1, -1)
@@ -605,8 +615,8 @@ def _rank_within(labels: np.ndarray) -> np.ndarray:
     return rank
 
 
-def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, rule, ex, samples: int = 12):
-    """Per window, the point where a motif of ``kind`` has the most room under ``rule``.
+def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, ex, samples: int = 12):
+    """Per window, the point where a motif of ``kind[window]`` has the most room under ``rule``.
 
     The largest empty disc (§3.4) is where a small motif fits best, not a large one with wide
     distances: a motif of kind L at p keeps ``rule`` from every motif m if
@@ -617,13 +627,21 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, r
     ``samples × samples`` grid, then around its :data:`REFINE_KEEP` roomiest samples on a grid
     :data:`REFINE` times finer.
 
+    Parameters
+    ----------
+    kind : (w,) int array, the kind to make room for in each window
+    rule : (k, k) float array, user units
+    ex : the exemplar's motifs (their largest scale per kind sizes the motif)
+
     Returns
     -------
     spot : (w, 2) the roomiest sample of each window
     clear : (w,) its clearance to every footprint (the empty-disc radius there), ≥ 0
     """
     radius = motif_radius(arr, protos)
-    own = protos[kind].radius * float(ex.scale[ex.kind == kind].max())
+    largest = np.zeros(len(protos))
+    np.maximum.at(largest, ex.kind, ex.scale)
+    size_of = np.array([p.radius for p in protos]) * largest  # (k,) bounding radius at the largest scale
     trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(radius[arr.kind == j].max())) for j in np.unique(arr.kind)]
     lo = origin + ids * size  # (w, 2)
 
@@ -632,11 +650,13 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, r
         room = np.where(inside, np.inf, -np.inf)
         clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
         q = np.flatnonzero(inside)
+        want = kind[owner[q]]
         for j, t, r_j in trees:
-            far = own + float(rule[kind, j]) + r_j + float(size.max())  # room beyond: more than enough
+            need = size_of[want] + rule[want, j]
+            far = float(need.max(initial=0.0)) + r_j + float(size.max())  # room beyond: more than enough
             d, _ = t.query(pts[q], k=1, distance_upper_bound=far, workers=-1)
             clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
-            room[q] = np.minimum(room[q], d - r_j - own - rule[kind, j])
+            room[q] = np.minimum(room[q], d - r_j - need)
         return room, clear
 
     g = (np.arange(samples) + 0.5) / samples
@@ -646,7 +666,8 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind: int, r
     if tree is not None and len(cell) > SCREEN:
         # the nearest motif's term bounds the room from above: only the best bounds are measured
         d, m = tree.query(pts, k=1, workers=-1)
-        upper = (d - radius[m] - own - rule[kind, arr.kind[m]]).reshape(len(ids), len(cell))
+        want = kind[owner]
+        upper = (d - radius[m] - size_of[want] - rule[want, arr.kind[m]]).reshape(len(ids), len(cell))
         pick = np.argsort(-upper, axis=1, kind="stable")[:, :SCREEN]
         cell_of = pick.ravel()
         pts = (lo[:, None, :] + cell[pick] * size).reshape(-1, 2)
