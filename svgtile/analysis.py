@@ -148,6 +148,16 @@ def distance_matrix(arr: Arrangement, protos: list[Prototype]) -> tuple[np.ndarr
     return distance, measured, overlaps
 
 
+def periodic_block(arr: Arrangement, period: tuple[float, float]) -> Arrangement:
+    """The tile's motifs on the 3 × 3 block of tiles around it, the tile's own first (9n motifs)."""
+    shifts = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1) if (i, j) != (0, 0)], dtype=np.float64)
+    shifts = np.vstack([[0.0, 0.0], shifts]) * np.asarray(period, dtype=np.float64)
+    return Arrangement(
+        np.tile(arr.kind, 9), (arr.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
+        np.tile(arr.angle, 9), np.tile(arr.scale, 9),
+    )  # fmt: skip
+
+
 def periodic_distance_matrix(
     arr: Arrangement, protos: list[Prototype], period: tuple[float, float]
 ) -> tuple[np.ndarray, np.ndarray, int]:
@@ -167,12 +177,7 @@ def periodic_distance_matrix(
     overlaps : int
     """
     n = len(arr)
-    shifts = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1) if (i, j) != (0, 0)], dtype=np.float64)
-    shifts = np.vstack([[0.0, 0.0], shifts]) * np.asarray(period, dtype=np.float64)
-    block = Arrangement(
-        np.tile(arr.kind, 9), (arr.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
-        np.tile(arr.angle, 9), np.tile(arr.scale, 9),
-    )  # fmt: skip
+    block = periodic_block(arr, period)
     distance, measured, _ = distance_matrix(block, protos)
     geoms = world_footprints(block, protos)
     radius = motif_radius(block, protos)
@@ -396,12 +401,7 @@ def junction_distance(exemplar: Exemplar, stats: Stats, quantile: float) -> np.n
     k, n = len(protos), len(ex)
     period = getattr(exemplar, "period", None)
     if period is not None:  # the tile amid its eight neighbours: gaps across the edges are seen
-        shifts = np.array([(0, 0)] + [(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1) if (i, j) != (0, 0)], float)
-        shifts *= np.asarray(period, dtype=np.float64)
-        ex = Arrangement(
-            np.tile(ex.kind, 9), (ex.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
-            np.tile(ex.angle, 9), np.tile(ex.scale, 9),
-        )  # fmt: skip
+        ex = periodic_block(ex, period)
     geoms = world_footprints(ex, protos)
     q = np.full((k, k), np.nan)
     for i in range(k):
