@@ -377,7 +377,27 @@ def nearest_distances(
     return best
 
 
-def junction_distance(exemplar: Exemplar, stats: Stats, quantile: float) -> np.ndarray:
+def exemplar_gaps(exemplar: Exemplar) -> list[list[np.ndarray]]:
+    """``gaps[i][j]``: the footprint distance from each exemplar motif of kind i to its nearest
+    other motif of kind j (:func:`nearest_gaps`, finite values only; across the tile's edges for
+    a repeating tile), user units."""
+    ex, protos = exemplar.motifs, exemplar.prototypes
+    k, n = len(protos), len(ex)
+    period = getattr(exemplar, "period", None)
+    if period is not None:  # the tile amid its eight neighbours: gaps across the edges are seen
+        ex = periodic_block(ex, period)
+    geoms = world_footprints(ex, protos)
+    out = []
+    for i in range(k):
+        sources = np.flatnonzero(ex.kind[:n] == i)
+        row = [nearest_gaps(ex, protos, sources, j, geoms=geoms) for j in range(k)]
+        out.append([g[np.isfinite(g)] for g in row])
+    return out
+
+
+def junction_distance(
+    exemplar: Exemplar, stats: Stats, quantile: float, gaps: list[list[np.ndarray]] | None = None
+) -> np.ndarray:
     """(k, k) distance, user units, that motifs placed independently of each other must keep.
 
     The distance rule ``d_ij`` is the *smallest* gap the exemplar shows; the typical gap is
@@ -393,24 +413,18 @@ def junction_distance(exemplar: Exemplar, stats: Stats, quantile: float) -> np.n
     repeating tile).  Where only one direction has :data:`GAP_MIN_SAMPLES` gaps, its quantile is
     taken; where neither has, ``d_ij`` is kept; ``quantile = 0`` gives ``d_ij`` everywhere.  ``J``
     is symmetric and ``J ≥ d``, so an arrangement that keeps ``J`` keeps the distance rule.
+    ``gaps`` are :func:`exemplar_gaps`, if already measured.
     """
     d = stats.distance
     if quantile <= 0:
         return d.copy()
-    ex, protos = exemplar.motifs, exemplar.prototypes
-    k, n = len(protos), len(ex)
-    period = getattr(exemplar, "period", None)
-    if period is not None:  # the tile amid its eight neighbours: gaps across the edges are seen
-        ex = periodic_block(ex, period)
-    geoms = world_footprints(ex, protos)
+    gaps = exemplar_gaps(exemplar) if gaps is None else gaps
+    k = len(gaps)
     q = np.full((k, k), np.nan)
     for i in range(k):
-        sources = np.flatnonzero(ex.kind[:n] == i)
         for j in range(k):
-            gaps = nearest_gaps(ex, protos, sources, j, geoms=geoms)
-            gaps = gaps[np.isfinite(gaps)]
-            if len(gaps) >= GAP_MIN_SAMPLES:
-                q[i, j] = np.quantile(gaps, quantile)
+            if len(gaps[i][j]) >= GAP_MIN_SAMPLES:
+                q[i, j] = np.quantile(gaps[i][j], quantile)
     pair = np.fmin(q, q.T)  # nan only where neither direction was measured
     return np.where(np.isnan(pair), d, np.maximum(d, pair))
 

@@ -69,13 +69,15 @@ def find_conflicts(
     geoms : (n,) world footprints of ``arr`` if already built; otherwise they are built band by
         band (horizontal bands of :data:`BAND_MOTIFS` motifs plus a halo as wide as the largest
         possible conflict), and a pair is reported by the band of its lower motif only.
-    group, junction : optional (n,) int array and (k, k) float array ≥ ``distance``: two motifs
-        of different groups (say, of different exemplar copies) must keep ``junction`` apart
-        instead of ``distance`` (:func:`svgtile.analysis.junction_distance`); a pair that keeps
+    group, junction : optional (n,) int array and (k, k) float array: two motifs of different
+        groups (say, of different exemplar copies) must keep the larger of ``junction`` and
+        ``distance`` apart (:func:`svgtile.analysis.junction_distance`); a pair that keeps
         ``distance`` but not ``junction`` is a violation.
     """
     if (group is None) != (junction is None):
         raise ValueError("group and junction go together")
+    if junction is not None:
+        junction = np.maximum(distance, junction)  # the junction rule adds to the distance rule
     if geoms is not None or len(arr) <= BAND_MOTIFS:
         return _conflicts(arr, protos, distance, geoms, group, junction)
     widest = distance if junction is None else junction

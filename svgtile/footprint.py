@@ -38,8 +38,8 @@ class Prototype:
         Radius of the largest disc about the origin inside the footprint (0 if the origin is
         outside it), user units: two motifs whose such discs overlap surely overlap.
     excess : float
-        How far the outline may reach beyond the exact footprint, user units (simplified within
-        a tolerance, then grown by it: at most twice the tolerance).
+        How far the outline reaches beyond the exact footprint, user units (measured on the
+        outline densified to a quarter of the tolerance, plus that quarter).
     """
 
     rings: tuple[np.ndarray, ...]
@@ -79,7 +79,11 @@ class Prototype:
         if not filled.contains(origin):
             inner = 0.0
         radius = float(np.hypot(pts[:, 0], pts[:, 1]).max())
-        return cls(rings, float(exact.area), radius, inner, 2.0 * max(tol, 0.0))
+        excess = 0.0
+        if tol > 0:  # simplified, then grown with mitred corners: measured, not bounded
+            outline = shapely.segmentize(shapely.MultiLineString(list(rings)), tol / 4)
+            excess = float(shapely.distance(shapely.points(shapely.get_coordinates(outline)), exact).max()) + tol / 4
+        return cls(rings, float(exact.area), radius, inner, excess)
 
     def geometry(self) -> shapely.Geometry:
         """The footprint as one shapely geometry in the local frame."""

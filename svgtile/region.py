@@ -148,10 +148,13 @@ class Region:
         result = surely_in.copy()
         if mode == "inside":
             result[unsure] = shapely.contains(self.shape, found)
-        else:  # the outline may reach a little beyond the motif: it must meet the region by more
+        else:  # the outline reaches a little beyond the motif: it must meet the region by more
             excess = np.array([p.excess for p in protos])[arr.kind[unsure]] * arr.scale[unsure]
-            reach = float(excess.max()) if len(excess) else 0.0
-            result[unsure] = shapely.intersects(self._grown(-reach) if reach > 0 else self.shape, found)
+            # each motif's own excess, rounded up to a ladder of 2^(1/4) steps: few shrunk regions
+            step = np.where(excess > 0, np.exp2(np.ceil(4 * np.log2(np.maximum(excess, 1e-300))) / 4), 0.0)
+            for e in np.unique(step):
+                mine = step == e
+                result[unsure[mine]] = shapely.intersects(self._grown(-float(e)) if e > 0 else self.shape, found[mine])
         return result
 
     def _grown(self, r: float) -> shapely.Geometry:

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+import shapely.affinity
 from scipy.spatial import cKDTree
 
 from svgtile import Region, analyze, read_exemplar
@@ -205,3 +206,41 @@ def test_roomiest_spot_is_where_a_large_kind_has_most_room():
     # clearance is the plain empty-disc radius at the spot (to footprints and window edges)
     plain = min((np.hypot(*(spot[0] - xy).T) - [5, 1, 1, 1]).min(), *(spot[0]), *(100 - spot[0]))
     assert clear[0] == pytest.approx(plain, abs=1e-6)
+
+
+def test_roomiest_spot_stays_in_the_region():
+    """A window half outside the region: the room outside is large (nothing is there), but the
+    spot must be inside, where a motif can go."""
+    protos = [Prototype.from_geometry(shapely.Point(0, 0).buffer(1.0, 32), tolerance=0.0)]
+    g = np.arange(2.0, 60.0, 4.0)
+    xy = np.stack([v.ravel() for v in np.meshgrid(g, np.arange(2.0, 100.0, 4.0))], -1)
+    arr = Arrangement(np.zeros(len(xy), int), xy, np.zeros(len(xy)), np.ones(len(xy)))
+    region = Region(shapely.box(0, 0, 60, 100))
+    size, ids = np.array([100.0, 100.0]), np.array([[0, 0]])
+    spot, clear = _roomiest(arr, cKDTree(arr.xy), protos, region, np.zeros(2), size, ids, np.array([0]), np.zeros((1, 1)), arr)
+    assert region.shape.contains(shapely.Point(spot[0]))
+    assert 0 <= clear[0] < 2.0  # among dots 4 apart, no clearance beyond the gaps between them
+
+
+def test_junction_below_the_distance_rule_still_keeps_it():
+    arr, protos = discs([(0, 0), (2.5, 0)])  # gap 0.5
+    found = find_conflicts(arr, protos, np.array([[1.0]]), group=np.array([0, 1]), junction=np.array([[0.2]]))
+    assert len(found) == 1 and found.violation[0]
+
+
+@pytest.mark.parametrize(
+    "shape",
+    [
+        shapely.Polygon([(0, 0), (10, 0), (0, 1)]),  # a sharp triangle: mitred corners reach far
+        shapely.Polygon([(np.cos(a) * r, np.sin(a) * r) for a, r in zip(np.linspace(0, 2 * np.pi, 10, endpoint=False), [5, 2] * 5, strict=True)]),
+        shapely.Point(0, 0).buffer(3.0, 64),
+    ],
+)
+def test_prototype_excess_bounds_how_far_the_outline_reaches(shape):
+    c = shape.centroid
+    shape = shapely.affinity.translate(shape, -c.x, -c.y)
+    proto = Prototype.from_geometry(shape)
+    outline = shapely.segmentize(proto.geometry().boundary, 1e-3)
+    reach = float(shapely.distance(shapely.points(shapely.get_coordinates(outline)), shape).max())
+    assert 0 < reach <= proto.excess + 1e-9
+    assert proto.excess <= reach * 1.5 + 1e-6  # and not much more

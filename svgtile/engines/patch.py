@@ -51,7 +51,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from .. import cellrng
-from ..analysis import Stats, analyze, footprint_areas, in_arcs, junction_distance
+from ..analysis import Stats, analyze, exemplar_gaps, footprint_areas, in_arcs, junction_distance
 from ..arrangement import Arrangement
 from ..conflicts import cross_conflicts, cross_pairs, cull, find_conflicts, resolve
 from ..errors import ParameterError
@@ -196,7 +196,8 @@ def synthesize(
     report("overlaps", 0.2)
     # the junction rule, relaxed in equal steps to the distance rule over the density rounds
     steps = p.junction * (1 - np.arange(JUNCTION_STEPS) / (JUNCTION_STEPS - 1))
-    rules = [junction_distance(exemplar, stats, q) for q in steps]
+    gaps = exemplar_gaps(exemplar)
+    rules = [junction_distance(exemplar, stats, q, gaps) for q in steps]
     priority = p.coherence * _from_centre(exemplar)[cell[:, 2]] + (1 - p.coherence) * _uniform(key, _PRIORITY, cell)
     copy = np.unique(cell[:, :2], axis=0, return_inverse=True)[1].ravel()
     keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy, junction=rules[0])
@@ -433,7 +434,8 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     the kind the window lacks most and pasted where that kind has the most room
     (:func:`_roomiest`); it may displace a few motifs (see :func:`_displacement`).  Candidates
     of different placements are held to ``rule`` too, those of one placement to ``d_ij``.
-    Kinds are counted per window, so the texture at a place depends on its surroundings only.
+    Kinds are counted per window, so a far edit does not change what a window receives (thinning
+    and §3.3's kind balancing still count over the whole texture).
 
     Returns
     -------
@@ -454,7 +456,7 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     source = np.array([x0, y0]) + r + u * (np.array([x1 - x0, y1 - y0]) - 2 * r)  # disc centres over the exemplar
     # every other try centres the exemplar on a motif of the kind the window lacks most, placed
     # where that kind has the most room (usually the largest kind, the hardest to place); each
-    # window counts its own kinds, so the texture at a place depends on its surroundings only
+    # window counts its own kinds, so a far edit does not change its choice
     k = len(protos)
     mine = _window_of(arr.xy, origin, size, ids)
     have = np.bincount(mine[mine >= 0] * k + arr.kind[mine >= 0], minlength=wins * k).reshape(wins, k)
@@ -635,26 +637,29 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
 
     Returns
     -------
-    spot : (w, 2) the roomiest sample of each window
-    clear : (w,) its clearance to every footprint (the empty-disc radius there), ≥ 0
+    spot : (w, 2) the roomiest sample of each window inside the region (if it has one)
+    clear : (w,) its clearance to every footprint (the empty-disc radius there), ≥ 0; 0 for a
+        spot outside the region
     """
     radius = motif_radius(arr, protos)
     largest = np.zeros(len(protos))
     np.maximum.at(largest, ex.kind, ex.scale)
     size_of = np.array([p.radius for p in protos]) * largest  # (k,) bounding radius at the largest scale
-    trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(radius[arr.kind == j].max())) for j in np.unique(arr.kind)]
+    # a kind's motifs are exemplar copies: none is larger than the kind at its largest exemplar scale
+    trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(size_of[j])) for j in np.unique(arr.kind)]
+    far = float(rule.max() + size_of.max()) + float(size.max())  # beyond: room to spare (+ r_j)
     lo = origin + ids * size  # (w, 2)
 
     def measure(pts, owner):
         inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
         room = np.where(inside, np.inf, -np.inf)
         clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
+        clear[~inside] = -np.inf
         q = np.flatnonzero(inside)
         want = kind[owner[q]]
         for j, t, r_j in trees:
             need = size_of[want] + rule[want, j]
-            far = float(need.max(initial=0.0)) + r_j + float(size.max())  # room beyond: more than enough
-            d, _ = t.query(pts[q], k=1, distance_upper_bound=far, workers=-1)
+            d, _ = t.query(pts[q], k=1, distance_upper_bound=far + r_j, workers=-1)
             clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
             room[q] = np.minimum(room[q], d - r_j - need)
         return room, clear
@@ -667,7 +672,9 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
         # the nearest motif's term bounds the room from above: only the best bounds are measured
         d, m = tree.query(pts, k=1, workers=-1)
         want = kind[owner]
-        upper = (d - radius[m] - size_of[want] - rule[want, arr.kind[m]]).reshape(len(ids), len(cell))
+        upper = d - radius[m] - size_of[want] - rule[want, arr.kind[m]]
+        upper[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+        upper = upper.reshape(len(ids), len(cell))
         pick = np.argsort(-upper, axis=1, kind="stable")[:, :SCREEN]
         cell_of = pick.ravel()
         pts = (lo[:, None, :] + cell[pick] * size).reshape(-1, 2)
