@@ -160,12 +160,9 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
     """
     region = synth_region(_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
-    if not 0.0 <= overlap <= 0.5:
-        raise ParameterError(f"--overlap must be between 0 and 0.5, not {overlap:g}")
-    if not 0.0 <= max_rotation <= 180.0:
-        raise ParameterError(f"--max-rotation must be between 0 and 180 degrees, not {max_rotation:g}")
-    if not 0.0 <= junction < 1.0:
-        raise ParameterError(f"--junction must be at least 0 and below 1, not {junction:g}")
+    params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation, junction=junction,
+                  vary_orientation=vary_orientation, boundary=boundary)  # fmt: skip
+    PatchParams(**params)  # their ranges, checked before the work whatever the engine
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after
@@ -179,8 +176,6 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
-    params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation, junction=junction,
-                  vary_orientation=vary_orientation, boundary=boundary)  # fmt: skip
     arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, progress=_progress(), **params)
     _Stderr.clear()
     if len(arr) == 0:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 SVG_HEAD = (
@@ -92,3 +93,27 @@ def write_svg(tmp_path: Path):
 @pytest.fixture
 def tiny(write_svg) -> Path:
     return write_svg(TINY, "tiny.svg")
+
+
+XLINK = "http://www.w3.org/1999/xlink"
+
+
+def random_exemplar(rng: np.random.Generator, n: int) -> str:
+    """An exemplar of ``n`` motifs of three kinds (an L, a ring, a dash) at random places, angles
+    and scales in a 100 × 100 viewBox."""
+    symbols = (
+        '<symbol id="ell" overflow="visible"><polygon points="0,0 6,0 6,2 2,2 2,8 0,8"/></symbol>'
+        '<symbol id="ring" overflow="visible"><circle r="2" fill="none" stroke="black" stroke-width="0.5"/></symbol>'
+        '<symbol id="dash" overflow="visible"><line x1="0" y1="0" x2="5" y2="0" stroke="black" '
+        'stroke-width="0.8" stroke-linecap="round"/></symbol>'
+    )
+    uses = []
+    for _ in range(n):
+        href = rng.choice(["ell", "ring", "dash"])
+        x, y = rng.uniform(5, 95, 2)
+        uses.append(f'<use xlink:href="#{href}" transform="translate({x:.3f} {y:.3f}) '
+                    f'rotate({rng.uniform(-180, 180):.2f}) scale({rng.uniform(0.6, 1.6):.3f})"/>')  # fmt: skip
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK}" viewBox="0 0 100 100">'
+        f"<defs>{symbols}</defs>{''.join(uses)}</svg>"
+    )

@@ -14,13 +14,12 @@ import numpy as np
 import pytest
 import shapely
 import shapely.affinity
+from conftest import XLINK, random_exemplar
 
 from svgtile.analysis import analyze, distance_matrix, in_arcs, motif_estimate, orientation_arcs
 from svgtile.arrangement import Arrangement
 from svgtile.exemplar import parse_exemplar
 from svgtile.footprint import Prototype, world_footprints
-
-XLINK = "http://www.w3.org/1999/xlink"
 
 SHAPES = [
     shapely.Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 8), (0, 8)]),  # an L
@@ -99,25 +98,6 @@ def test_many_sparse_kinds_equal_brute_force():
     distance, measured, _ = distance_matrix(arr, exact_prototypes(shapes))
     assert np.array_equal(measured, np.isfinite(expect))
     assert np.allclose(distance[measured], expect[measured], rtol=1e-9, atol=1e-9)
-
-
-def random_exemplar(rng: np.random.Generator, n: int) -> str:
-    symbols = (
-        '<symbol id="ell" overflow="visible"><polygon points="0,0 6,0 6,2 2,2 2,8 0,8"/></symbol>'
-        '<symbol id="ring" overflow="visible"><circle r="2" fill="none" stroke="black" stroke-width="0.5"/></symbol>'
-        '<symbol id="dash" overflow="visible"><line x1="0" y1="0" x2="5" y2="0" stroke="black" '
-        'stroke-width="0.8" stroke-linecap="round"/></symbol>'
-    )
-    uses = []
-    for _ in range(n):
-        href = rng.choice(["ell", "ring", "dash"])
-        x, y = rng.uniform(5, 95, 2)
-        uses.append(f'<use xlink:href="#{href}" transform="translate({x:.3f} {y:.3f}) '
-                    f'rotate({rng.uniform(-180, 180):.2f}) scale({rng.uniform(0.6, 1.6):.3f})"/>')  # fmt: skip
-    return (
-        f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK}" viewBox="0 0 100 100">'
-        f"<defs>{symbols}</defs>{''.join(uses)}</svg>"
-    )
 
 
 @pytest.mark.parametrize("seed", [11, 12, 13])

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import shapely
 import shapely.affinity
+from conftest import XLINK, random_exemplar
 from scipy.spatial import cKDTree
 
 from svgtile import Region, analyze, read_exemplar
@@ -23,7 +24,6 @@ from svgtile.exemplar import parse_exemplar
 from svgtile.footprint import Prototype, world_footprints
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
-XLINK = "http://www.w3.org/1999/xlink"
 
 
 def row_of_discs(xs: list[float], *, period: str | None = None) -> str:
@@ -65,24 +65,6 @@ def test_too_few_gaps_keep_the_distance_rule():
     ex = parse_exemplar(row_of_discs(ROW[: GAP_MIN_SAMPLES - 1]))
     stats = analyze(ex)
     assert np.array_equal(junction_distance(ex, stats, 0.9), stats.distance)
-
-
-def random_exemplar(rng: np.random.Generator, n: int) -> str:
-    symbols = (
-        '<symbol id="ell" overflow="visible"><polygon points="0,0 6,0 6,2 2,2 2,8 0,8"/></symbol>'
-        '<symbol id="ring" overflow="visible"><circle r="2" fill="none" stroke="black" stroke-width="0.5"/></symbol>'
-        '<symbol id="dash" overflow="visible"><line x1="0" y1="0" x2="5" y2="0" stroke="black" '
-        'stroke-width="0.8" stroke-linecap="round"/></symbol>'
-    )
-    uses = []
-    for _ in range(n):
-        href = rng.choice(["ell", "ring", "dash"])
-        x, y = rng.uniform(5, 95, 2)
-        uses.append(f'<use xlink:href="#{href}" transform="translate({x:.3f} {y:.3f}) rotate({rng.uniform(-180, 180):.2f})"/>')
-    return (
-        f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK}" viewBox="0 0 100 100">'
-        f"<defs>{symbols}</defs>{''.join(uses)}</svg>"
-    )
 
 
 @pytest.mark.parametrize("seed", [3, 4])

@@ -147,9 +147,7 @@ class PatchParams:
         if not 0.0 <= self.coherence <= 1.0:
             raise ParameterError(f"coherence must be between 0 and 1, not {self.coherence:g}")
         if not 0.0 <= self.junction < 1.0:
-            raise ParameterError(
-                f"--junction must be at least 0 and below 1, not {self.junction:g}"
-            )
+            raise ParameterError(f"--junction must be at least 0 and below 1, not {self.junction:g}")
         if not 0.0 < self.density_tolerance < 1.0:
             raise ParameterError("density tolerance must be between 0 and 1")
 
@@ -498,7 +496,7 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     free = ~cross_conflicts(new, arr, protos, rule, tree)
     inside = region.keep(new, protos, p.boundary)
-    candidate = in_disc & ~free & inside & (tid[t_of] % 2 == 1)
+    candidate = in_disc & ~free & inside & odd[t_of]
     displace, victim_of = _displacement(new, arr, rule, protos, tree, lack, candidate, wid[t_of])
     ok = (free & inside) | displace
 
@@ -523,7 +521,7 @@ def _fill(arr, exemplar, stats, region, p, origin, size, ids, deficit, *, key: i
     before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
     take = (before < deficit[w]) | displace
     # no kind beyond its share in its window: small kinds fit every hole, and would stand in for the
-    # large (counted per window, so that the texture at a place depends on its surroundings only)
+    # large (counted per window, like the lacking kind above)
     added = np.flatnonzero(take & ~displace)
     total = have.sum(axis=1) + np.bincount(w[added], minlength=len(ids))
     room_for = np.ceil(stats.frequency[None, :] * total[:, None] * (1 + KIND_CAP)) - have  # (windows, k)
@@ -603,10 +601,14 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
         bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
         clear = np.minimum(clear, bound)
     clear[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
-    order = np.lexsort((clear, owner))
-    last = np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]
-    best = order[last]
+    best = _best_per_owner(clear, owner)
     return pts[best], np.maximum(clear[best], 0.0)
+
+
+def _best_per_owner(value: np.ndarray, owner: np.ndarray) -> np.ndarray:
+    """Index of the largest ``value`` of each owner present (the last of ties), by owner."""
+    order = np.lexsort((value, owner))
+    return order[np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]]
 
 
 def _rank_within(labels: np.ndarray) -> np.ndarray:
@@ -694,8 +696,7 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     f_room, f_clear = measure(fine, fine_owner)
     pts, owner = np.concatenate([pts, fine]), np.concatenate([owner, fine_owner])
     room, clear = np.concatenate([room, f_room]), np.concatenate([clear, f_clear])
-    order = np.lexsort((room, owner))
-    top = order[np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]]
+    top = _best_per_owner(room, owner)
     return pts[top], np.maximum(clear[top], 0.0)
 
 
