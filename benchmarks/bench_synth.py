@@ -34,20 +34,20 @@ def _child(case: str, exemplar: str, count: int, out: str) -> None:
     import numpy as np
 
     from svgtile import analyze, read_exemplar
-    from svgtile.output import use_elements, write_text
+    from svgtile.svg.writer import use_elements, write_text
 
     ex = read_exemplar(exemplar)
     stats = analyze(ex)
     side = math.sqrt(count / stats.count_density)
     start = time.perf_counter()
     if case == "synth":
-        from svgtile.cli import main
+        from svgtile.cli.main import main
 
         code = main(["synth", exemplar, "-o", out, "--size", f"{side:.3f}x{side:.3f}", "--seed", "1", "--force"])
         assert code == 0
         motifs = Path(out).read_text().count("<use ")
     elif case == "floor":
-        from svgtile.arrangement import Arrangement
+        from svgtile.core.arrangement import Arrangement
 
         rng = np.random.default_rng(1)
         kinds = rng.integers(0, len(ex.kinds), count)

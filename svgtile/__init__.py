@@ -5,11 +5,12 @@ Pipeline: :func:`read_exemplar` → :func:`analyze` → an engine's ``synthesize
 
 from __future__ import annotations
 
-from .analysis import Stats, analyze
-from .arrangement import Arrangement
-from .errors import SvgtileError
-from .exemplar import Exemplar, read_exemplar
-from .region import Region
+from svgtile.analysis.stats import Stats, analyze
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import Region
+from svgtile.errors import SvgtileError
+from svgtile.svg.reader import read_exemplar
 
 __all__ = ["Arrangement", "Exemplar", "Region", "Stats", "SvgtileError", "analyze", "read_exemplar"]
 __version__ = "0.1.0"

@@ -15,11 +15,17 @@ import pytest
 import shapely
 import shapely.affinity
 from conftest import XLINK, random_exemplar
+from svgtile.analysis.stats import (
+    analyze,
+    distance_matrix,
+    in_arcs,
+    motif_estimate,
+    orientation_arcs,
+)
 
-from svgtile.analysis import analyze, distance_matrix, in_arcs, motif_estimate, orientation_arcs
-from svgtile.arrangement import Arrangement
-from svgtile.exemplar import parse_exemplar
-from svgtile.footprint import Prototype, world_footprints
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.footprint import Prototype, world_footprints
+from svgtile.svg.reader import parse_exemplar
 
 SHAPES = [
     shapely.Polygon([(0, 0), (6, 0), (6, 2), (2, 2), (2, 8), (0, 8)]),  # an L
@@ -227,7 +233,7 @@ def test_orientation_arcs_random(seed):
 
 
 def test_motif_estimate_is_area_times_density_but_a_thin_strip_costs_whole_copies():
-    from svgtile.region import Region
+    from svgtile.core.region import Region
 
     ex = parse_exemplar('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 20">'
                         + "".join(f'<circle cx="{x}" cy="{y}" r="1"/>' for x in (2, 7) for y in (3, 9, 15)) + "</svg>")  # fmt: skip

@@ -4,7 +4,7 @@ Every exemplar × both engines must give: no overlapping footprints, no distance
 orientations inside their kind's arc, every motif where its boundary mode allows.  The Random
 engine must also reach the exemplar's density and kind mix; the Tiling engine must be exactly
 periodic, and exactly the exemplar translated when the exemplar's padding allows.  Conflicts are
-checked by brute force with shapely, independently of :mod:`svgtile.conflicts`.
+checked by brute force with shapely, independently of :mod:`svgtile.core.conflicts`.
 """
 
 from __future__ import annotations
@@ -16,17 +16,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from svgtile.analysis.stats import in_arcs
 
-from svgtile import Region, analyze, metrics, read_exemplar
-from svgtile.analysis import in_arcs
-from svgtile.arrangement import Arrangement
-from svgtile.conflicts import slack
+from svgtile import Region, analyze, read_exemplar
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.conflicts import slack
+from svgtile.core.footprint import world_footprints
 from svgtile.engines import ENGINES
 from svgtile.engines import random as random_engine
 from svgtile.engines import tile as tile_engine
 from svgtile.errors import ExemplarError, ParameterError
-from svgtile.exemplar import parse_exemplar
-from svgtile.footprint import world_footprints
+from svgtile.metrics import figures as metrics
+from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
 BASELINES = ("tile", "random")

@@ -1,6 +1,6 @@
 """The ``svgtile`` command line: options, one-line errors, nothing written on failure, streams.
 
-Most tests call :func:`svgtile.cli.main` in-process (fast, and monkeypatchable); a few run
+Most tests call :func:`svgtile.cli.main.main` in-process (fast, and monkeypatchable); a few run
 ``python -m svgtile`` in a subprocess to check what a shell user really sees.
 """
 
@@ -17,13 +17,14 @@ from pathlib import Path
 import click
 import numpy as np
 import pytest
+import svgtile.cli.main
 from conftest import OVERLAPPING, SVG_HEAD
+from svgtile.analysis.stats import analyze
+from svgtile.cli.main import cli, main
 
-import svgtile.cli
-from svgtile.analysis import analyze
-from svgtile.cli import cli, main
 from svgtile.engines import ENGINES
-from svgtile.exemplar import SVG_NS, XLINK_NS, read_exemplar
+from svgtile.svg.dialect import SVG_NS, XLINK_NS
+from svgtile.svg.reader import read_exemplar
 
 META = "{urn:svgtile:run:1}run"
 
@@ -175,14 +176,14 @@ def test_unusable_output_fails_before_synthesis(capsys, tiny, tmp_path, monkeypa
 
 def test_size_limit_refuses_without_force(capsys, tiny, tmp_path):
     stats = analyze(read_exemplar(tiny))
-    side = (2 * svgtile.cli.MAX_MOTIFS / stats.count_density) ** 0.5  # twice the limit
+    side = (2 * svgtile.cli.main.MAX_MOTIFS / stats.count_density) ** 0.5  # twice the limit
     out = tmp_path / "out.svg"
     rc, _, err = synth(capsys, tiny, out, "--seed", "1", size=f"{side:.0f}x{side:.0f}")
-    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--force", f"{svgtile.cli.MAX_MOTIFS:,}")
+    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--force", f"{svgtile.cli.main.MAX_MOTIFS:,}")
 
 
 def test_force_runs_above_the_limit(capsys, tiny, tmp_path, monkeypatch):
-    monkeypatch.setattr(svgtile.cli, "MAX_MOTIFS", 5)  # 60x40 holds about 30 motifs
+    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 5)  # 60x40 holds about 30 motifs
     out = tmp_path / "out.svg"
     rc, _, err = synth(capsys, tiny, out, "--seed", "1")
     assert rc == 1 and "--force" in err and not out.exists()
@@ -365,7 +366,7 @@ def test_reader_leaving_stdout_is_quiet(capsys, tiny, monkeypatch):
     def reader_left(text, out, **kwargs):
         raise BrokenPipeError(32, "Broken pipe")
 
-    monkeypatch.setattr(svgtile.cli, "write_text", reader_left)
+    monkeypatch.setattr(svgtile.cli.main, "write_text", reader_left)
     rc, out, err = synth(capsys, tiny, "-", "--seed", "1")
     assert (rc, out, err) == (1, "", "")
 
@@ -502,12 +503,12 @@ def test_analyze_json(capsys, tiny):
 
 
 def test_analyze_json_is_strict_json_even_for_odd_numbers(capsys, tiny, monkeypatch):
-    real = svgtile.cli.stats_report
+    real = svgtile.cli.main.stats_report
 
     def odd(ex, stats):
         return {**real(ex, stats), "density": float("nan"), "distance": [[float("inf")]]}
 
-    monkeypatch.setattr(svgtile.cli, "stats_report", odd)
+    monkeypatch.setattr(svgtile.cli.main, "stats_report", odd)
     rc, out, _ = run(capsys, "analyze", "--json", tiny)
     assert rc == 0
     report = json.loads(out, parse_constant=lambda c: pytest.fail(f"{c} is not JSON"))

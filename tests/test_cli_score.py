@@ -11,18 +11,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+import svgtile.cli.main
+from svgtile.analysis.stats import analyze
+from svgtile.cli.main import main
 
-import svgtile.cli
-from svgtile import metrics
-from svgtile.analysis import analyze
-from svgtile.cli import main
-from svgtile.compare import FIGURES, compare, format_table
+from svgtile.apps.compare import FIGURES, compare, format_table
+from svgtile.core.region import Region
 from svgtile.engines import ENGINES
 from svgtile.errors import ExemplarError, ParameterError
-from svgtile.exemplar import SVG_NS, read_exemplar
-from svgtile.output import svg_document
-from svgtile.region import Region
-from svgtile.texture import read_texture
+from svgtile.metrics import figures as metrics
+from svgtile.svg.dialect import SVG_NS
+from svgtile.svg.reader import read_exemplar
+from svgtile.svg.texture import read_texture
+from svgtile.svg.writer import svg_document
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -175,7 +176,7 @@ def test_compare_bad_engine_is_one_line(capsys):
 
 
 def test_compare_refuses_a_size_above_the_motif_limit(capsys, monkeypatch):
-    monkeypatch.setattr(svgtile.cli, "MAX_MOTIFS", 5)  # sand 100x100 holds about 360 motifs
+    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 5)  # sand 100x100 holds about 360 motifs
     rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100")
     assert rc == 1 and out == ""
     assert err.count("\n") == 1 and "--size 100 would hold about" in err and "(limit 5)" in err

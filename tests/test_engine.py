@@ -14,15 +14,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from svgtile.analysis.stats import in_arcs
+from svgtile.engines.patch.engine import PatchParams, grid, synthesize
 
-from svgtile import Region, analyze, metrics, read_exemplar
-from svgtile.analysis import in_arcs
-from svgtile.arrangement import Arrangement
-from svgtile.cellrng import hash64, uniform
-from svgtile.conflicts import Conflicts, cull, find_conflicts, slack
-from svgtile.engines.patch import PatchParams, grid, synthesize
+from svgtile import Region, analyze, read_exemplar
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.cellrng import hash64, uniform
+from svgtile.core.conflicts import Conflicts, cull, find_conflicts, slack
+from svgtile.core.footprint import world_footprints
 from svgtile.errors import ParameterError
-from svgtile.footprint import world_footprints
+from svgtile.metrics import figures as metrics
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
 SIZES = (400, 900)
@@ -201,7 +202,7 @@ def test_find_conflicts_matches_brute_force_and_bands(monkeypatch):
     ex, stats = load(EXEMPLARS[0])
     arr, _ = grid(ex, Region.rectangle(300, 300), key=3, grid_kind="square", overlap=0.3, max_rotation=30)
     whole = find_conflicts(arr, ex.prototypes, stats.distance)
-    monkeypatch.setattr("svgtile.conflicts.BAND_MOTIFS", 500)
+    monkeypatch.setattr("svgtile.core.conflicts.BAND_MOTIFS", 500)
     banded = find_conflicts(arr, ex.prototypes, stats.distance)
     pairs = lambda c: set(zip(c.i.tolist(), c.j.tolist(), strict=True))  # noqa: E731
     assert pairs(whole) == pairs(banded)
@@ -232,7 +233,7 @@ def test_counter_based_randomness_is_local_and_uniform():
 
 @pytest.mark.parametrize("per_kind", [True, False])
 def test_near_pairs_finds_exactly_the_pairs_whose_discs_come_within_reach(per_kind):
-    from svgtile.footprint import near_pairs
+    from svgtile.core.footprint import near_pairs
 
     rng = np.random.default_rng(3)
     n = 3000

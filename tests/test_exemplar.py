@@ -22,9 +22,10 @@ import pytest
 import shapely
 import shapely.affinity
 
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import SIMPLIFY, world_footprints
 from svgtile.errors import ExemplarError
-from svgtile.exemplar import Exemplar, parse_exemplar, read_exemplar
-from svgtile.footprint import SIMPLIFY, world_footprints
+from svgtile.svg.reader import parse_exemplar, read_exemplar
 
 SHARED = Path(__file__).resolve().parents[2] / "shared"
 DATA = SHARED / "data"

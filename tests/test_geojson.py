@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 import shapely
 from conftest import TINY
+from svgtile.cli.main import main
 
-from svgtile import geojson
-from svgtile.cli import main
+from svgtile.apps.mapread import read_region_shape
+from svgtile.core.region import Region
 from svgtile.engines import ENGINES
 from svgtile.errors import RegionError
-from svgtile.exemplar import parse_exemplar, read_exemplar
-from svgtile.mapread import read_region_shape
-from svgtile.region import Region
+from svgtile.gis import geojson
+from svgtile.svg.reader import parse_exemplar, read_exemplar
 
 SQUARE_WITH_HOLE = {
     "type": "Polygon",

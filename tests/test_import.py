@@ -11,14 +11,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from svgtile.analysis.stats import analyze, distance_matrix, periodic_distance_matrix
+from svgtile.cli.main import main
 
-from svgtile.analysis import analyze, distance_matrix, periodic_distance_matrix
-from svgtile.arrangement import Arrangement
-from svgtile.cli import main
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.footprint import Prototype
 from svgtile.errors import ExemplarError
-from svgtile.exemplar import parse_exemplar, parse_tile, read_exemplar
-from svgtile.footprint import Prototype
-from svgtile.tileimport import TileRefused, import_pieces, import_tile
+from svgtile.svg.reader import parse_exemplar, read_exemplar
+from svgtile.svg.tilepieces import parse_tile
+from svgtile.tiles.importer import TileRefused, import_pieces, import_tile
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 FGDC = DATA / "fgdc-geologic-patterns" / "lithology"
@@ -156,7 +157,7 @@ def test_a_round_part_beside_a_shape_is_joined_in_rotated_copies(turns):
 
 
 def test_support_counts_links_within_one_on_every_coordinate():
-    from svgtile.tileimport import _support
+    from svgtile.tiles.importer import _support
 
     rng = np.random.default_rng(2)
     feat = np.round(rng.uniform(0, 4, (400, 3)), 1)  # on the 0.1 grid, where the count is exact
@@ -376,9 +377,10 @@ def test_cli_refused_tile_is_one_line(tmp_path, capsys):
 def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused():
     """Issue 4's done-when: every one of the 116 tiles is either refused with a reason or imports
     and synthesizes (patch engine, 1.5 x 1.5 tiles) with no overlap and no rule violation."""
-    from svgtile.engines.patch import synthesize
-    from svgtile.metrics import conflict_counts
-    from svgtile.region import Region
+    from svgtile.engines.patch.engine import synthesize
+    from svgtile.metrics.figures import conflict_counts
+
+    from svgtile.core.region import Region
 
     files = sorted(FGDC.glob("*.svg"))
     assert len(files) == 116

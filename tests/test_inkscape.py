@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 import shapely
 from conftest import TINY
+from svgtile.cli.main import main
 
-from svgtile import inkscape as ink
-from svgtile.cli import main
-from svgtile.output import same_file
+from svgtile.apps import inkscape as ink
+from svgtile.svg.writer import same_file
 
 OUTER_CCW = [[0, 0], [10, 0], [10, 10], [0, 10]]
 INNER_CW = [[3, 3], [3, 7], [7, 7], [7, 3]]

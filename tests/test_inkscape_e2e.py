@@ -22,7 +22,7 @@ import shapely
 import svgelements as se
 from shapely import affinity
 
-from svgtile import inkscape as ink
+from svgtile.apps import inkscape as ink
 
 INKSCAPE, XVFB = shutil.which("inkscape"), shutil.which("xvfb-run")
 pytestmark = pytest.mark.skipif(not (INKSCAPE and XVFB), reason="needs Inkscape and xvfb-run (apt-get install inkscape xvfb)")

@@ -34,7 +34,7 @@ EXT = Path(__file__).resolve().parents[1] / "inkscape_ext"
 DATA = Path(__file__).resolve().parent / "inkscape_data"
 sys.path.insert(0, str(EXT))
 import svgtile_fill  # noqa: E402
-from svgtile_fill import FillWithTexture  # noqa: E402
+from svgtile_fill import FillWithTexture
 
 XLINK_HREF = "{http://www.w3.org/1999/xlink}href"
 #: The footprints of the test symbols in their own frame (fill.svg: dot and bar).
@@ -124,7 +124,7 @@ class FillInx(InxMixin, TestCase):
         self.assertInxSchemaValid("svgtile_fill.inx")
 
     def test_inx_defaults_are_the_cli_defaults(self):
-        from svgtile.cli import synth
+        from svgtile.cli.main import synth
 
         inx = inkex.inx.InxFile(str(EXT / "svgtile_fill.inx"))
         defaults = {p.name: (p.options[0] if p.param_type == "optiongroup" else p.text) for p in inx.params}

@@ -14,14 +14,14 @@ import shapely
 import shapely.affinity
 from conftest import XLINK, random_exemplar
 from scipy.spatial import cKDTree
+from svgtile.analysis.stats import GAP_MIN_SAMPLES, in_arcs, junction_distance
+from svgtile.engines.patch.engine import _rank_within, _roomiest, grid, turn
 
 from svgtile import Region, analyze, read_exemplar
-from svgtile.analysis import GAP_MIN_SAMPLES, in_arcs, junction_distance
-from svgtile.arrangement import Arrangement
-from svgtile.conflicts import find_conflicts
-from svgtile.engines.patch import _rank_within, _roomiest, grid, turn
-from svgtile.exemplar import parse_exemplar
-from svgtile.footprint import Prototype, world_footprints
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.conflicts import find_conflicts
+from svgtile.core.footprint import Prototype, world_footprints
+from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 
@@ -114,7 +114,7 @@ def test_junction_conflicts_are_the_same_band_by_band(monkeypatch):
     group = rng.integers(0, 4, len(arr))
     d, junction = np.array([[0.5]]), np.array([[2.5]])
     whole = find_conflicts(arr, protos, d, group=group, junction=junction)
-    monkeypatch.setattr("svgtile.conflicts.BAND_MOTIFS", 100)
+    monkeypatch.setattr("svgtile.core.conflicts.BAND_MOTIFS", 100)
     banded = find_conflicts(arr, protos, d, group=group, junction=junction)
     pairs = lambda c: set(zip(c.i.tolist(), c.j.tolist(), strict=True))  # noqa: E731
     assert pairs(whole) == pairs(banded)

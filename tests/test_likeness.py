@@ -3,13 +3,13 @@
 The patch engine at its defaults must have no overlaps and no distance-rule violators, a density
 ratio in [0.9, 1.1], a kind-mix TV of at most 0.05, at most a quarter of the repetition of the
 ``tile`` engine and at most half the structure distance (nearest-gap W1) of the ``random`` engine,
-all measured by :func:`svgtile.metrics.score` on the interior.
+all measured by :func:`svgtile.metrics.figures.score` on the interior.
 
 The bundled exemplars are drawn with a cartographer's structure (tools/make_exemplars.py: offset
 rows, nests, clumps, split fragments, bedding chains), which the ``random`` engine loses.  Patch
 keeps it inside its copies and must rebuild it where copies meet and where density repair pastes
 discs: the junction rule, rigid copies and the lacking kind's roomiest spot
-(:mod:`svgtile.engines.patch`) are what bring it under half of random's distance everywhere.  The
+(:mod:`svgtile.engines.patch.engine`) are what bring it under half of random's distance everywhere.  The
 margins are thin on boulders, shale and till (ratios 0.47–0.48 at seed 1; README, "Likeness").
 """
 
@@ -21,8 +21,8 @@ from pathlib import Path
 import pytest
 
 from svgtile import analyze, read_exemplar
-from svgtile.compare import compare
-from svgtile.region import Region
+from svgtile.apps.compare import compare
+from svgtile.core.region import Region
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 NAMES = sorted(p.stem for p in EXEMPLARS.glob("*.svg"))

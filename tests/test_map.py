@@ -10,12 +10,14 @@ from pathlib import Path
 import pytest
 import shapely
 from conftest import PLAIN, TINY, VIEWBOX
+from svgtile.cli.main import main
 
-from svgtile.cli import main
+from svgtile.apps.mapfill import fill_map, parse_styles, read_styles
+from svgtile.core.footprint import world_footprints
 from svgtile.errors import ParameterError
-from svgtile.exemplar import SVG_NS, SvgShapes, read_exemplar
-from svgtile.footprint import world_footprints
-from svgtile.mapfill import fill_map, parse_styles, read_styles
+from svgtile.svg.dialect import SVG_NS
+from svgtile.svg.mapdoc import SvgShapes
+from svgtile.svg.reader import read_exemplar
 
 REPO = Path(__file__).parents[1]
 

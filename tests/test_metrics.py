@@ -17,10 +17,11 @@ import numpy as np
 import pytest
 import shapely
 
-from svgtile import Region, analyze, metrics, read_exemplar
-from svgtile.arrangement import Arrangement
-from svgtile.exemplar import parse_exemplar
-from svgtile.footprint import world_footprints
+from svgtile import Region, analyze, read_exemplar
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.footprint import world_footprints
+from svgtile.metrics import figures as metrics
+from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
 

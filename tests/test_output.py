@@ -15,14 +15,16 @@ import numpy as np
 import pytest
 import shapely
 from conftest import EXEMPLARS, SVG_HEAD, TINY
+from svgtile.analysis.stats import analyze
+from svgtile.cli.main import main
 
-from svgtile.analysis import analyze
-from svgtile.arrangement import Arrangement
-from svgtile.cli import main
-from svgtile.engines import patch
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.region import Region
+from svgtile.engines.patch import engine as patch
 from svgtile.errors import OutputError
-from svgtile.exemplar import SVG_NS, XLINK_NS, parse_exemplar, read_exemplar
-from svgtile.output import (
+from svgtile.svg.dialect import SVG_NS, XLINK_NS
+from svgtile.svg.reader import parse_exemplar, read_exemplar
+from svgtile.svg.writer import (
     check_output,
     fmt,
     fmt_array,
@@ -31,7 +33,6 @@ from svgtile.output import (
     use_elements,
     write_text,
 )
-from svgtile.region import Region
 
 GOLDEN = Path(__file__).parent / "golden"
 HREF = f"{{{XLINK_NS}}}href"

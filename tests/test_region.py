@@ -16,13 +16,14 @@ import shapely
 from conftest import TINY
 
 from svgtile import analyze
+from svgtile.apps.mapread import read_avoid_shape, read_region_shape, synth_region
+from svgtile.core.footprint import world_footprints
+from svgtile.core.region import BOUNDARY_MODES, Region
 from svgtile.engines import ENGINES
 from svgtile.errors import RegionError, SvgtileError
-from svgtile.exemplar import SvgShapes, parse_exemplar, read_exemplar, winding_fill
-from svgtile.footprint import world_footprints
-from svgtile.mapread import read_avoid_shape, read_region_shape, synth_region
-from svgtile.output import fmt_array, svg_document
-from svgtile.region import BOUNDARY_MODES, Region
+from svgtile.svg.mapdoc import SvgShapes, winding_fill
+from svgtile.svg.reader import parse_exemplar, read_exemplar
+from svgtile.svg.writer import fmt_array, svg_document
 
 REPO = Path(__file__).parents[1]
 
@@ -257,7 +258,7 @@ def test_edit_stability_at_least_95_percent(name):
 
 def test_edit_stability_measure_can_fail(monkeypatch):
     """A sequential generator (draws depend on the region's extent) must score far below 0.95."""
-    from svgtile.engines import patch
+    from svgtile.engines.patch import engine as patch
 
     path = REPO / "exemplars" / "gravel.svg"
     if not path.exists():
@@ -281,8 +282,8 @@ def test_a_motif_whose_outline_only_grazes_the_region_is_not_kept(mode):
     """Footprint outlines reach a little beyond the drawn motif (Prototype.excess): a disc 0.2 %
     of its radius clear of the region has an outline that meets it, yet is not kept; discs that
     really cross the edge are."""
-    from svgtile.arrangement import Arrangement
-    from svgtile.footprint import Prototype
+    from svgtile.core.arrangement import Arrangement
+    from svgtile.core.footprint import Prototype
 
     proto = Prototype.from_geometry(shapely.Point(0, 0).buffer(10.0, 256))
     assert proto.excess > 0.02

@@ -6,11 +6,11 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from svgtile.cli.main import main
 
-from svgtile.cli import main
+from svgtile.apps.swatches import collect, read_names, swatch_sheet
 from svgtile.errors import ExemplarError
-from svgtile.exemplar import SVG_NS
-from svgtile.swatches import collect, read_names, swatch_sheet
+from svgtile.svg.dialect import SVG_NS
 
 HEAD = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
 STROKE = 'fill="none" stroke="#000" stroke-width="0.2"'
@@ -104,9 +104,9 @@ def test_tile_failing_after_import_is_a_refused_swatch(tmp_path):
 
 
 def test_swatch_above_the_motif_limit_is_refused(tiles, tmp_path, capsys, monkeypatch):
-    import svgtile.cli
+    import svgtile.cli.main
 
-    monkeypatch.setattr(svgtile.cli, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
+    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
     out = tmp_path / "s.svg"
     assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--size", "100"]) == 0
     assert "0 of 1 pattern(s) synthesized, 1 refused" in capsys.readouterr().err

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Print the README's all-exemplar likeness table (section "Likeness") as Markdown rows.
 
-Runs :func:`svgtile.compare.compare` (patch, tile, random; one seed) on every bundled exemplar,
+Runs :func:`svgtile.apps.compare.compare` (patch, tile, random; one seed) on every bundled exemplar,
 or the ones named, on a square region, and prints one row per exemplar with the columns of the
 README: overlaps / violators, density / ρ and kind-mix TV of patch, repetition and nearest-gap
 W1 of the three engines, patch's gap sampling noise, the patch / random gap ratio (✗ where it
@@ -16,8 +16,8 @@ import argparse
 from pathlib import Path
 
 from svgtile import analyze, read_exemplar
-from svgtile.compare import compare
-from svgtile.region import Region
+from svgtile.apps.compare import compare
+from svgtile.core.region import Region
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAD = (

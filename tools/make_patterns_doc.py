@@ -2,7 +2,7 @@
 
 For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), then a texture of
 3 × 3 tile sizes synthesized with the patch engine (seed 1) and its figures from
-:func:`svgtile.metrics.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+:func:`svgtile.metrics.figures.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
 (the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
 
 Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
@@ -16,14 +16,14 @@ import io
 from pathlib import Path
 
 import numpy as np
+from svgtile.engines.patch.engine import synthesize
+from svgtile.metrics.figures import score
 
 from svgtile import Region, analyze
-from svgtile.engines.patch import synthesize
+from svgtile.apps.swatches import collect, read_names, render_png, swatch_sheet
 from svgtile.errors import SvgtileError
-from svgtile.exemplar import parse_exemplar
-from svgtile.metrics import score
-from svgtile.swatches import collect, read_names, render_png, swatch_sheet
-from svgtile.tileimport import import_tile
+from svgtile.svg.reader import parse_exemplar
+from svgtile.tiles.importer import import_tile
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT.parent / "shared" / "data"

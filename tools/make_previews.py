@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 import resvg_py
+from svgtile.engines.patch.engine import synthesize
 
 from svgtile import Region, analyze, read_exemplar
-from svgtile.engines.patch import synthesize
-from svgtile.output import svg_document
+from svgtile.svg.writer import svg_document
 
 ROOT = Path(__file__).resolve().parents[1]
 EXEMPLARS = ROOT / "exemplars"

@@ -4,13 +4,14 @@
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
 * ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline).
 
-Every engine obeys the output contract of :mod:`svgtile.engines.common`.
+Every engine obeys the output contract of :mod:`svgtile.engines.base`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from . import patch, random, tile
+from svgtile.engines import random, tile
+from svgtile.engines.patch import engine as patch
 
 ENGINES: dict[str, Callable] = {"patch": patch.synthesize, "tile": tile.synthesize, "random": random.synthesize}

@@ -4,7 +4,7 @@ AlMeraj et al. (2011) saw people synthesize textures in three ways; the Random s
 motifs "randomly so that they capture high-level statistical features of the exemplar, such as
 density and relative frequencies of distinct shapes" — no repetition, but none of the exemplar's
 local structure either.  This engine is that strategy, the baseline against which the patch
-engine's structure is measured.  It reproduces, from :class:`~svgtile.analysis.Stats`:
+engine's structure is measured.  It reproduces, from :class:`~svgtile.analysis.stats.Stats`:
 
 * the kind frequencies and the density ρ — every cell of a world grid receives the exemplar's
   number of motifs of each kind per unit area (so ρ follows on average);
@@ -14,8 +14,8 @@ engine's structure is measured.  It reproduces, from :class:`~svgtile.analysis.S
 
 Dart throwing (random sequential addition) runs kind by kind, in vectorised rounds
 (:func:`throw`).  Each round proposes many darts of one kind at once, rejects those that conflict
-with the motifs already placed (:func:`svgtile.conflicts.cross_conflicts`), breaks conflicts among
-the round's darts (:func:`svgtile.conflicts.find_conflicts`, :func:`svgtile.conflicts.cull`), and
+with the motifs already placed (:func:`svgtile.core.conflicts.cross_conflicts`), breaks conflicts among
+the round's darts (:func:`svgtile.core.conflicts.find_conflicts`, :func:`svgtile.core.conflicts.cull`), and
 keeps, per cell, as many survivors as the cell still lacks.  A cell stops receiving darts of the
 kind when it has enough or when its acceptance rate collapses (a jammed neighbourhood).
 
@@ -57,14 +57,14 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from .. import cellrng
-from ..analysis import Stats, analyze
-from ..arrangement import Arrangement
-from ..conflicts import cross_conflicts, cull, find_conflicts
-from ..errors import ParameterError
-from ..exemplar import Exemplar
-from ..region import Region
-from .common import DECIMALS, CommonParams, reading_order
+from svgtile.analysis.stats import Stats, analyze
+from svgtile.core import cellrng
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import Region
+from svgtile.engines.base import DECIMALS, CommonParams, reading_order
+from svgtile.errors import ParameterError
 
 Progress = Callable[[str, float], None]
 

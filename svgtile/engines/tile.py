@@ -33,14 +33,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .. import cellrng
-from ..analysis import Stats, analyze
-from ..arrangement import Arrangement
-from ..conflicts import RULE_SLACK, Conflicts, cull, find_conflicts
-from ..exemplar import Exemplar
-from ..footprint import motif_radius
-from ..region import Region
-from .common import DECIMALS, CommonParams, reading_order
+from svgtile.analysis.stats import Stats, analyze
+from svgtile.core import cellrng
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.conflicts import RULE_SLACK, Conflicts, cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import motif_radius
+from svgtile.core.region import Region
+from svgtile.engines.base import DECIMALS, CommonParams, reading_order
 
 Progress = Callable[[str, float], None]
 
@@ -75,7 +75,7 @@ def synthesize(
         for every seed)
     stats : the exemplar's analysis, if already computed
     progress : called as ``progress(stage, fraction)``
-    **params : fields of :class:`~svgtile.engines.common.CommonParams`; only ``boundary`` is
+    **params : fields of :class:`~svgtile.engines.base.CommonParams`; only ``boundary`` is
         used (see the module docstring)
 
     Returns
@@ -110,7 +110,7 @@ def periodic_keep(exemplar: Exemplar, stats: Stats, *, key: int) -> np.ndarray:
     The exemplar is surrounded by as many rings of translated copies as a conflict can reach
     across; every conflicting pair found in this block, mapped back to exemplar indices, is an
     edge of the periodic conflict graph (a motif in conflict with its own translate is an edge to
-    itself and always leaves).  The graph is then culled as :func:`svgtile.conflicts.resolve`
+    itself and always leaves).  The graph is then culled as :func:`svgtile.core.conflicts.resolve`
     culls a texture (almeraj2013 §3.3, §3.1): overlapping pairs first, preferring to remove
     motifs that break the distance rule, then the remaining violations.  Pairs within one copy
     are the exemplar's own and conflict only if the exemplar overlaps itself.
@@ -199,7 +199,7 @@ def copies(exemplar: Exemplar, motifs: Arrangement, a: np.ndarray, b: np.ndarray
 
     Copy ``(a, b)`` translates by ``(a·w − x0, b·h − y0)``.  Positions are rounded before and after
     the translation, so every copy is the same rounded pattern whenever the translation itself
-    has at most :data:`~svgtile.engines.common.DECIMALS` decimals.
+    has at most :data:`~svgtile.engines.base.DECIMALS` decimals.
 
     Parameters
     ----------

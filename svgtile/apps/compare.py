@@ -1,0 +1,123 @@
+"""Engines side by side: synthesize with each, score each, one table (issue 3, ``svgtile compare``).
+
+:func:`compare` runs the engines on one region with one seed and scores every texture with
+:func:`svgtile.metrics.figures.score`; :func:`format_table` prints engines as columns and figures as
+rows; :func:`format_score` prints one texture's figures (``svgtile score``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from svgtile.analysis.stats import Stats
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import Region
+from svgtile.engines import ENGINES
+from svgtile.errors import ParameterError
+from svgtile.metrics import figures as metrics
+
+#: The rows of the tables: (key in the score, label, number format).
+FIGURES: tuple[tuple[str, str, str], ...] = (
+    ("motifs", "motifs in the interior", "d"),
+    ("overlaps", "overlapping pairs", "d"),
+    ("violators", "distance-rule violators", "d"),
+    ("density_ratio", "density / ρ", ".3f"),
+    ("density_cv", "density CV over windows", ".3f"),
+    ("density_min_ratio", "window density min / ρ", ".3f"),
+    ("density_max_ratio", "window density max / ρ", ".3f"),
+    ("kind_mix_tv", "kind mix TV", ".3f"),
+    ("orientation_outside", "orientation outside arcs", ".3f"),
+    ("gap_distance", "structure: nearest-gap W1", ".3f"),
+    ("gap_noise", "  its sampling noise", ".3f"),
+    ("pair_correlation_distance", "structure: pair correlation", ".3f"),
+    ("repetition", "repetition", ".3f"),
+    ("coverage", "coverage (empty disc ratio)", ".2f"),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """One engine's texture and its figures."""
+
+    engine: str
+    arrangement: Arrangement
+    score: dict
+
+
+def compare(
+    exemplar: Exemplar, stats: Stats, region: Region, *, engines: Sequence[str] = ("patch", "tile", "random"),
+    seed: int = 1, progress: Callable[[str, float], None] | None = None, **params,
+) -> list[Result]:  # fmt: skip
+    """Synthesize ``region`` with each engine (one seed for all) and score each texture.
+
+    Parameters
+    ----------
+    exemplar, stats : the exemplar and its analysis
+    region : the output region
+    engines : names in :data:`svgtile.engines.ENGINES`, in the order of the table's columns
+    seed : each engine gets ``numpy.random.default_rng(seed)``
+    progress : called as ``progress(engine, fraction of the engines done)``
+    **params : engine parameters (``grid``, ``overlap`` …, as ``svgtile synth`` passes them)
+
+    Raises
+    ------
+    ParameterError
+        An unknown or repeated engine name, or none.
+    """
+    engines = list(engines)
+    unknown = [e for e in engines if e not in ENGINES]
+    if unknown or not engines or len(set(engines)) != len(engines):
+        what = f"unknown engine {unknown[0]!r}" if unknown else "each engine at most once, at least one"
+        raise ParameterError(f"--engines: {what} (choose from {', '.join(sorted(ENGINES))})")
+    out = []
+    for n, name in enumerate(engines):
+        if progress:
+            progress(name, n / len(engines))
+        arr = ENGINES[name](exemplar, region, rng=np.random.default_rng(seed), stats=stats, **params)
+        out.append(Result(name, arr, metrics.score(exemplar, stats, arr, region)))
+    return out
+
+
+def _cell(value, spec: str) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "–"
+    return format(value, spec)
+
+
+def format_table(results: Sequence[Result]) -> str:
+    """Engines as columns, figures (:data:`FIGURES`) as rows, as plain text."""
+    label = max(len(lab) for _, lab, _ in FIGURES)
+    width = max(9, *(len(r.engine) for r in results))
+    lines = [f"{'figure':<{label}}  " + "  ".join(f"{r.engine:>{width}}" for r in results)]
+    for key, lab, spec in FIGURES:
+        lines.append(f"{lab:<{label}}  " + "  ".join(f"{_cell(r.score.get(key), spec):>{width}}" for r in results))
+    return "\n".join(lines)
+
+
+def format_markdown(results: Sequence[Result]) -> str:
+    """:func:`format_table` as a Markdown table."""
+    lines = ["| figure | " + " | ".join(r.engine for r in results) + " |", "|---" * (len(results) + 1) + "|"]
+    for key, lab, spec in FIGURES:
+        lines.append(f"| {lab} | " + " | ".join(_cell(r.score.get(key), spec) for r in results) + " |")
+    return "\n".join(lines)
+
+
+def format_score(score: dict) -> str:
+    """One texture's figures, then its structure per kind pair, as plain text."""
+    label = max(len(lab) for _, lab, _ in FIGURES)
+    lines = [f"measured on the {score['window']} ({score['window_area']:.6g} square units, "
+             f"mean spacing s = {_cell(score['spacing'], '.4g')})"]  # fmt: skip
+    lines += [f"{lab:<{label}}  {_cell(score.get(key), spec):>9}" for key, lab, spec in FIGURES]
+    pairs = [p for p in score.get("kind_pairs", []) if p["gap_distance"] is not None or p["pair_correlation_distance"] is not None]
+    if pairs:
+        lines += ["", "structure per kind pair (gap W1, its sampling noise, pair correlation):"]
+        for p in pairs:
+            names = " → ".join(p["names"])
+            gap, pc = _cell(p["gap_distance"], ".3f"), _cell(p["pair_correlation_distance"], ".3f")
+            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {_cell(p.get('gap_noise'), '.3f'):>9}  {pc:>9}")
+    return "\n".join(lines)

@@ -1,0 +1,292 @@
+"""svgtile inside Inkscape: installing the extension, and the fill it asks svgtile to do.
+
+The extension (``inkscape_ext/svgtile_fill.py``, menu Extensions ▸ Render ▸ svgtile ▸ Fill with
+Texture…) runs in Inkscape's own Python, which has inkex but usually not shapely or scipy.  It
+therefore does no synthesis itself.  It writes the selection to a temporary folder —
+
+* ``exemplar.svg``: the exemplar group, wrapped in its ancestors' composed transform so its
+  coordinates are the document's, plus copies of the elements it references (symbols …);
+* ``containers.json``: every container as flattened rings in document coordinates, with its
+  ``fill-rule`` (format below);
+
+runs ``PYTHON -m svgtile inkscape fill exemplar.svg containers.json --out-dir DIR [options]``
+with the interpreter recorded by ``svgtile inkscape install``, and inserts the textures it finds
+in ``DIR/texture-<i>.svg``.  Everything svgtile needs is in this module; the extension talks to
+it through that command line only.
+
+``containers.json``::
+
+    {"containers": [{"id": "path12", "fill_rule": "evenodd",
+                     "rings": [[[x, y], [x, y], ...], ...]}, ...]}
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from svgtile.core.region import Region
+from svgtile.errors import ParameterError, RegionError, SvgtileError
+
+#: The files of the extension, as found in the source tree's ``inkscape_ext/``.
+EXTENSION_FILES = ("svgtile_fill.inx", "svgtile_fill.py")
+#: Written by :func:`install` next to the extension: which Python runs svgtile.
+CONFIG_NAME = "svgtile_fill.json"
+#: The extension's folder inside Inkscape's ``extensions`` folder.
+FOLDER = "svgtile"
+#: Name of the texture file for container ``i`` in the output folder.
+TEXTURE_NAME = "texture-{}.svg"
+FILL_RULES = ("nonzero", "evenodd")
+
+
+class InstallError(SvgtileError):
+    """The extension cannot be installed or uninstalled where asked."""
+
+
+# ----------------------------------------------------------------------------- install
+
+
+def extension_source() -> Path:
+    """The folder holding :data:`EXTENSION_FILES`.
+
+    A source checkout (also an editable install) has it beside the package; a wheel installs the
+    files as data under ``<prefix>/share/svgtile/inkscape``.
+    """
+    candidates = [
+        Path(__file__).resolve().parents[1] / "inkscape_ext",
+        Path(sys.prefix) / "share" / "svgtile" / "inkscape",
+    ]
+    for folder in candidates:
+        if all((folder / name).is_file() for name in EXTENSION_FILES):
+            return folder
+    raise InstallError(
+        "the extension files are missing from this svgtile installation "
+        f"(looked in {', '.join(str(c) for c in candidates)})"
+    )
+
+
+def user_data_dir() -> Path:
+    """Inkscape's user data folder (the one holding ``extensions/``).
+
+    ``$INKSCAPE_PROFILE_DIR`` if set (Inkscape honours it too), else what ``inkscape
+    --user-data-directory`` answers, else the platform's default.
+    """
+    env = os.environ.get("INKSCAPE_PROFILE_DIR")
+    if env:
+        return Path(env)
+    exe = shutil.which("inkscape")
+    if exe:
+        try:
+            done = subprocess.run([exe, "--user-data-directory"], capture_output=True, text=True,
+                                  timeout=60, stdin=subprocess.DEVNULL)  # fmt: skip
+            answer = done.stdout.strip().splitlines()
+            if done.returncode == 0 and answer and Path(answer[-1]).is_absolute():
+                return Path(answer[-1])
+        except (OSError, subprocess.SubprocessError):
+            pass
+    if sys.platform == "win32":
+        return Path(os.environ.get("APPDATA", Path.home() / "AppData" / "Roaming")) / "inkscape"
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Application Support" / "org.inkscape.Inkscape" / "config" / "inkscape"
+    return Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config") / "inkscape"
+
+
+def install(user_dir: str | Path | None = None, *, python: str | None = None) -> Path:
+    """Copy the extension into ``<user_dir>/extensions/svgtile`` and record ``python``.
+
+    Parameters
+    ----------
+    user_dir : Inkscape's user data folder; :func:`user_data_dir` if None
+    python : the interpreter that runs svgtile for the extension; this one if None
+
+    Returns
+    -------
+    The extension folder.  Installing again replaces the files (and the recorded Python).
+    """
+    from svgtile import __version__
+
+    source = extension_source()
+    target = Path(user_dir if user_dir is not None else user_data_dir()) / "extensions" / FOLDER
+    if target.exists() and not target.is_dir():
+        raise InstallError("exists and is not a folder", source=str(target))
+    if target.is_dir() and any(target.iterdir()) and not (target / CONFIG_NAME).is_file():
+        raise InstallError("exists but was not made by 'svgtile inkscape install'; remove it first", source=str(target))
+    try:
+        target.mkdir(parents=True, exist_ok=True)
+        for name in EXTENSION_FILES:
+            shutil.copyfile(source / name, target / name)
+        config = {"python": python or sys.executable, "svgtile": __version__}
+        tmp = target / f".{CONFIG_NAME}.tmp"
+        tmp.write_text(json.dumps(config, indent=2) + "\n", encoding="utf-8")
+        os.replace(tmp, target / CONFIG_NAME)
+    except OSError as exc:
+        raise InstallError(f"cannot install here ({exc.strerror or exc})", source=str(target)) from None
+    return target
+
+
+def uninstall(user_dir: str | Path | None = None) -> Path:
+    """Remove what :func:`install` put into ``<user_dir>/extensions/svgtile``; returns that folder."""
+    target = Path(user_dir if user_dir is not None else user_data_dir()) / "extensions" / FOLDER
+    if not (target / CONFIG_NAME).is_file():
+        raise InstallError("the svgtile extension is not installed here", source=str(target))
+    try:
+        if target.is_symlink():
+            target.unlink()
+        else:
+            shutil.rmtree(target)
+    except OSError as exc:
+        raise InstallError(f"cannot remove ({exc.strerror or exc})", source=str(target)) from None
+    return target
+
+
+# ----------------------------------------------------------------------------- containers
+
+
+def winding_numbers(rings: list[np.ndarray], x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """(m,) int: the winding number of all ``rings`` together around each point (x[i], y[i]).
+
+    Parameters
+    ----------
+    rings : closed polylines, each a (k, 2) float array (the closing edge is implied)
+    x, y : (m,) float arrays, the points, which must not lie on an edge
+
+    Counts signed crossings of the horizontal ray to the right of each point (Sunday's
+    algorithm), all edges at once.
+    """
+    edges = [np.concatenate([r, np.roll(r, -1, axis=0)], axis=1) for r in rings if len(r) >= 2]
+    if not edges:
+        return np.zeros(len(x), dtype=np.int64)
+    e = np.concatenate(edges)
+    x0, y0, x1, y1 = (e[:, i][None, :] for i in range(4))
+    px, py = np.asarray(x, float)[:, None], np.asarray(y, float)[:, None]
+    side = (x1 - x0) * (py - y0) - (px - x0) * (y1 - y0)
+    up = (y0 <= py) & (y1 > py) & (side > 0)
+    down = (y0 > py) & (y1 <= py) & (side < 0)
+    return up.sum(axis=1) - down.sum(axis=1)
+
+
+def container_shape(rings: list[np.ndarray], fill_rule: str = "nonzero") -> shapely.Geometry:
+    """The area an SVG shape with these subpaths fills, holes and self-crossings included.
+
+    Parameters
+    ----------
+    rings : subpaths as (k, 2) float arrays in user units (each closed implicitly, as SVG fills)
+    fill_rule : ``nonzero`` or ``evenodd``, the shape's ``fill-rule``
+
+    The rings are noded into faces; a face is filled when the winding number around a point
+    inside it is odd (``evenodd``) or not zero (``nonzero``).
+    """
+    if fill_rule not in FILL_RULES:
+        raise ValueError(f"unknown fill rule {fill_rule!r}")
+    rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in rings]
+    rings = [r for r in rings if len(np.unique(r, axis=0)) >= 3]
+    if not rings:
+        return shapely.Polygon()
+    lines = shapely.linestrings([np.concatenate([r, r[:1]]) for r in rings])
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.node(shapely.multilinestrings(lines)))))
+    if len(faces) == 0:
+        return shapely.Polygon()
+    inner = shapely.point_on_surface(faces)
+    wind = winding_numbers(rings, shapely.get_x(inner), shapely.get_y(inner))
+    keep = (wind % 2 == 1) if fill_rule == "evenodd" else (wind != 0)
+    return shapely.union_all(faces[keep])
+
+
+def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
+    """Read ``containers.json`` (see the module docstring): (id, area) per container, in order."""
+    source = str(path)
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        items = doc["containers"]
+        out = []
+        for item in items:
+            ident, rule = str(item["id"]), item.get("fill_rule", "nonzero")
+            if rule not in FILL_RULES:
+                raise ValueError(f"unknown fill rule {rule!r}")
+            rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in item["rings"]]
+            if not all(np.isfinite(r).all() for r in rings):
+                raise ValueError(f"container {ident!r} has coordinates that are not finite")
+            out.append((ident, container_shape(rings, rule)))
+    except OSError as exc:
+        raise RegionError(f"cannot read file ({exc.strerror or exc})", source=source) from None
+    except RecursionError:
+        raise RegionError("not a containers file (nested too deeply)", source=source) from None
+    except (ValueError, KeyError, TypeError) as exc:
+        raise RegionError(f"not a containers file ({' '.join(str(exc).split())})", source=source) from None
+    if not out:
+        raise RegionError("lists no containers", source=source)
+    return out
+
+
+# ----------------------------------------------------------------------------- fill
+
+
+def fill(
+    exemplar_path: str | Path,
+    containers_path: str | Path,
+    out_dir: str | Path,
+    *,
+    engine: str,
+    seed: int,
+    max_motifs: float,
+    params: dict[str, object],
+    load=None,
+) -> list[Path]:
+    """Synthesize a texture in every container; write ``out_dir/texture-<i>.svg`` for each.
+
+    Parameters
+    ----------
+    exemplar_path : the exemplar SVG (read once)
+    containers_path : ``containers.json``
+    out_dir : an existing folder
+    engine : a name in :data:`svgtile.engines.ENGINES`
+    seed : every container is filled with a generator seeded by ``seed``, so a container's
+        texture does not depend on the other containers selected
+    max_motifs : refuse a container whose estimated motif count is larger
+    params : grid, overlap, max_rotation, vary_orientation, boundary (as for ``svgtile synth``)
+    load : ``load(path) -> (Exemplar, Stats)``; the CLI passes its own, which prints warnings
+
+    Each file is what ``svgtile synth`` writes for that container's area (its bounding box is the
+    viewBox, the clip path is the container's area in document coordinates).
+    """
+    from svgtile.analysis.stats import analyze, motif_estimate
+    from svgtile.engines import ENGINES
+    from svgtile.svg.reader import read_exemplar
+    from svgtile.svg.writer import svg_document, write_text
+
+    if load is None:
+        def load(p):
+            ex = read_exemplar(p)
+            return ex, analyze(ex)
+
+    containers = read_containers(containers_path)
+    ex, stats = load(str(exemplar_path))
+    regions = []
+    for ident, shape in containers:
+        try:
+            region = Region(shape)
+        except RegionError:
+            raise RegionError(f"the shape {ident!r} encloses no area to fill") from None
+        estimate = motif_estimate(ex, stats, region)
+        if not estimate <= max_motifs:
+            raise ParameterError(
+                f"the shape {ident!r} would hold about {estimate:,.0f} motifs (limit {max_motifs:,.0f}); "
+                "scale the exemplar up or fill a smaller shape"
+            )
+        regions.append((ident, region))
+    written = []
+    for i, (ident, region) in enumerate(regions):
+        arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, **params)
+        meta = {"engine": engine, "seed": seed, "container": ident, **params, "motifs": len(arr)}
+        out = Path(out_dir) / TEXTURE_NAME.format(i)
+        write_text(svg_document(ex, arr, region, boundary=str(params["boundary"]), params=meta), out)
+        written.append(out)
+    return written
+

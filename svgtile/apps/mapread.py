@@ -1,0 +1,171 @@
+"""Reading map regions and avoid zones: ``MAP.svg#ID``, ``FILE.geojson[#ID]``, classed units.
+
+A *region spec* names where an output region comes from:
+
+* ``MAP.svg#ID`` — the element with that id: any closed shape or group of shapes, transforms of
+  the element and its ancestors applied, holes by each shape's fill rule;
+* ``FILE.geojson`` — every Polygon and MultiPolygon of the file, merged; ``FILE.geojson#ID`` —
+  the feature whose ``id`` (or ``properties.id``, or ``properties.name``) is ID.
+
+An *avoid spec* ``MAP.svg#ID`` names the labels, lines or shapes the texture must keep clear of:
+texts as estimated boxes, shapes as their footprints, lines as their stroke, each grown by a
+margin (:meth:`svgtile.exemplar.SvgShapes.keep_clear`); a GeoJSON avoid spec takes its polygons
+as they are and grows lines and points by the margin.
+
+Map units in a map SVG carry a *class* (:func:`class_of`), which the styles file of
+``svgtile map`` maps to an exemplar.  The SVG geometry itself is read by
+:class:`svgtile.exemplar.SvgShapes` (the one module that uses svgelements).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from svgtile.core.region import Region
+from svgtile.errors import ParameterError, RegionError
+from svgtile.gis import geojson
+from svgtile.svg.dialect import CONTAINERS, INKSCAPE_NS, NOT_RENDERED, SHAPES
+from svgtile.svg.mapdoc import SvgShapes
+
+#: Default growth of avoid zones, user units (clear space around labels and lines).
+AVOID_MARGIN = 2.0
+#: Larger margins are refused: no map is this wide, and growing a shape by ~1e150 overflows.
+MAX_AVOID_MARGIN = 1e12
+
+
+@dataclass(frozen=True, eq=False)
+class MapRegion:
+    """One map unit to fill.
+
+    Attributes
+    ----------
+    ident : str
+        Element or feature id (generated as ``TAG-N`` when it has none).
+    cls : str or None
+        Its class (the key into the styles file).
+    shape : shapely (Multi)Polygon, user units of the map (SVG frame: y down)
+    matrix : (3, 3) float array or None
+        For an SVG element: from the user space of the element's parent to the root's (its
+        inverse places the texture group beside the element).  None for GeoJSON.
+    element : the SVG element, or None
+    """
+
+    ident: str
+    cls: str | None
+    shape: shapely.Geometry
+    matrix: np.ndarray | None = None
+    element: ET.Element | None = None
+
+
+def split_spec(spec: str) -> tuple[Path, str | None]:
+    """``"map.svg#unit-3"`` -> ``(Path("map.svg"), "unit-3")``; no ``#``: id None."""
+    path, sep, ident = str(spec).partition("#")
+    if sep and not ident:
+        raise RegionError("empty id after '#'", source=str(spec))
+    return Path(path), (ident if sep else None)
+
+
+def is_geojson(path: str | Path) -> bool:
+    return Path(path).suffix.lower() in (".geojson", ".json")
+
+
+def read_region_shape(spec: str) -> shapely.Geometry:
+    """The geometry a region spec names (see the module docstring), in user units."""
+    path, ident = split_spec(spec)
+    if is_geojson(path):
+        regions = geojson.read_regions(path, feature=ident)
+        return shapely.union_all([r.shape for r in regions])
+    if ident is None:
+        raise RegionError("name the region's element: MAP.svg#ID", source=str(path))
+    doc = SvgShapes.read(path)
+    shape = doc.area(doc.element(ident))
+    if shape.is_empty or shape.area <= 0:
+        raise RegionError(f"element #{ident} encloses no area (is it a closed shape?)", source=str(path))
+    return shape
+
+
+def read_avoid_shape(spec: str, margin: float = AVOID_MARGIN) -> shapely.Geometry:
+    """The avoid zone an avoid spec names, grown by ``margin`` user units."""
+    path, ident = split_spec(spec)
+    if is_geojson(path):
+        return geojson.read_zones(path, margin, feature=ident)
+    if ident is None:
+        raise RegionError("name the element to avoid: MAP.svg#ID", source=str(path))
+    doc = SvgShapes.read(path)
+    zone = doc.keep_clear(doc.element(ident), margin)
+    if zone.is_empty or zone.area <= 0:
+        raise RegionError(f"element #{ident} gives no zone to avoid (an empty group, or lines with --avoid-margin 0)", source=str(path))
+    return zone
+
+
+def class_of(el: ET.Element, attribute: str | None = None) -> list[str]:
+    """The class names an element may carry, most specific first.
+
+    ``attribute`` (e.g. ``data-unit``) if given and present, then each token of ``class``, then
+    the Inkscape label (``inkscape:label``, the name shown in Inkscape's Objects panel).
+    """
+    names = []
+    if attribute and attribute in el.attrib:
+        names.append(el.attrib[attribute].strip())
+    names += el.attrib.get("class", "").split()
+    label = el.attrib.get(f"{{{INKSCAPE_NS}}}label")
+    if label:
+        names.append(label.strip())
+    return [n for n in names if n]
+
+
+def classed_regions(doc: SvgShapes, classes: set[str], attribute: str | None = None) -> list[MapRegion]:
+    """Every shape or group of ``doc`` whose class is one of ``classes``, in document order.
+
+    The outermost classed element wins: a classed group is one region, its children are not
+    looked at.  Elements in ``<defs>``, symbols, clip paths and the like are never regions.
+    """
+    out: list[MapRegion] = []
+    counter: dict[str, int] = {}
+
+    def walk(node: ET.Element) -> None:
+        for child in node:
+            tag = child.tag.rsplit("}", 1)[-1] if isinstance(child.tag, str) else ""
+            if tag in NOT_RENDERED or tag not in (*SHAPES, *CONTAINERS, "svg"):
+                continue
+            match = next((c for c in class_of(child, attribute) if c in classes), None)
+            if match is None:
+                if tag in (*CONTAINERS, "svg"):
+                    walk(child)
+                continue
+            counter[tag] = counter.get(tag, 0) + 1
+            ident = child.attrib.get("id") or f"{tag}-{counter[tag]}"
+            parent = doc.parents.get(child)
+            matrix = doc.matrix(parent) if parent is not None else np.eye(3)
+            out.append(MapRegion(ident, match, doc.area(child), matrix, child))
+
+    walk(doc.root)
+    return out
+
+
+def synth_region(
+    size: tuple[float, float] | None, region: str | None, avoid: tuple[str, ...] = (), margin: float = AVOID_MARGIN
+) -> Region:
+    """The output region of ``svgtile synth``: ``--size`` or ``--region``, less ``--avoid`` zones.
+
+    Parameters
+    ----------
+    size : (width, height) user units of a rectangle at the origin, or None
+    region : a region spec (see the module docstring), or None
+    avoid : avoid specs
+    margin : growth of avoid zones, user units
+    """
+    if (size is None) == (region is None):
+        raise ParameterError("give either --size WIDTHxHEIGHT or --region MAP.svg#ID / FILE.geojson")
+    if not (0 <= margin <= MAX_AVOID_MARGIN):
+        raise ParameterError(f"--avoid-margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin:g}")
+    zone = shapely.union_all([read_avoid_shape(spec, margin) for spec in avoid]) if avoid else None
+    if region is None:
+        rect = Region.rectangle(*size)
+        return rect if zone is None else Region.from_geometry(rect.shape, avoid=zone, source="--size")
+    return Region.from_geometry(read_region_shape(region), avoid=zone, source=region)

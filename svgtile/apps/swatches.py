@@ -1,0 +1,284 @@
+"""A legend sheet of a pattern set: per pattern, the tile repeated beside a synthesized texture.
+
+This is how a map maker reviews a whole symbol set (``svgtile swatches``): every tile is imported
+(:mod:`svgtile.tiles.importer`), synthesized with the patch engine on the same area as the repeated
+tile, and drawn side by side at the same scale; a refused tile shows the reason instead.
+
+The sheet is one SVG: the original tile is a ``<pattern>`` of its own elements (ids prefixed so
+that the files cannot clash), the texture a nested ``<svg>`` of the synthesized document.
+"""
+
+from __future__ import annotations
+
+import copy
+import csv
+import math
+import re
+import textwrap
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from svgtile.analysis.stats import analyze, motif_estimate
+from svgtile.core.region import Region
+from svgtile.engines import ENGINES
+from svgtile.errors import ExemplarError, OutputError, SvgtileError
+from svgtile.svg.dialect import SVG_NS, XLINK_NS
+from svgtile.svg.reader import parse_exemplar
+from svgtile.svg.writer import fmt, svg_document
+from svgtile.tiles.importer import import_tile
+
+#: Side of each panel on the sheet, sheet units.
+PANEL = 150.0
+#: Space between panels and around cells, sheet units.
+GAP = 12.0
+#: Height of a cell's label, sheet units.
+LABEL = 16.0
+#: Elements of a tile that never draw and are not copied into the sheet.
+SKIP = {"metadata", "title", "desc", "namedview", "script", "style"}
+
+
+@dataclass(frozen=True)
+class Swatch:
+    """One pattern on the sheet: ``motifs``/``kinds`` of the import and the texture's motif count,
+    or ``refused`` with the reason."""
+
+    path: Path
+    label: str
+    motifs: int = 0
+    kinds: int = 0
+    texture: int = 0
+    refused: str | None = None
+
+
+@dataclass(frozen=True)
+class Sheet:
+    text: str
+    swatches: tuple[Swatch, ...]
+
+    @property
+    def accepted(self) -> int:
+        return sum(s.refused is None for s in self.swatches)
+
+    @property
+    def refused(self) -> int:
+        return len(self.swatches) - self.accepted
+
+
+def collect(inputs: list[str] | tuple[str, ...]) -> list[Path]:
+    """The ``.svg`` files named or inside the directories named, each directory sorted by name."""
+    files: list[Path] = []
+    for item in inputs:
+        path = Path(item)
+        if path.is_dir():
+            files.extend(sorted(p for p in path.iterdir() if p.suffix.lower() == ".svg" and p.is_file()))
+        else:
+            files.append(path)
+    return files
+
+
+def read_names(path: str | Path) -> dict[str, str]:
+    """Pattern names from a CSV with a ``name`` column and a ``code`` or ``file`` column (matched
+    against the tile's file stem), like the FGDC set's ``INDEX.csv``."""
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise ExemplarError(f"cannot read the names ({exc})", source=str(path)) from None
+    names = {}
+    for row in rows:
+        key = row.get("code") or Path(row.get("file") or "").stem
+        if key and row.get("name"):
+            names[key] = row["name"]
+    if not names:
+        raise ExemplarError("no 'name' column with a 'code' or 'file' column", source=str(path))
+    return names
+
+
+def swatch_sheet(
+    files: list[Path],
+    *,
+    swatch: tuple[float, float] | None = None,
+    tiles: float = 3.0,
+    columns: int = 4,
+    seed: int = 1,
+    names: dict[str, str] | None = None,
+    max_motifs: float = math.inf,
+) -> Sheet:
+    """The sheet as SVG text.
+
+    Parameters
+    ----------
+    files : tile SVGs, in sheet order
+    swatch : (w, h) of each synthesized area in the tile's user units; default ``tiles`` tile
+        widths and heights
+    columns : patterns per row
+    seed : seed of every synthesis (the same for each pattern)
+    names : file stem -> pattern name, shown after the stem
+    max_motifs : a pattern whose swatch would hold more motifs (estimated) is refused
+    """
+    names = names or {}
+    rows = -(-len(files) // columns)
+    cell_w, cell_h = 2 * PANEL + 3 * GAP, PANEL + LABEL + 2 * GAP
+    width, height = columns * cell_w + GAP, rows * cell_h + GAP
+    root = ET.Element(f"{{{SVG_NS}}}svg", {
+        "viewBox": f"0 0 {fmt(width)} {fmt(height)}", "width": fmt(width), "height": fmt(height),
+        "font-family": "DejaVu Sans, Arial, Helvetica, sans-serif",
+    })  # fmt: skip
+    ET.SubElement(root, f"{{{SVG_NS}}}rect", {"width": fmt(width), "height": fmt(height), "fill": "#ffffff"})
+    done = []
+    for n, path in enumerate(files):
+        x = GAP + (n % columns) * cell_w
+        y = GAP + (n // columns) * cell_h
+        label = path.stem + (f" {names[path.stem]}" if path.stem in names else "")
+        cell = ET.SubElement(root, f"{{{SVG_NS}}}g", {"id": f"swatch-{n + 1}"})
+        text = ET.SubElement(cell, f"{{{SVG_NS}}}text", {"x": fmt(x), "y": fmt(y + 11), "font-size": "11"})
+        text.text = _short(label, 60)
+        top = y + LABEL
+        result = _swatch(path, label, swatch, tiles, seed, max_motifs)
+        done.append(result[0])
+        original, texture = result[1], result[2]
+        if original is not None:
+            cell.append(_nest(original, f"s{n + 1}o", x, top))
+        _frame(cell, x, top)
+        if texture is not None:
+            cell.append(_nest(texture, f"s{n + 1}t", x + PANEL + GAP, top))
+        else:
+            _reason(cell, result[0].refused or "", x + PANEL + GAP, top)
+        _frame(cell, x + PANEL + GAP, top)
+    ET.indent(root, space=" ")
+    return Sheet(ET.tostring(root, encoding="unicode") + "\n", tuple(done))
+
+
+def render_png(svg: str, width: int) -> bytes:
+    """The sheet as PNG (needs the optional ``resvg-py``: ``pip install 'svgtile[png]'``)."""
+    try:
+        import resvg_py
+    except ImportError:
+        raise OutputError("--png needs the optional renderer: pip install 'svgtile[png]'") from None
+    return bytes(resvg_py.svg_to_bytes(svg_string=svg, width=width, background="white"))
+
+
+# ----------------------------------------------------------------------------- one pattern
+
+
+def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf):
+    """(Swatch, original panel, texture panel); panels are (content root, viewBox) or None."""
+    try:
+        data = path.read_bytes()
+        original_root = ET.fromstring(data)
+        box = _box(original_root)
+    except (OSError, ET.ParseError, ValueError) as exc:
+        reason = _oneline(exc if not isinstance(exc, ET.ParseError) else f"not a well-formed XML file ({exc})")
+        return Swatch(path, label, refused=reason), None, None
+    try:
+        imported = import_tile(path)
+    except SvgtileError as exc:
+        reason = str(exc).removeprefix(f"{path}: ")
+        original = _repeated(original_root, box, swatch, tiles) if box else None
+        return Swatch(path, label, refused=reason), original, None
+    x0, y0, w, h = imported.box
+    sw, sh = swatch if swatch is not None else (tiles * w, tiles * h)
+    try:
+        exemplar = parse_exemplar(imported.text, source=str(path))
+        stats = analyze(exemplar)
+        region = Region.rectangle(sw, sh, x0, y0)
+        estimate = motif_estimate(exemplar, stats, region)
+        if not estimate <= max_motifs:
+            about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
+            raise ExemplarError(f"the swatch would hold {about} motifs (limit {max_motifs:,.0f}); choose a smaller --size")
+        arr = ENGINES["patch"](exemplar, region, rng=np.random.default_rng(seed), stats=stats)
+    except SvgtileError as exc:
+        reason = str(exc).removeprefix(f"{path}: ")
+        return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
+    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}))
+    result = Swatch(path, label, len(imported), imported.kinds, len(arr))
+    return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
+
+
+def _box(root: ET.Element) -> tuple[float, float, float, float] | None:
+    box = root.attrib.get("viewBox")
+    if box:
+        x, y, w, h = (float(v) for v in re.split(r"[\s,]+", box.strip()))
+    else:
+        try:
+            x, y = 0.0, 0.0
+            w = float(re.sub(r"px$", "", root.attrib.get("width", "")))
+            h = float(re.sub(r"px$", "", root.attrib.get("height", "")))
+        except ValueError:
+            return None
+    if not (0 < w < math.inf and 0 < h < math.inf and math.isfinite(x) and math.isfinite(y)):
+        return None  # nothing to draw the tile in
+    return x, y, w, h
+
+
+def _repeated(root: ET.Element, box, swatch, tiles):
+    """An SVG root drawing the tile ``root`` repeated over the swatch area, with its viewBox."""
+    x0, y0, w, h = box
+    sw, sh = swatch if swatch is not None else (tiles * w, tiles * h)
+    out = ET.Element(f"{{{SVG_NS}}}svg")
+    defs = ET.SubElement(out, f"{{{SVG_NS}}}defs")
+    pattern = ET.SubElement(defs, f"{{{SVG_NS}}}pattern", {
+        "id": "tile", "patternUnits": "userSpaceOnUse", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
+        "height": fmt(h), "viewBox": f"{fmt(x0)} {fmt(y0)} {fmt(w)} {fmt(h)}",
+    })  # fmt: skip
+    for key in ("fill", "stroke", "stroke-width", "style"):
+        if key in root.attrib:  # the root's inherited style (Equinor puts fill="none" there)
+            pattern.set(key, root.attrib[key])
+    for child in root:
+        if isinstance(child.tag, str) and child.tag.rsplit("}", 1)[-1] not in SKIP:
+            pattern.append(copy.deepcopy(child))
+    ET.SubElement(out, f"{{{SVG_NS}}}rect", {
+        "x": fmt(x0), "y": fmt(y0), "width": fmt(sw), "height": fmt(sh), "fill": "url(#tile)",
+    })  # fmt: skip
+    return out, (x0, y0, sw, sh)
+
+
+_URL = re.compile(r"url\(\s*#([^)\s]+)\s*\)")
+
+
+def _nest(panel, prefix: str, x: float, y: float) -> ET.Element:
+    """A panel as a nested ``<svg>`` at (x, y), PANEL wide, every id prefixed with ``prefix``."""
+    content, (vx, vy, vw, vh) = panel
+    scale = PANEL / max(vw, vh)
+    nested = ET.Element(f"{{{SVG_NS}}}svg", {
+        "x": fmt(x), "y": fmt(y), "width": fmt(vw * scale), "height": fmt(vh * scale),
+        "viewBox": f"{fmt(vx)} {fmt(vy)} {fmt(vw)} {fmt(vh)}", "overflow": "hidden",
+    })  # fmt: skip
+    for child in content:
+        if isinstance(child.tag, str) and child.tag.rsplit("}", 1)[-1] not in SKIP:
+            nested.append(copy.deepcopy(child))
+    for el in nested.iter():
+        for key, value in list(el.attrib.items()):
+            if key == "id":
+                el.set(key, f"{prefix}-{value}")
+            elif key in ("href", f"{{{XLINK_NS}}}href") and value.startswith("#"):
+                el.set(key, f"#{prefix}-{value[1:]}")
+            elif "url(" in value:
+                el.set(key, _URL.sub(lambda m: f"url(#{prefix}-{m.group(1)})", value))
+    return nested
+
+
+def _frame(parent: ET.Element, x: float, y: float) -> None:
+    ET.SubElement(parent, f"{{{SVG_NS}}}rect", {
+        "x": fmt(x), "y": fmt(y), "width": fmt(PANEL), "height": fmt(PANEL),
+        "fill": "none", "stroke": "#888888", "stroke-width": "0.5",
+    })  # fmt: skip
+
+
+def _reason(parent: ET.Element, reason: str, x: float, y: float) -> None:
+    text = ET.SubElement(parent, f"{{{SVG_NS}}}text", {"x": fmt(x + 6), "y": fmt(y + 20), "font-size": "9", "fill": "#a00000"})
+    text.text = "refused:"
+    for i, line in enumerate(textwrap.wrap(reason, 34)[:10]):
+        span = ET.SubElement(parent, f"{{{SVG_NS}}}text", {"x": fmt(x + 6), "y": fmt(y + 34 + 11 * i), "font-size": "9"})
+        span.text = line
+
+
+def _short(text: str, limit: int) -> str:
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _oneline(text: object) -> str:
+    return " ".join(str(text).split())

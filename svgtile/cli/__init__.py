@@ -1,0 +1,1 @@
+"""The ``svgtile`` command line: one module per command, registered onto one group."""

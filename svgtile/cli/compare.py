@@ -1,0 +1,74 @@
+"""``svgtile compare``: every engine on one region, one table (and PNG previews)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+
+from svgtile.apps.compare import compare as run_compare
+from svgtile.apps.compare import format_table
+from svgtile.apps.preview import contact_sheet, render_png, write_bytes
+from svgtile.cli.main import _check_motif_count, _json_safe, _load, _size, _Stderr
+from svgtile.core.region import Region
+from svgtile.errors import OutputError
+from svgtile.svg.writer import fmt, svg_document, write_text
+
+#: Pixels per user unit of the contact sheet are chosen so a texture panel is this wide.
+SHEET_PANEL = 320
+
+
+@click.command(name="compare")
+@click.argument("exemplar", type=click.Path(dir_okay=False))
+@click.option("--size", required=True, help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 1000x1000.")
+@click.option("--engines", default="patch,tile,random", show_default=True, help="Comma-separated engines, one column each.")
+@click.option("--seed", type=click.IntRange(min=0), default=1, show_default=True, help="Random seed, the same for every engine.")
+@click.option("--png", "png_dir", type=click.Path(file_okay=False),
+              help="Also write each texture as SVG and PNG into this folder, and a contact sheet: the exemplar beside every texture.")
+@click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
+def compare(exemplar, size, engines, seed, png_dir, as_json):
+    """Synthesize EXEMPLAR with each engine and print their figures side by side."""
+    width, height = _size(size)
+    names = [e.strip() for e in engines.split(",") if e.strip()]
+    if png_dir is not None:
+        folder = Path(png_dir)
+        if folder.exists() and not folder.is_dir():
+            raise OutputError("is a file, not a folder", source=png_dir)
+        render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
+    ex, stats = _load(exemplar)
+    region = Region.rectangle(width, height)
+    _check_motif_count(ex, stats, region, f"--size {size}", force=None)  # every engine holds them, and the scoring
+    results = run_compare(ex, stats, region, engines=names, seed=seed)
+    _Stderr.clear()
+    if png_dir is not None:
+        _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed)
+    if as_json:
+        out = {"exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}", "seed": seed,
+               "engines": {r.engine: r.score for r in results}}  # fmt: skip
+        click.echo(json.dumps(_json_safe(out), indent=2, allow_nan=False))
+    else:
+        click.echo(f"{Path(exemplar).name} on {fmt(width)} x {fmt(height)}, seed {seed}")
+        click.echo(format_table(results))
+
+
+def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) -> None:
+    """``ENGINE.svg``/``.png`` per texture and ``contact-sheet.svg``/``.png`` in ``folder``."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"cannot create the folder ({exc.strerror or exc})", source=str(folder)) from None
+    x0, y0, x1, y1 = region.bounds
+    scale = SHEET_PANEL / max(x1 - x0, y1 - y0)
+    ex_text = path.read_text(encoding="utf-8")
+    panels = [(f"exemplar {path.stem}", ex_text)]
+    for r in results:
+        meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement)}
+        text = svg_document(ex, r.arrangement, region, boundary="clip", params=meta)
+        write_text(text, folder / f"{r.engine}.svg", protect=(path,))
+        png = render_png(text, round(SHEET_PANEL * (x1 - x0) / max(x1 - x0, y1 - y0)))
+        write_bytes(png, folder / f"{r.engine}.png")
+        panels.append((r.engine, text))
+    sheet, width = contact_sheet(panels, scale)
+    write_text(sheet, folder / "contact-sheet.svg", protect=(path,))
+    write_bytes(render_png(sheet, width), folder / "contact-sheet.png")

@@ -1,0 +1,102 @@
+"""``svgtile import`` (a pattern tile to an exemplar) and ``svgtile swatches`` (a legend sheet)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import click
+
+from svgtile.analysis.stats import Stats, analyze
+from svgtile.cli import main as cli
+from svgtile.cli.main import _size, _warn
+from svgtile.core.exemplar import Exemplar
+from svgtile.errors import OutputError, ParameterError
+from svgtile.svg.reader import parse_exemplar
+from svgtile.svg.writer import check_output, same_file, write_text
+from svgtile.tiles.importer import import_tile
+
+
+def load_tile(path: str) -> tuple[Exemplar, Stats]:
+    """Import a pattern tile and analyse it, as ``synth --import`` does (warnings on stderr)."""
+    imported = import_tile(path)
+    for note in imported.notes:
+        _warn(f"{path}: {note}")
+    exemplar = parse_exemplar(imported.text, source=path)
+    return exemplar, analyze(exemplar)
+
+
+@click.command(name="import")
+@click.argument("tile", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", required=True, help="Output exemplar SVG file, or - for standard output.")
+def import_cmd(tile, output):
+    """Turn a seamless pattern TILE (FGDC, OSM, well-log fills …) into an exemplar.
+
+    Frame and background rectangles are dropped, zero-length round-capped lines become dots,
+    motifs cut at the tile's edge are reassembled, touching strokes and parallel pairs of strokes
+    are grouped into motifs, and motifs identical up to rotation share a <symbol>.  Hatching,
+    continuous lines and solid fills are refused with the reason.
+    """
+    if output != "-" and same_file(output, tile):
+        raise ParameterError(f"{output}: refusing to overwrite the tile")
+    check_output(output, protect=(tile,))
+    imported = import_tile(tile)
+    for note in imported.notes:
+        _warn(f"{tile}: {note}")
+    write_text(imported.text, output, protect=(Path(tile),))
+    click.echo(
+        f"svgtile: {tile}: {len(imported)} motif(s) of {imported.kinds} kind(s), "
+        f"{int(imported.wrapped.sum())} reassembled across the tile's edge",
+        err=True,
+    )
+
+
+@click.command(name="swatches")
+@click.argument("inputs", nargs=-1, required=True, type=click.Path(exists=True))
+@click.option("-o", "--output", required=True, help="Output SVG sheet, or - for standard output.")
+@click.option("--size", default=None,
+              help="Area of each swatch, WIDTHxHEIGHT in the tile's user units (one number: a square). Default: 3 x 3 tiles.")
+@click.option("--columns", type=click.IntRange(min=1), default=4, show_default=True, help="Patterns per row.")
+@click.option("--names", type=click.Path(dir_okay=False), default=None,
+              help="CSV with a name column and a code (file stem) or file column, e.g. the FGDC INDEX.csv.")
+@click.option("--seed", type=click.IntRange(min=0), default=1, show_default=True, help="Random seed of every synthesis.")
+@click.option("--png", "png", is_flag=True, help="Also write OUTPUT with .png (needs the 'png' extra: resvg-py).")
+@click.option("--png-width", type=click.IntRange(min=100, max=20000), default=1600, show_default=True,
+              help="Width of the PNG, pixels.")
+def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
+    """A legend sheet of pattern tiles: per pattern its name, the tile repeated, and a texture
+    synthesized from it, side by side at one scale (or why the tile was refused).
+
+    INPUTS are tile SVG files or directories of them.
+    """
+    from svgtile.apps.swatches import collect, read_names, render_png, swatch_sheet
+
+    files = collect(inputs)
+    if not files:
+        raise ParameterError("no .svg files among the inputs")
+    if png and output == "-":
+        raise ParameterError("--png needs a file name for --output")
+    png_path = Path(output).with_suffix(".png") if png else None
+    if png_path is not None and png_path == Path(output):
+        raise ParameterError(f"{output}: the SVG sheet and the PNG would be the same file")
+    check_output(output, protect=tuple(files))
+    if png_path is not None:
+        check_output(str(png_path), protect=tuple(files))
+    swatch = _size(size) if size is not None else None
+    table = read_names(names) if names else None
+    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=cli.MAX_MOTIFS)
+    if png_path is not None:
+        write_bytes(render_png(sheet.text, png_width), png_path)
+    write_text(sheet.text, output, protect=tuple(files))
+    click.echo(f"svgtile: {sheet.accepted} of {len(files)} pattern(s) synthesized, {sheet.refused} refused", err=True)
+
+
+def write_bytes(data: bytes, path: Path) -> None:
+    """Write ``data`` atomically (a temporary file beside ``path``, then a rename)."""
+    tmp = path.with_name(f".{path.name}.svgtile-tmp")
+    try:
+        tmp.write_bytes(data)
+        os.replace(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise OutputError(f"{path}: cannot write ({exc.strerror or exc})") from None

@@ -1,0 +1,1 @@
+"""The patch engine (AlMeraj, Kaplan & Asente 2013)."""

@@ -1,0 +1,1 @@
+"""Likeness figures of a texture against its exemplar."""

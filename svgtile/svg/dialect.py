@@ -1,0 +1,400 @@
+"""The SVG dialect svgtile reads: namespaces, inherited style, lengths, transforms, and shapes
+flattened to footprints.
+
+This package (:mod:`svgtile.svg`) is the only one that imports svgelements; it is used for what it
+does well (path data, shapes, transforms, lengths) while the document structure is walked with
+ElementTree.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import shapely
+import svgelements as se
+
+from svgtile.errors import ExemplarError
+
+SVG_NS = "http://www.w3.org/2000/svg"
+XLINK_NS = "http://www.w3.org/1999/xlink"
+INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
+
+SHAPES = {"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"}
+CONTAINERS = {"g", "a", "switch"}
+NOT_RENDERED = {
+    "defs", "symbol", "clipPath", "mask", "marker", "pattern", "metadata", "title", "desc",
+    "style", "script", "linearGradient", "radialGradient", "filter", "foreignObject", "view",
+}  # fmt: skip
+INHERITED = (
+    "fill", "stroke", "stroke-width", "stroke-linecap", "stroke-linejoin", "stroke-miterlimit",
+    "fill-rule", "visibility", "color", "fill-opacity", "stroke-opacity",
+)  # fmt: skip
+INITIAL = {
+    "fill": "black", "stroke": "none", "stroke-width": "1", "stroke-linecap": "butt",
+    "stroke-linejoin": "miter", "stroke-miterlimit": "4", "visibility": "visible",
+}  # fmt: skip
+
+#: Relative tolerance for deciding that two plain motifs are the same shape up to rotation.
+SHAPE_TOLERANCE = 0.03
+#: Chord tolerance for flattening curves, as a fraction of the element's size (a circle loses
+#: about 0.2 % of its area).
+FLATNESS = 0.0005
+#: The same for the input region, whose area sets the density.
+REGION_FLATNESS = 1e-5
+#: Decimals kept for a kind's local origin, so output transforms reproduce it exactly.
+ORIGIN_DECIMALS = 4
+#: Most points one footprint may have: a guard against ``<use>`` fan-out ("billion laughs").
+MAX_COORDINATES = 200_000
+#: Largest coordinate of an input region or tile, user units: beyond it areas overflow.
+MAX_COORDINATE = 1e100
+#: Deepest chain of ``<use>`` references followed.
+MAX_USE_DEPTH = 32
+#: Presentation properties that are not inherited but change how a plain motif looks.
+OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
+#: Attribute of the region element giving the period of a repeating tile (see Exemplar.period).
+PERIOD_ATTR = "{urn:svgtile:run:1}period"
+
+
+
+
+def one_line(text: object) -> str:
+    """``text`` as one line (messages must fit the CLI's single line)."""
+    return " ".join(str(text).split())
+
+
+def local_tag(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
+
+
+def tag_ns(tag: str) -> str:
+    return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else ""
+
+
+def is_svg(el: ET.Element) -> bool:
+    return isinstance(el.tag, str) and tag_ns(el.tag) in ("", SVG_NS)
+
+
+def href_of(el: ET.Element) -> str | None:
+    """The element's ``href`` or ``xlink:href`` (SVG 2 ``href`` wins), or None.
+
+    ElementTree resolves prefixes, so an ad-hoc prefix bound to the xlink namespace (jsdotpattern
+    writes ``NS1:href`` with ``xmlns:NS1``) arrives as ``{xlink}href`` too; an ``href`` in any
+    other namespace is not a reference.
+    """
+    for key in ("href", f"{{{XLINK_NS}}}href"):
+        if key in el.attrib:
+            return el.attrib[key].strip()
+    return None
+
+
+def cascade_style(el: ET.Element, parent: dict[str, str]) -> dict[str, str]:
+    """Effective presentation properties of ``el`` given its parent's (CSS cascade, simplified)."""
+    own: dict[str, str] = {}
+    for key in (*INHERITED, "display", *OWN_LOOK):
+        if key in el.attrib:
+            own[key] = el.attrib[key].strip()
+    for decl in el.attrib.get("style", "").split(";"):
+        if ":" in decl:
+            key, value = decl.split(":", 1)
+            own[key.strip()] = value.replace("!important", "").strip()
+    style = {k: v for k, v in parent.items() if k in INHERITED}
+    style.update({k: v for k, v in own.items() if v != "inherit"})
+    return style
+
+
+def inherited_items(style: dict[str, str]) -> tuple[tuple[str, str], ...]:
+    """The inherited properties of ``style`` that differ from their initial values, sorted."""
+    return tuple(sorted((k, v) for k, v in style.items() if k in INHERITED and INITIAL.get(k) != v))
+
+
+def is_hidden(style: dict[str, str]) -> bool:
+    return (
+        style.get("display") == "none"
+        or style.get("visibility") in ("hidden", "collapse")
+        or number_attr(style.get("opacity", "1"), 1.0) <= 0
+    )
+
+
+def is_painted(value: str | None) -> bool:
+    return value is not None and value.strip() not in ("none", "transparent")
+
+
+def number_attr(text: str | None, default: float) -> float:
+    """An absolute length or number in user units; ``default`` if missing, relative or unreadable."""
+    if text is None:
+        return default
+    try:
+        return absolute_length(text)
+    except ValueError:
+        return default
+
+
+LENGTH_RE = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([a-zA-Z%]*)\s*$")
+_RELATIVE_UNITS = {"%", "em", "ex", "ch", "rem", "vw", "vh", "vmin", "vmax", "vi", "vb", "cap", "ic", "lh", "rlh"}
+_UNITS = {"": 1.0, "px": 1.0, "mm": 96 / 25.4, "cm": 96 / 2.54, "q": 96 / 101.6, "in": 96.0, "pt": 96 / 72, "pc": 16.0}
+
+
+def absolute_length(text: str) -> float:
+    """A geometry length in user units; relative units (%, em, ex) and junk raise ValueError."""
+    match = LENGTH_RE.match(text)
+    if match is None:
+        raise ValueError(f"unreadable length {text.strip()!r}")
+    number, unit = match.groups()
+    if unit.lower() in _RELATIVE_UNITS:
+        raise ValueError(f"length {text.strip()!r} is relative (svgtile resolves only absolute units)")
+    if unit.lower() not in _UNITS:
+        raise ValueError(f"unreadable length {text.strip()!r}")
+    return float(number) * _UNITS[unit.lower()]
+
+
+def parse_matrix(text: str | None) -> np.ndarray:
+    """3×3 affine matrix of an SVG ``transform`` attribute."""
+    if not text:
+        return np.eye(3)
+    m = se.Matrix(text)
+    return np.array([[m.a, m.c, m.e], [m.b, m.d, m.f], [0.0, 0.0, 1.0]])
+
+
+def translation(x: float, y: float) -> np.ndarray:
+    return np.array([[1.0, 0.0, x], [0.0, 1.0, y], [0.0, 0.0, 1.0]])
+
+
+def linear_part(lin: np.ndarray) -> np.ndarray:
+    m = np.eye(3)
+    m[:2, :2] = lin
+    return m
+
+
+def apply_matrix(m: np.ndarray, geom: shapely.Geometry) -> shapely.Geometry:
+    return shapely.transform(geom, lambda c: c @ m[:2, :2].T + m[:2, 2])
+
+
+def fmt_number(v: float) -> str:
+    s = f"{v:.6f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def matrix_attr(m: np.ndarray) -> str:
+    return "matrix({})".format(" ".join(fmt_number(v) for v in (m[0, 0], m[1, 0], m[0, 1], m[1, 1], m[0, 2], m[1, 2])))
+
+
+def is_rendered(el: ET.Element) -> bool:
+    """Can ``el`` draw as part of its parent (the input region never does)?"""
+    return is_svg(el) and local_tag(el.tag) not in NOT_RENDERED and el.attrib.get("id") != "region"
+
+
+def drawable_children(el: ET.Element) -> list[ET.Element]:
+    """Children of ``el`` that may draw something."""
+    return [c for c in el if is_rendered(c)]
+
+
+def holds_motifs(group: ET.Element, *, alone: bool) -> bool:
+    """Is ``group`` a container of motifs rather than a motif itself?
+
+    Yes for Inkscape layers, for groups holding ``<use>`` instances, and for a group that is the
+    only drawable child of its container yet holds several shapes or another group (an exporter's
+    wrapper, possibly nested).
+    """
+    if group.attrib.get(f"{{{INKSCAPE_NS}}}groupmode") == "layer":
+        return True
+    if any(local_tag(e.tag) == "use" for e in group.iter()):
+        return True
+    if not alone:
+        return False
+    children = drawable_children(group)
+    return len(children) > 1 or (len(children) == 1 and local_tag(children[0].tag) in CONTAINERS)
+
+
+def describe(el: ET.Element) -> str:
+    ident = el.attrib.get("id")
+    return f"<{local_tag(el.tag)} id={ident!r}>" if ident else f"<{local_tag(el.tag)}>"
+
+
+def shorten(ref: str, limit: int = 80) -> str:
+    return ref if len(ref) <= limit else ref[: limit - 1] + "…"
+
+
+# ----------------------------------------------------------------------------- geometry
+
+_GEOMETRY = {
+    "rect": (se.Rect, ("x", "y", "width", "height", "rx", "ry")),
+    "circle": (se.Circle, ("cx", "cy", "r")),
+    "ellipse": (se.Ellipse, ("cx", "cy", "rx", "ry")),
+    "line": (se.SimpleLine, ("x1", "y1", "x2", "y2")),
+}
+
+
+def se_shape(el: ET.Element) -> se.Shape | None:
+    """The svgelements shape for a basic shape element, without its transform (None: no shape).
+
+    Lengths are converted here, so svgelements never guesses a unit; a relative length raises
+    ValueError.
+    """
+    tag = local_tag(el.tag)
+    if tag == "path":
+        return se.Path(el.attrib.get("d", ""))
+    if tag in ("polyline", "polygon"):
+        return (se.Polyline if tag == "polyline" else se.Polygon)({"points": el.attrib.get("points", "")})
+    if tag not in _GEOMETRY:
+        return None
+    cls, names = _GEOMETRY[tag]
+    attrs = {}
+    for name in names:
+        text = el.attrib.get(name)
+        if text is not None and text.strip() not in ("", "auto"):
+            attrs[name] = repr(absolute_length(text))
+    return cls(attrs)
+
+
+def control_points(seg: se.PathSegment) -> list[tuple[float, float]]:
+    """Points whose hull contains ``seg`` (to size the flattening tolerance without evaluating it)."""
+    if isinstance(seg, se.Arc):
+        r = max(abs(seg.rx), abs(seg.ry))
+        c = seg.center
+        return [(c.x - r, c.y - r), (c.x + r, c.y + r)]
+    names = ("start", "control", "control1", "control2", "end")
+    return [(p.x, p.y) for p in (getattr(seg, n, None) for n in names) if p is not None]
+
+
+def sample_segment(seg: se.PathSegment, tol: float) -> np.ndarray:
+    """Points of a curved segment after its start, within ``tol`` of it ((k, 2), last = end)."""
+    if isinstance(seg, se.CubicBezier):
+        p = np.array([[q.x, q.y] for q in (seg.start, seg.control1, seg.control2, seg.end)])
+        bend = max(math.hypot(*(p[0] - 2 * p[1] + p[2])), math.hypot(*(p[1] - 2 * p[2] + p[3])))
+        n = math.sqrt(0.75 * bend / tol)  # Wang's bound
+    elif isinstance(seg, se.QuadraticBezier):
+        p = np.array([[q.x, q.y] for q in (seg.start, seg.control, seg.end)])
+        n = math.sqrt(0.25 * math.hypot(*(p[0] - 2 * p[1] + p[2])) / tol)
+    elif isinstance(seg, se.Arc):
+        r = max(abs(seg.rx), abs(seg.ry), tol)
+        step = 2 * math.acos(max(-1.0, 1 - tol / r))
+        n = abs(seg.sweep) / max(step, 1e-3)
+    else:
+        n = 16
+    n = int(min(256, max(1, math.ceil(n))))
+    t = np.linspace(0.0, 1.0, n + 1)[1:, None]
+    s = 1.0 - t
+    if isinstance(seg, se.CubicBezier):
+        pts = s**3 * p[0] + 3 * s * s * t * p[1] + 3 * s * t * t * p[2] + t**3 * p[3]
+    elif isinstance(seg, se.QuadraticBezier):
+        pts = s * s * p[0] + 2 * s * t * p[1] + t * t * p[2]
+    else:
+        pts = np.asarray(seg.npoint(t[:, 0]), dtype=np.float64).reshape(-1, 2)
+    pts[-1] = (seg.end.x, seg.end.y)
+    return pts
+
+
+def flatten_path(path: se.Path, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
+    """Subpaths of ``path`` as ``((k, 2) points, closed)`` polylines.
+
+    A subpath that is only a moveto draws nothing (not even a cap) and is dropped; ``M x y Z`` and
+    ``M x y L x y`` are kept, as one-point polylines, because their caps draw.
+    """
+    segments = list(path)
+    hull = [p for seg in segments for p in control_points(seg)]
+    if not hull:
+        return []
+    hull_array = np.array(hull, dtype=np.float64)
+    size = float(np.hypot(*(hull_array.max(axis=0) - hull_array.min(axis=0))))
+    tol = max(size * flatness, 1e-9)
+    out: list[tuple[np.ndarray, bool]] = []
+    pts: list[np.ndarray] = []
+    drawn = False
+
+    def flush(closed: bool) -> None:
+        if pts and drawn:
+            out.append((np.vstack(pts), closed))
+
+    for seg in segments:
+        if isinstance(seg, se.Move):
+            flush(False)
+            pts, drawn = [np.array([[seg.end.x, seg.end.y]])], False
+            continue
+        if seg.start is None:
+            raise ValueError("path data must begin with a moveto")
+        if not pts:  # drawing resumes after a close
+            pts = [np.array([[seg.start.x, seg.start.y]])]
+        drawn = True
+        if isinstance(seg, se.Close):
+            flush(True)
+            pts, drawn = [], False
+        elif isinstance(seg, se.Line):
+            pts.append(np.array([[seg.end.x, seg.end.y]]))
+        elif seg.end is not None:
+            pts.append(sample_segment(seg, tol))
+    flush(False)
+    return out
+
+
+CAPS = {"round": "round", "square": "square", "butt": "flat"}
+JOINS = {"round": "round", "bevel": "bevel", "miter": "mitre", "miter-clip": "mitre", "arcs": "mitre"}
+
+
+def flat_subpaths(el: ET.Element, source: str, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
+    """Flattened subpaths of a shape element in its own user space; bad data is an ExemplarError."""
+    try:
+        shape = se_shape(el)
+        return flatten_path(se.Path(shape), flatness) if shape is not None else []
+    except Exception as exc:  # svgelements raises bare ValueErrors/TypeErrors on bad data
+        detail = "malformed path data" if local_tag(el.tag) == "path" else one_line(exc) or type(exc).__name__
+        raise ExemplarError(f"cannot read the geometry of {describe(el)} ({detail})", source=source) from None
+
+
+def leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapely.Geometry | None:
+    """Footprint of one shape element in its own user space (before its transform).
+
+    The interior of every closed subpath (filled or not) and of every filled one, plus the stroke
+    band of half the stroke width with its caps and joins (a subpath that returns to its start
+    without ``Z`` gets its interior when holes are filled).  A zero-length subpath is a dot with
+    round caps and a square with square caps.
+    """
+    subpaths = flat_subpaths(el, source)
+    filled = is_painted(style.get("fill", INITIAL["fill"]))
+    width = number_attr(style.get("stroke-width"), 1.0)
+    stroked = is_painted(style.get("stroke", INITIAL["stroke"])) and width > 0
+    cap = CAPS.get(style.get("stroke-linecap", "butt"), "flat")
+    join = JOINS.get(style.get("stroke-linejoin", "miter"), "mitre")
+    limit = number_attr(style.get("stroke-miterlimit"), 4.0)
+    parts = []
+    for pts, closed in subpaths:
+        distinct = len(np.unique(np.round(pts, 12), axis=0))
+        if distinct >= 3 and (closed or filled):
+            parts.append(shapely.make_valid(shapely.Polygon(pts)))
+        if not stroked:
+            continue
+        if distinct == 1:
+            if cap == "round":
+                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=16))
+            elif cap == "square":
+                x, y = pts[0]
+                parts.append(shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2))
+            continue
+        line = np.vstack([pts, pts[:1]]) if closed else pts
+        parts.append(
+            shapely.LineString(line).buffer(
+                width / 2, quad_segs=16, cap_style=cap, join_style=join, mitre_limit=max(limit, 1.0)
+            )
+        )
+    parts = [p for p in parts if not p.is_empty and p.area > 0]
+    return shapely.union_all(parts) if parts else None
+
+
+def polygons_of(geom: shapely.Geometry) -> list[shapely.Polygon]:
+    """The polygons of ``geom`` at any depth of collection."""
+    out = []
+    for part in shapely.get_parts(geom):
+        if isinstance(part, shapely.Polygon):
+            out.append(part)
+        elif isinstance(part, (shapely.MultiPolygon, shapely.GeometryCollection)):
+            out.extend(polygons_of(part))
+    return out
+
+
+def fill_holes(geom: shapely.Geometry) -> shapely.Geometry:
+    return shapely.union_all([shapely.Polygon(p.exterior) for p in polygons_of(geom) if not p.is_empty])
+
+
+# ----------------------------------------------------------------------------- the reader

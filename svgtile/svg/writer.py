@@ -1,0 +1,430 @@
+"""Writing the synthesized texture as SVG: the exemplar's symbols and one ``<use>`` per motif.
+
+This is the only module that writes XML.  Numbers have a fixed format (at most four decimals,
+no trailing zeros), elements a stable order, and nothing depends on the clock or the machine, so
+the same inputs and seed give a byte-identical file.  Files are written atomically.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import os
+import re
+import stat
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.exemplar import Exemplar, Kind
+from svgtile.core.region import Region
+from svgtile.errors import OutputError
+from svgtile.svg.dialect import INKSCAPE_NS, SVG_NS, XLINK_NS
+
+META_NS = "urn:svgtile:run:1"
+SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
+USES_MARK = "svgtile-uses"
+#: Decimals written for every number (positions, angles, scales, sizes).
+DECIMALS = 4
+# Below this magnitude np.round(v, 4) has a short repr with at most 4 decimals and no exponent.
+_FAST_LIMIT = 1e11
+# Characters XML 1.0 forbids (and lone surrogates from undecodable file names).
+_NOT_XML = re.compile("[^\x09\x0A\x0D\x20-\uD7FF\uE000-\uFFFD\U00010000-\U0010FFFF]")
+# ElementTree's namespace registry is process-wide; these are the prefixes any SVG tool expects.
+ET.register_namespace("", SVG_NS)
+ET.register_namespace("xlink", XLINK_NS)
+ET.register_namespace("svgtile", META_NS)
+ET.register_namespace("inkscape", INKSCAPE_NS)
+ET.register_namespace("sodipodi", SODIPODI_NS)
+
+
+def fmt(v: float) -> str:
+    """Fixed number format: four decimals at most, no trailing zeros, no ``-0``.
+
+    >>> fmt(1.0), fmt(-0.00001), fmt(2.50004), fmt(-3.14159)
+    ('1', '0', '2.5', '-3.1416')
+    """
+    return fmt_array(np.array([v]))[0]
+
+
+def fmt_array(values: np.ndarray) -> list[str]:
+    """:func:`fmt` for a whole array at once, (n,) floats to n strings.
+
+    Values are rounded with ``np.round(v, 4)``; the shortest repr of such a float is its decimal
+    value with at most four decimals, so only the ``.0`` of whole numbers needs removing.  Huge or
+    non-finite values (never written in practice) take the slow path.
+    """
+    v = np.round(np.asarray(values, dtype=np.float64).reshape(-1), DECIMALS) + 0.0  # + 0.0: no -0
+    out = [s[:-2] if s[-2:] == ".0" else s for s in map(repr, v.tolist())]
+    for i in np.flatnonzero(~(np.abs(v) < _FAST_LIMIT)).tolist():
+        s = f"{v[i]:.{DECIMALS}f}".rstrip("0").rstrip(".")
+        out[i] = "0" if s in ("-0", "") else s
+    return out
+
+
+def use_transform_suffix(kind: Kind) -> str:
+    """The part of a motif's transform that is the same for every instance of ``kind``."""
+    parts = []
+    if np.any(kind.offset != 0):
+        parts.append(f"translate({fmt(kind.offset[0])} {fmt(kind.offset[1])})")
+    if not np.allclose(kind.residual, np.eye(2)):
+        n = kind.residual
+        parts.append(f"matrix({fmt(n[0, 0])} {fmt(n[1, 0])} {fmt(n[0, 1])} {fmt(n[1, 1])} 0 0)")
+    return " ".join(parts)
+
+
+def use_elements(arr: Arrangement, kinds: tuple[Kind, ...], indent: str = "    ") -> list[str]:
+    """One ``<use>`` line per motif, in the arrangement's order.
+
+    ``transform="translate(x y) rotate(angle) scale(s) <kind suffix>"``; ``rotate`` is left out
+    for angle 0 and ``scale`` for scale 1 (after formatting).  Columns are formatted in bulk.
+    """
+    heads, tails = [], []
+    for kind in kinds:
+        attrs = "".join(f' {k}="{_escape(v)}"' for k, v in kind.use_attrs)
+        heads.append(f'{indent}<use xlink:href="#{_escape(kind.href)}"{attrs} transform="translate(')
+        suffix = use_transform_suffix(kind)
+        tails.append(f' {suffix}"/>' if suffix else '"/>')
+    if len(arr) == 0:
+        return []
+    xs, ys = fmt_array(arr.xy[:, 0]), fmt_array(arr.xy[:, 1])
+    rot = [f") rotate({a}" if a != "0" else "" for a in fmt_array(arr.angle)]
+    scl = [f") scale({s}" if s != "1" else "" for s in fmt_array(arr.scale)]
+    return [
+        f"{heads[k]}{x} {y}{r}{s}){tails[k]}"
+        for k, x, y, r, s in zip(arr.kind.tolist(), xs, ys, rot, scl, strict=True)
+    ]
+
+
+def svg_document(
+    exemplar: Exemplar, arr: Arrangement, region: Region, *, boundary: str, params: dict[str, object]
+) -> str:
+    """The output SVG as text.
+
+    Parameters
+    ----------
+    exemplar : gives the symbols (copied unchanged, ids kept) and kinds
+    arr : the motifs
+    region : the output region; its bounding box is the document's viewBox
+    boundary : ``clip`` adds a clipPath of the region around the motifs
+    params : recorded in ``<metadata>`` (engine, seed, parameters), sorted by name
+
+    The motifs go in ``<g id="svgtile">`` and the clip path is ``svgtile-clip``; should the
+    exemplar's copied defs already use such an id, a numbered suffix keeps ids unique.
+    """
+    x0, y0, x1, y1 = region.bounds
+    width, height, *box = fmt_array(np.array([x1 - x0, y1 - y0, x0, y0]))
+    root = ET.Element(
+        f"{{{SVG_NS}}}svg",
+        {"width": width, "height": height, "viewBox": " ".join((*box, width, height))},
+    )
+    meta = ET.SubElement(root, f"{{{SVG_NS}}}metadata")
+    ET.SubElement(meta, f"{{{META_NS}}}run", {k: _xml_chars(str(v)) for k, v in sorted(params.items())})
+    defs = ET.SubElement(root, f"{{{SVG_NS}}}defs")
+    for el in exemplar.defs:
+        defs.append(_in_svg_namespace(copy.deepcopy(el)))
+    taken = {node.get("id") for node in defs.iter()}
+    group = ET.SubElement(root, f"{{{SVG_NS}}}g", {"id": _unique_id("svgtile", taken)})
+    if boundary == "clip":
+        clip_id = _unique_id("svgtile-clip", taken)
+        clip = ET.SubElement(defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
+        ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(region.shape), "clip-rule": "evenodd"})
+        group.set("clip-path", f"url(#{clip_id})")
+    group.append(ET.Comment(USES_MARK))
+    ET.indent(root, space="  ")
+    text = ET.tostring(root, encoding="unicode")
+    head_end = text.index(">")
+    if "xmlns:xlink=" not in text[:head_end]:  # the <use> lines below need it even if defs do not
+        text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
+    body = "\n".join(use_elements(arr, exemplar.kinds))
+    # the group is the last element, so its marker is the last one in the text
+    before, _, after = text.rpartition(f"<!--{USES_MARK}-->")
+    if not body:  # an empty group: no blank line inside it
+        before = before.rstrip(" ").removesuffix("\n")
+    text = before + body.lstrip() + after
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
+
+
+def path_data(geom: shapely.Geometry) -> str:
+    """SVG path data of a (Multi)Polygon, holes included (use with the evenodd rule)."""
+    parts = []
+    for poly in shapely.get_parts(geom):
+        for ring in [poly.exterior, *poly.interiors]:
+            xy = fmt_array(np.asarray(ring.coords)[:-1].ravel())
+            parts.append("M" + " L".join(f"{x} {y}" for x, y in zip(xy[::2], xy[1::2], strict=True)) + " Z")
+    return " ".join(parts)
+
+
+def check_output(out: str | Path, *, protect: tuple[str | Path, ...] = ()) -> None:
+    """Raise :class:`OutputError` unless ``out`` can be written (``-`` always can).
+
+    ``out`` must not be any path in ``protect`` (under any spelling, symlink or hard link), must
+    not be a folder, and its folder must exist.  Call it before the work to fail early;
+    :func:`write_text` calls it again.
+    """
+    if str(out) == "-":
+        return
+    out = Path(out)
+    for p in protect:
+        if same_file(out, Path(p)):
+            raise OutputError("refusing to overwrite an input file", source=str(out))
+    if out.is_dir():
+        raise OutputError("is a folder; give a file name", source=str(out))
+    folder = out.parent
+    if not folder.is_dir():
+        problem = "is a file, not a folder" if folder.exists() else "does not exist"
+        raise OutputError(f"folder {str(folder)!r} {problem}", source=str(out))
+
+
+def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) -> None:
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``out`` atomically (``-`` is standard output).
+
+    Refuses to overwrite any path in ``protect`` (the inputs).  The text goes to a temporary file
+    in the target folder that is flushed to disk and renamed into place, so a failure never
+    leaves half a file, and a file that was there stays untouched.  A symbolic link is written
+    through (the file it points to is replaced); a device or FIFO (``/dev/null``, a named pipe)
+    is written into directly, never replaced.  A new file gets the usual
+    permissions (``0o666`` less the umask); a replaced file keeps its permissions.
+
+    Raises
+    ------
+    OutputError
+        The path is protected or unusable, or writing failed (disk full, no permission …).
+    """
+    data = text.encode("utf-8")
+    if str(out) == "-":
+        stream = sys.stdout
+        binary = getattr(stream, "buffer", None)
+        if binary is None:  # a text-only stream (an embedding application's)
+            stream.write(text)
+        else:  # bytes, so the document is the same as the file on every platform
+            stream.flush()
+            view = memoryview(data)
+            while view:  # a pipe whose reader left may take part and report success
+                written = binary.write(view)
+                if not written:
+                    raise OutputError("standard output takes no more data", source="-")
+                view = view[written:]
+            binary.flush()
+        stream.flush()
+        return
+    check_output(out, protect=protect)
+    out = Path(out)
+    try:
+        special = not stat.S_ISREG(os.stat(out).st_mode)  # follows symlinks
+    except OSError:  # no such file (yet)
+        special = False
+    if special:  # a device (/dev/null) or a FIFO: a rename would replace it with a regular file
+        try:
+            with open(out, "wb") as fh:
+                fh.write(data)
+        except OSError as exc:
+            raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+        return
+    if out.is_symlink():  # replace the file the link points to, not the link
+        out = Path(os.path.realpath(out))
+    mode = _file_mode(out)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
+    except OSError as exc:
+        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
+        os.replace(tmp, out)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def same_file(a: str | Path, b: str | Path) -> bool:
+    """Do ``a`` and ``b`` name one file (``./d/../x.svg`` and ``x.svg``, symlinks, hard links)?"""
+    if Path(a).resolve() == Path(b).resolve():
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist
+        return False
+
+
+def _file_mode(out: Path) -> int:
+    """Permissions for the file written at ``out`` (mkstemp's are ``0o600``)."""
+    try:
+        return stat.S_IMODE(os.stat(out).st_mode)
+    except OSError:
+        umask = os.umask(0o022)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
+def _unique_id(base: str, taken: set[str | None]) -> str:
+    ident, n = base, 1
+    while ident in taken:
+        n += 1
+        ident = f"{base}-{n}"
+    taken.add(ident)
+    return ident
+
+
+def _xml_chars(value: str) -> str:
+    """``value`` with characters XML cannot hold replaced by U+FFFD."""
+    return _NOT_XML.sub("\ufffd", value)
+
+
+def _in_svg_namespace(el: ET.Element) -> ET.Element:
+    """Give un-namespaced elements (from an SVG without xmlns) the SVG namespace."""
+    for node in el.iter():
+        if isinstance(node.tag, str) and not node.tag.startswith("{"):
+            node.tag = f"{{{SVG_NS}}}{node.tag}"
+    return el
+
+
+def _escape(value: str) -> str:
+    return value.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
+
+
+# ----------------------------------------------------------------------------- map documents
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class MapLayer:
+    """One region's texture in a map document.
+
+    Attributes
+    ----------
+    ident : the region's id; the texture group is ``svgtile-<ident>``
+    cls : the region's class (written as ``data-svgtile-class``)
+    shape : the region (Multi)Polygon in the root's user units; its clip path
+    kinds : the kinds, their ``href`` pointing at the prefixed symbols (:func:`prefixed_defs`)
+    arr : the motifs, root user units
+    boundary : ``clip`` adds the region's clip path
+    anchor : the map element the texture is drawn just above, or None (then at the end)
+    matrix : (3, 3) from the anchor's parent's user space to the root's, or None
+    """
+
+    ident: str
+    cls: str
+    shape: shapely.Geometry
+    kinds: tuple[Kind, ...]
+    arr: Arrangement
+    boundary: str
+    anchor: ET.Element | None = None
+    matrix: np.ndarray | None = None
+
+
+def prefixed_defs(exemplar: Exemplar, prefix: str) -> tuple[list[ET.Element], tuple[Kind, ...]]:
+    """Copies of the exemplar's defs with every id prefixed, and its kinds pointing at them.
+
+    Two exemplars of one map may both define ``#dot``; with a prefix per style they cannot clash
+    with each other nor with the map's ids.  References inside the copies (``href``,
+    ``url(#…)``) follow their targets.
+    """
+    defs = [_in_svg_namespace(copy.deepcopy(el)) for el in exemplar.defs]
+    ids = {node.get("id") for el in defs for node in el.iter() if node.get("id")}
+    ids |= {k.href for k in exemplar.kinds}
+
+    def rename(match: re.Match) -> str:
+        ident = match.group(1)
+        return f"url(#{prefix}{ident})" if ident in ids else match.group(0)
+
+    for el in defs:
+        for node in el.iter():
+            for key, value in list(node.attrib.items()):
+                if key == "id" and value in ids:
+                    node.set(key, prefix + value)
+                elif key in ("href", f"{{{XLINK_NS}}}href") and value.startswith("#") and value[1:] in ids:
+                    node.set(key, "#" + prefix + value[1:])
+                elif "url(" in value:
+                    node.set(key, re.sub(r"url\(\s*#([^)\s]+)\s*\)", rename, value))
+    kinds = tuple(dataclasses.replace(k, href=prefix + k.href) for k in exemplar.kinds)
+    return defs, kinds
+
+
+def map_document(
+    root: ET.Element | None, defs: list[ET.Element], layers: list[MapLayer], *, params: dict[str, object],
+    namespaces: tuple[tuple[str, str], ...] | list = (),
+) -> str:
+    """The filled map as SVG text: the original map with one texture group per region.
+
+    Parameters
+    ----------
+    root : the map's root element, changed in place (None: a new document holding the
+        regions' outlines, for GeoJSON input)
+    defs : the prefixed symbols of every style (:func:`prefixed_defs`), in one new ``<defs>``
+    layers : the textures, each drawn right after its anchor element (its unit's own drawing,
+        so labels and linework drawn later stay on top)
+    params : recorded in ``<metadata>``
+    namespaces : (prefix, uri) pairs the map declares, so its prefixes (``sodipodi:``,
+        ``inkscape:`` …) come back as they were rather than as ``ns0:``
+
+    Each texture group carries the inverse of its anchor's parent's transform, so its motifs
+    and clip path are in the root's user units wherever the anchor sits.
+    """
+    outlines: list[ET.Element | None] = [None] * len(layers)
+    if root is None:
+        root = _outline_document([layer.shape for layer in layers])
+        outlines = list(root)
+    for prefix, uri in namespaces:
+        if prefix and not re.fullmatch(r"ns\d+", prefix) and uri not in (SVG_NS, XLINK_NS):
+            ET.register_namespace(prefix, uri)
+    taken = {node.get("id") for node in root.iter()} | {node.get("id") for el in defs for node in el.iter()}
+    meta = ET.Element(f"{{{SVG_NS}}}metadata", {"id": _unique_id("svgtile-run", taken)})
+    ET.SubElement(meta, f"{{{META_NS}}}run", {k: _xml_chars(str(v)) for k, v in sorted(params.items())})
+    new_defs = ET.Element(f"{{{SVG_NS}}}defs", {"id": _unique_id("svgtile-defs", taken)})
+    new_defs.extend(defs)
+    root.insert(0, new_defs)
+    root.insert(0, meta)
+    parents = {c: p for p in root.iter() for c in p}
+    bodies = []
+    for n, layer in enumerate(layers):
+        safe = re.sub(r"[^A-Za-z0-9_.-]+", "-", layer.ident).strip("-") or str(n + 1)
+        group = ET.Element(f"{{{SVG_NS}}}g", {"id": _unique_id(f"svgtile-{safe}", taken),
+                                              "data-svgtile-class": _xml_chars(layer.cls)})  # fmt: skip
+        if layer.matrix is not None and not np.allclose(layer.matrix, np.eye(3)):
+            inv = np.linalg.inv(layer.matrix)
+            group.set("transform", "matrix({})".format(" ".join(fmt_array(inv[:2].T.ravel()))))
+        if layer.boundary == "clip":
+            clip_id = _unique_id(f"svgtile-clip-{safe}", taken)
+            clip = ET.SubElement(new_defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
+            ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(layer.shape), "clip-rule": "evenodd"})
+            group.set("clip-path", f"url(#{clip_id})")
+        group.append(ET.Comment(f"{USES_MARK}-{n}"))
+        anchor = layer.anchor if layer.anchor is not None else outlines[n]
+        parent = parents.get(anchor) if anchor is not None else None
+        if parent is None:
+            root.append(group)
+        else:
+            parent.insert(list(parent).index(anchor) + 1, group)
+        bodies.append("\n".join(use_elements(layer.arr, layer.kinds)))
+    ET.indent(new_defs, space="  ", level=1)
+    text = ET.tostring(root, encoding="unicode")
+    head_end = text.index(">")
+    if "xmlns:xlink=" not in text[:head_end]:
+        text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
+    for n, body in enumerate(bodies):
+        text = text.replace(f"<!--{USES_MARK}-{n}-->", "\n" + body + "\n" if body else "", 1)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + ("" if text.endswith("\n") else "\n")
+
+
+def _outline_document(shapes: list[shapely.Geometry]) -> ET.Element:
+    """A new SVG showing each region's outline (the map, when the regions came from GeoJSON)."""
+    x0, y0, x1, y1 = shapely.union_all(shapes).bounds
+    width, height, *box = fmt_array(np.array([x1 - x0, y1 - y0, x0, y0]))
+    root = ET.Element(f"{{{SVG_NS}}}svg", {"width": width, "height": height,
+                                           "viewBox": " ".join((*box, width, height))})  # fmt: skip
+    for shape in shapes:
+        ET.SubElement(root, f"{{{SVG_NS}}}path", {
+            "d": path_data(shape), "fill": "none", "stroke": "#000", "stroke-width": fmt(max(x1 - x0, y1 - y0) / 1000),
+            "fill-rule": "evenodd"})  # fmt: skip
+    return root
