@@ -124,6 +124,11 @@ def find_python():
     return python, origin
 
 
+#: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
+#: against the .inx and svgtile's engine parameter classes).
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation")
+
+
 class FillWithTexture(inkex.EffectExtension):
     """Fill the selected shapes with a texture synthesized from the selected exemplar group."""
 
@@ -133,6 +138,7 @@ class FillWithTexture(inkex.EffectExtension):
         pars.add_argument("--grid", default="square", choices=["square", "hex"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
+        pars.add_argument("--junction", type=float, default=0.6)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
         pars.add_argument("--boundary", default="clip", choices=["clip", "inside", "centroid", "none"])
         pars.add_argument("--seed", type=int, default=0)
@@ -234,10 +240,13 @@ class FillWithTexture(inkex.EffectExtension):
             json.dump({"containers": containers}, fh)
         o = self.options
         cmd = [python, "-m", "svgtile", "inkscape", "fill", "exemplar.svg", "containers.json",
-               "--out-dir", ".", "--engine", o.engine, "--grid", o.grid, "--overlap", repr(o.overlap),
-               "--max-rotation", repr(o.max_rotation), "--boundary", o.boundary, "--seed", str(o.seed)]  # fmt: skip
-        if o.vary_orientation:
-            cmd.append("--vary-orientation")
+               "--out-dir", ".", "--engine", o.engine, "--boundary", o.boundary, "--seed", str(o.seed)]  # fmt: skip
+        for option in ENGINE_OPTIONS:  # svgtile keeps those the chosen engine has
+            value = getattr(o, option.replace("-", "_"))
+            if isinstance(value, bool):
+                cmd += [f"--{option}"] if value else []
+            else:
+                cmd += [f"--{option}", repr(value) if isinstance(value, float) else str(value)]
         env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "PYTHONSTARTUP")}
         extra = {"creationflags": 0x08000000} if os.name == "nt" else {}  # CREATE_NO_WINDOW
         try:

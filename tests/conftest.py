@@ -117,3 +117,21 @@ def random_exemplar(rng: np.random.Generator, n: int) -> str:
         f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK}" viewBox="0 0 100 100">'
         f"<defs>{symbols}</defs>{''.join(uses)}</svg>"
     )
+
+
+def arrange(engine, exemplar, region, *, rng=None, seed=None, stats=None, boundary="clip", progress=None, **params):
+    """The arrangement :func:`svgtile.engines.synthesize` makes (the tests' short spelling)."""
+    from svgtile.engines import synthesize
+
+    return synthesize(exemplar, region, engine, rng=rng, seed=seed, stats=stats, boundary=boundary,
+                      progress=progress, params=params).arrangement  # fmt: skip
+
+
+def fake_engine(place, like: str = "patch"):
+    """An engine with ``like``'s name and parameters whose ``place(ctx, params)`` is ``place``
+    (to monkeypatch into :data:`svgtile.engines.ENGINES`)."""
+    from svgtile.engines import ENGINES
+
+    real = ENGINES[like]
+    return type("FakeEngine", (), {"name": real.name, "summary": real.summary, "Params": real.Params,
+                                   "place": staticmethod(place), "reach": real.reach})()  # fmt: skip

@@ -15,6 +15,7 @@ import pytest
 import shapely
 import shapely.affinity
 from conftest import XLINK, random_exemplar
+
 from svgtile.analysis.stats import (
     analyze,
     distance_matrix,
@@ -22,7 +23,6 @@ from svgtile.analysis.stats import (
     motif_estimate,
     orientation_arcs,
 )
-
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import Prototype, world_footprints
 from svgtile.svg.reader import parse_exemplar

@@ -16,9 +16,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from svgtile.analysis.stats import in_arcs
+from conftest import arrange
 
 from svgtile import Region, analyze, read_exemplar
+from svgtile.analysis.stats import in_arcs
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import slack
 from svgtile.core.footprint import world_footprints
@@ -50,7 +51,7 @@ def load(path: Path):
 def run(engine: str, path: Path, seed: int = 7, size: tuple[float, float] = SIZE, boundary: str = "clip"):
     ex, stats = load(path)
     region = Region.rectangle(*size)
-    arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, boundary=boundary)
+    arr = arrange(engine, ex, region, rng=np.random.default_rng(seed), stats=stats, boundary=boundary)
     return ex, stats, region, arr
 
 
@@ -97,8 +98,8 @@ def tile_offsets(arr: Arrangement, ex) -> np.ndarray:
 
 def test_engines_are_registered():
     assert {"patch", "tile", "random"} <= set(ENGINES)
-    assert ENGINES["tile"] is tile_engine.synthesize
-    assert ENGINES["random"] is random_engine.synthesize
+    assert ENGINES["tile"] is tile_engine.TILE
+    assert ENGINES["random"] is random_engine.RANDOM
 
 
 # ----------------------------------------------------------------------------- both engines
@@ -123,7 +124,7 @@ def test_no_overlaps_no_violations_orientations_in_arcs(engine, path):
 def test_boundary_modes_on_a_circle(engine, mode):
     ex, stats = load(EXEMPLARS[0])
     region = Region(shapely.Point(300, 300).buffer(250))
-    arr = ENGINES[engine](ex, region, rng=np.random.default_rng(3), stats=stats, boundary=mode)
+    arr = arrange(engine, ex, region, rng=np.random.default_rng(3), stats=stats, boundary=mode)
     assert len(arr) > 0
     geoms = world_footprints(arr, ex.prototypes)
     if mode == "inside":
@@ -137,26 +138,28 @@ def test_boundary_modes_on_a_circle(engine, mode):
 
 
 @pytest.mark.parametrize("engine", BASELINES)
-def test_patch_parameters_are_accepted_and_ignored(engine):
+@pytest.mark.parametrize("name", sorted(CLI_PARAMS))
+def test_patch_parameters_are_refused_not_ignored(engine, name):
+    """A baseline has none of the patch engine's parameters: one given to it is a clear error
+    (it used to be accepted and silently ignored)."""
     ex, stats = load(EXEMPLARS[0])
-    region = Region.rectangle(200, 150)
-    plain = ENGINES[engine](ex, region, rng=np.random.default_rng(4), stats=stats)
-    given = ENGINES[engine](ex, region, rng=np.random.default_rng(4), stats=stats, boundary="clip", **CLI_PARAMS)
-    assert same(plain, given)
+    with pytest.raises(ParameterError, match=f"engine {engine!r} has no parameter {name!r}"):
+        arrange(engine, ex, Region.rectangle(200, 150), rng=np.random.default_rng(4), stats=stats,
+            **{name: CLI_PARAMS[name]})  # fmt: skip
 
 
 @pytest.mark.parametrize("engine", BASELINES)
 def test_bad_boundary_is_refused(engine):
     ex, stats = load(EXEMPLARS[0])
     with pytest.raises(ParameterError):
-        ENGINES[engine](ex, Region.rectangle(100, 100), rng=np.random.default_rng(0), stats=stats, boundary="out")
+        arrange(engine, ex, Region.rectangle(100, 100), rng=np.random.default_rng(0), stats=stats, boundary="out")
 
 
 @pytest.mark.parametrize("engine", BASELINES)
 def test_same_seed_same_texture(engine):
     ex, stats = load(EXEMPLARS[0])
     a = run(engine, EXEMPLARS[0], seed=1)[3]
-    b = ENGINES[engine](ex, Region.rectangle(*SIZE), rng=np.random.default_rng(1), stats=stats)
+    b = arrange(engine, ex, Region.rectangle(*SIZE), rng=np.random.default_rng(1), stats=stats)
     assert same(a, b)
 
 
@@ -195,9 +198,9 @@ def test_random_texture_is_anchored_in_world_coordinates(path):
     ex, stats = load(path)
     x0, y0, x1, y1 = ex.region.bounds
     width = max(x1 - x0, y1 - y0)
-    big = ENGINES["random"](ex, Region.rectangle(1000, 900), rng=np.random.default_rng(5), stats=stats)
+    big = arrange("random", ex, Region.rectangle(1000, 900), rng=np.random.default_rng(5), stats=stats)
     small_region = Region.rectangle(600, 500, x=130, y=110)
-    small = ENGINES["random"](ex, small_region, rng=np.random.default_rng(5), stats=stats)
+    small = arrange("random", ex, small_region, rng=np.random.default_rng(5), stats=stats)
     rows = lambda a: set(map(tuple, np.c_[a.kind, a.xy, a.angle, a.scale].tolist()))  # noqa: E731
     deep = small.take(shapely.contains_xy(small_region.interior(2 * width), small.xy[:, 0], small.xy[:, 1]))
     assert len(deep) > 100
@@ -269,7 +272,7 @@ def test_tiling_with_enough_padding_is_the_exemplar_translated():
     cols, rows = 4, 3
     region = Region.rectangle(24 * cols, 24 * rows)
     for mode in ("clip", "inside"):
-        arr = ENGINES["tile"](ex, region, rng=np.random.default_rng(0), stats=stats, boundary=mode)
+        arr = arrange("tile", ex, region, rng=np.random.default_rng(0), stats=stats, boundary=mode)
         a, b = np.meshgrid(np.arange(cols), np.arange(rows))
         shift = np.stack([a.ravel() * 24 - 5, b.ravel() * 24 - 3], -1)
         expected = Arrangement(
@@ -289,7 +292,7 @@ def test_tiling_resolves_conflicts_across_seams_and_stays_periodic():
     naive = tile_engine.stamp(ex, region)
     assert brute_force_conflicts(naive, ex, stats)[1] > 0  # the seams do conflict
     for seed in range(4):
-        arr = ENGINES["tile"](ex, region, rng=np.random.default_rng(seed), stats=stats)
+        arr = arrange("tile", ex, region, rng=np.random.default_rng(seed), stats=stats)
         assert brute_force_conflicts(arr, ex, stats) == (0, 0)
         src = tile_offsets(arr, ex)
         assert (src >= 0).all()
@@ -315,8 +318,8 @@ def test_tiling_is_translated_copies_of_the_exemplar(path):
 
 def test_tiling_is_anchored_in_world_coordinates():
     ex, stats = load(EXEMPLARS[0])
-    big = ENGINES["tile"](ex, Region.rectangle(600, 500), rng=np.random.default_rng(2), stats=stats)
-    small = ENGINES["tile"](ex, Region.rectangle(250, 200, x=130, y=110), rng=np.random.default_rng(2), stats=stats)
+    big = arrange("tile", ex, Region.rectangle(600, 500), rng=np.random.default_rng(2), stats=stats)
+    small = arrange("tile", ex, Region.rectangle(250, 200, x=130, y=110), rng=np.random.default_rng(2), stats=stats)
     rows = lambda a: set(map(tuple, np.c_[a.kind, a.xy, a.angle].tolist()))  # noqa: E731
     assert rows(small) <= rows(big)
 
@@ -330,6 +333,6 @@ def test_a_motif_conflicting_with_its_own_translate_leaves_the_tiling():
     """  # the bar is 12 long in a 10 wide tile
     ex = parse_exemplar(wide)
     stats = analyze(ex)
-    arr = ENGINES["tile"](ex, Region.rectangle(50, 50), rng=np.random.default_rng(0), stats=stats)
+    arr = arrange("tile", ex, Region.rectangle(50, 50), rng=np.random.default_rng(0), stats=stats)
     assert len(arr) > 0 and (arr.kind == ex.motifs.kind[1]).all()
     assert brute_force_conflicts(arr, ex, stats) == (0, 0)

@@ -6,6 +6,7 @@ Most tests call :func:`svgtile.cli.main.main` in-process (fast, and monkeypatcha
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import re
@@ -17,11 +18,14 @@ from pathlib import Path
 import click
 import numpy as np
 import pytest
+from conftest import OVERLAPPING, SVG_HEAD, fake_engine
+
+import svgtile.apps.load
+import svgtile.cli.analyze
 import svgtile.cli.main
-from conftest import OVERLAPPING, SVG_HEAD
+import svgtile.cli.synth
 from svgtile.analysis.stats import analyze
 from svgtile.cli.main import cli, main
-
 from svgtile.engines import ENGINES
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import read_exemplar
@@ -159,7 +163,7 @@ def test_unusable_output_fails_before_synthesis(capsys, tiny, tmp_path, monkeypa
     def engine_must_not_run(*args, **kwargs):
         raise AssertionError("synthesis ran although the output cannot be written")
 
-    monkeypatch.setitem(ENGINES, "patch", engine_must_not_run)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(engine_must_not_run))
     (tmp_path / "file.txt").write_text("x")
     (tmp_path / "folder").mkdir()
     out, problem = {
@@ -176,14 +180,14 @@ def test_unusable_output_fails_before_synthesis(capsys, tiny, tmp_path, monkeypa
 
 def test_size_limit_refuses_without_force(capsys, tiny, tmp_path):
     stats = analyze(read_exemplar(tiny))
-    side = (2 * svgtile.cli.main.MAX_MOTIFS / stats.count_density) ** 0.5  # twice the limit
+    side = (2 * svgtile.apps.load.MAX_MOTIFS / stats.count_density) ** 0.5  # twice the limit
     out = tmp_path / "out.svg"
     rc, _, err = synth(capsys, tiny, out, "--seed", "1", size=f"{side:.0f}x{side:.0f}")
-    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--force", f"{svgtile.cli.main.MAX_MOTIFS:,}")
+    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--force", f"{svgtile.apps.load.MAX_MOTIFS:,}")
 
 
 def test_force_runs_above_the_limit(capsys, tiny, tmp_path, monkeypatch):
-    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 5)  # 60x40 holds about 30 motifs
+    monkeypatch.setattr(svgtile.cli.synth, "MAX_MOTIFS", 5)  # 60x40 holds about 30 motifs
     out = tmp_path / "out.svg"
     rc, _, err = synth(capsys, tiny, out, "--seed", "1")
     assert rc == 1 and "--force" in err and not out.exists()
@@ -330,7 +334,7 @@ def test_interrupt_is_one_line(capsys, tiny, tmp_path, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setitem(ENGINES, "patch", interrupted)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(interrupted))
     out = tmp_path / "out.svg"
     rc, _, err = synth(capsys, tiny, out, "--seed", "1")
     assert (rc, err) == (130, "svgtile: interrupted\n")
@@ -338,11 +342,11 @@ def test_interrupt_is_one_line(capsys, tiny, tmp_path, monkeypatch):
 
 
 def test_messages_after_progress_start_on_a_clean_line(capsys, tiny, tmp_path, monkeypatch):
-    def interrupted_midway(*args, progress, **kwargs):
-        progress("grid", 0.1)
+    def interrupted_midway(ctx, params):
+        ctx.progress("grid", 0.1)
         raise KeyboardInterrupt
 
-    monkeypatch.setitem(ENGINES, "patch", interrupted_midway)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(interrupted_midway))
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
     rc, _, err = synth(capsys, tiny, tmp_path / "out.svg", "--seed", "1")
     assert rc == 130
@@ -352,11 +356,11 @@ def test_messages_after_progress_start_on_a_clean_line(capsys, tiny, tmp_path, m
 def test_progress_line_is_erased_even_if_the_engine_never_says_done(capsys, tiny, tmp_path, monkeypatch):
     real = ENGINES["patch"]
 
-    def quiet_finish(*args, progress, **kwargs):
-        progress("grid", 0.5)
-        return real(*args, progress=None, **kwargs)
+    def quiet_finish(ctx, params):
+        ctx.progress("grid", 0.5)
+        return real.place(dataclasses.replace(ctx, progress=lambda stage, fraction: None), params)
 
-    monkeypatch.setitem(ENGINES, "patch", quiet_finish)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(quiet_finish))
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
     rc, _, err = synth(capsys, tiny, tmp_path / "out.svg", "--seed", "1")
     assert (rc, err) == (0, "\rsvgtile: grid        50%\r\033[K")
@@ -366,7 +370,7 @@ def test_reader_leaving_stdout_is_quiet(capsys, tiny, monkeypatch):
     def reader_left(text, out, **kwargs):
         raise BrokenPipeError(32, "Broken pipe")
 
-    monkeypatch.setattr(svgtile.cli.main, "write_text", reader_left)
+    monkeypatch.setattr(svgtile.cli.synth, "write_text", reader_left)
     rc, out, err = synth(capsys, tiny, "-", "--seed", "1")
     assert (rc, out, err) == (1, "", "")
 
@@ -375,7 +379,7 @@ def test_internal_error_is_one_line_unless_debug(capsys, tiny, tmp_path, monkeyp
     def broken(*args, **kwargs):
         raise ZeroDivisionError("division by zero\nsecond line")
 
-    monkeypatch.setitem(ENGINES, "patch", broken)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(broken))
     rc, _, err = synth(capsys, tiny, tmp_path / "out.svg", "--seed", "1")
     assert rc == 70 and err.count("\n") == 1 and "ZeroDivisionError" in err and "--debug" in err
     with pytest.raises(ZeroDivisionError):
@@ -385,11 +389,11 @@ def test_internal_error_is_one_line_unless_debug(capsys, tiny, tmp_path, monkeyp
 def test_python_warnings_become_one_line(capsys, tiny, tmp_path, monkeypatch):
     real = ENGINES["patch"]
 
-    def noisy(*args, **kwargs):
+    def noisy(ctx, params):
         np.float64(1.0) / np.float64(0.0)  # numpy's RuntimeWarning: divide by zero
-        return real(*args, **kwargs)
+        return real.place(ctx, params)
 
-    monkeypatch.setitem(ENGINES, "patch", noisy)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(noisy))
     rc, _, err = synth(capsys, tiny, tmp_path / "out.svg", "--seed", "1")
     assert rc == 0
     assert err.count("\n") == 1 and err.startswith("svgtile: warning: ") and "RuntimeWarning" in err
@@ -503,12 +507,12 @@ def test_analyze_json(capsys, tiny):
 
 
 def test_analyze_json_is_strict_json_even_for_odd_numbers(capsys, tiny, monkeypatch):
-    real = svgtile.cli.main.stats_report
+    real = svgtile.cli.analyze.stats_report
 
     def odd(ex, stats):
         return {**real(ex, stats), "density": float("nan"), "distance": [[float("inf")]]}
 
-    monkeypatch.setattr(svgtile.cli.main, "stats_report", odd)
+    monkeypatch.setattr(svgtile.cli.analyze, "stats_report", odd)
     rc, out, _ = run(capsys, "analyze", "--json", tiny)
     assert rc == 0
     report = json.loads(out, parse_constant=lambda c: pytest.fail(f"{c} is not JSON"))

@@ -11,13 +11,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from conftest import arrange
+
+import svgtile.cli.compare
 import svgtile.cli.main
 from svgtile.analysis.stats import analyze
-from svgtile.cli.main import main
-
 from svgtile.apps.compare import FIGURES, compare, format_table
+from svgtile.cli.main import main
 from svgtile.core.region import Region
-from svgtile.engines import ENGINES
 from svgtile.errors import ExemplarError, ParameterError
 from svgtile.metrics import figures as metrics
 from svgtile.svg.dialect import SVG_NS
@@ -38,7 +39,7 @@ def run(capsys, *args) -> tuple[int, str, str]:
 def write_texture(path: Path, name: str, region: Region, engine: str = "patch", seed: int = 2):
     ex = read_exemplar(EXEMPLARS / f"{name}.svg")
     stats = analyze(ex)
-    arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats)
+    arr = arrange(engine, ex, region, rng=np.random.default_rng(seed), stats=stats)
     path.write_text(svg_document(ex, arr, region, boundary="clip", params={"engine": engine}))
     return ex, stats, arr
 
@@ -78,7 +79,7 @@ def test_region_is_the_clip_path_with_its_hole(tmp_path):
 
 def test_unclipped_texture_uses_its_viewbox(tmp_path):
     ex = read_exemplar(EXEMPLARS / "sand.svg")
-    arr = ENGINES["tile"](ex, Region.rectangle(120, 90), rng=np.random.default_rng(0))
+    arr = arrange("tile", ex, Region.rectangle(120, 90), rng=np.random.default_rng(0))
     (tmp_path / "t.svg").write_text(svg_document(ex, arr, Region.rectangle(120, 90), boundary="inside", params={}))
     _, back = read_texture(tmp_path / "t.svg", ex)
     assert back.bounds == (0.0, 0.0, 120.0, 90.0)
@@ -176,7 +177,7 @@ def test_compare_bad_engine_is_one_line(capsys):
 
 
 def test_compare_refuses_a_size_above_the_motif_limit(capsys, monkeypatch):
-    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 5)  # sand 100x100 holds about 360 motifs
+    monkeypatch.setattr(svgtile.cli.compare, "MAX_MOTIFS", 5)  # sand 100x100 holds about 360 motifs
     rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "100")
     assert rc == 1 and out == ""
     assert err.count("\n") == 1 and "--size 100 would hold about" in err and "(limit 5)" in err
@@ -232,7 +233,7 @@ def test_clip_region_found_when_the_exemplar_takes_svgtiles_ids(tmp_path):
     )
     ex = read_exemplar(tmp_path / "ex.svg")
     region = Region.from_geometry(shapely.box(0, 0, 120, 80).difference(shapely.box(40, 20, 80, 60)))
-    arr = ENGINES["random"](ex, region, rng=np.random.default_rng(1))
+    arr = arrange("random", ex, region, rng=np.random.default_rng(1))
     text = svg_document(ex, arr, region, boundary="clip", params={})
     assert 'id="svgtile-2"' in text and 'id="svgtile-clip-2"' in text
     (tmp_path / "t.svg").write_text(text)

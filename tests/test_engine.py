@@ -14,14 +14,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from svgtile.analysis.stats import in_arcs
-from svgtile.engines.patch.engine import PatchParams, grid, synthesize
+from conftest import arrange
 
 from svgtile import Region, analyze, read_exemplar
+from svgtile.analysis.stats import in_arcs
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.cellrng import hash64, uniform
 from svgtile.core.conflicts import Conflicts, cull, find_conflicts, slack
 from svgtile.core.footprint import world_footprints
+from svgtile.engines.patch.engine import PatchParams, grid
 from svgtile.errors import ParameterError
 from svgtile.metrics import figures as metrics
 
@@ -39,7 +40,7 @@ def load(path: Path):
 def run(path: Path, size: float, grid_kind: str, seed: int = 7, **params):
     ex, stats = load(path)
     region = Region.rectangle(size, size * 0.75)
-    arr = synthesize(ex, region, rng=np.random.default_rng(seed), stats=stats, grid=grid_kind, **params)
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(seed), stats=stats, grid=grid_kind, **params)
     return ex, stats, region, arr
 
 
@@ -93,7 +94,7 @@ def test_vary_orientation_stays_in_arcs(path):
 def test_boundary_modes_on_a_circle(mode):
     ex, stats = load(EXEMPLARS[0])
     region = Region(shapely.Point(300, 300).buffer(250))
-    arr = synthesize(ex, region, rng=np.random.default_rng(3), stats=stats, boundary=mode)
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(3), stats=stats, boundary=mode)
     geoms = world_footprints(arr, ex.prototypes)
     if mode == "inside":
         assert shapely.contains(region.shape, geoms).all()
@@ -109,7 +110,7 @@ def test_boundary_modes_on_a_circle(mode):
 def test_same_seed_same_texture_other_seed_other_texture():
     path = EXEMPLARS[0]
     a = run(path, 400, "square", seed=1)[3]
-    b = synthesize(*load(path)[:1], Region.rectangle(400, 300), rng=np.random.default_rng(1), stats=load(path)[1])
+    b = arrange("patch", *load(path)[:1], Region.rectangle(400, 300), rng=np.random.default_rng(1), stats=load(path)[1])
     c = run(path, 400, "square", seed=2)[3]
     assert np.array_equal(a.xy, b.xy) and np.array_equal(a.kind, b.kind) and np.array_equal(a.angle, b.angle)
     assert len(a) != len(c) or not np.array_equal(a.xy, c.xy)
@@ -171,7 +172,7 @@ def test_grid_step_is_region_times_one_minus_overlap(kind):
 @pytest.mark.parametrize(
     "params",
     [dict(overlap=-0.1), dict(overlap=0.6), dict(max_rotation=-1), dict(max_rotation=181),
-     dict(grid="triangle"), dict(boundary="outside")],
+     dict(grid="triangle"), dict(junction=1.0)],
 )
 def test_parameters_out_of_range_are_refused(params):
     with pytest.raises(ParameterError):

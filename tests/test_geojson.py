@@ -8,12 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from conftest import TINY
-from svgtile.cli.main import main
+from conftest import TINY, arrange
 
 from svgtile.apps.mapread import read_region_shape
+from svgtile.cli.main import main
 from svgtile.core.region import Region
-from svgtile.engines import ENGINES
 from svgtile.errors import RegionError
 from svgtile.gis import geojson
 from svgtile.svg.reader import parse_exemplar, read_exemplar
@@ -89,7 +88,7 @@ def test_bad_geojson_is_one_line_naming_the_file(tmp_path, text, spec, message):
 def test_placements_round_trip(tmp_path, unit):
     ex = parse_exemplar(TINY)
     region = Region.from_geometry(shapely.box(0, 0, 50, 40))
-    arr = ENGINES["patch"](ex, region, rng=np.random.default_rng(2), vary_orientation=True)
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(2), vary_orientation=True)
     names = [k.name for k in ex.kinds]
     radius = np.array([k.prototype.radius for k in ex.kinds])
     path = tmp_path / "texture.geojson"

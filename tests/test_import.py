@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+
 from svgtile.analysis.stats import analyze, distance_matrix, periodic_distance_matrix
 from svgtile.cli.main import main
-
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import Prototype
 from svgtile.errors import ExemplarError
@@ -157,7 +157,7 @@ def test_a_round_part_beside_a_shape_is_joined_in_rotated_copies(turns):
 
 
 def test_support_counts_links_within_one_on_every_coordinate():
-    from svgtile.tiles.importer import _support
+    from svgtile.tiles.repeat import _support
 
     rng = np.random.default_rng(2)
     feat = np.round(rng.uniform(0, 4, (400, 3)), 1)  # on the 0.1 grid, where the count is exact
@@ -377,10 +377,10 @@ def test_cli_refused_tile_is_one_line(tmp_path, capsys):
 def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused():
     """Issue 4's done-when: every one of the 116 tiles is either refused with a reason or imports
     and synthesizes (patch engine, 1.5 x 1.5 tiles) with no overlap and no rule violation."""
-    from svgtile.engines.patch.engine import synthesize
-    from svgtile.metrics.figures import conflict_counts
+    from conftest import arrange
 
     from svgtile.core.region import Region
+    from svgtile.metrics.figures import conflict_counts
 
     files = sorted(FGDC.glob("*.svg"))
     assert len(files) == 116
@@ -395,7 +395,7 @@ def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused
         stats = analyze(ex)
         x0, y0, w, h = t.box
         region = Region.rectangle(1.5 * w, 1.5 * h, x0, y0)
-        arr = synthesize(ex, region, rng=np.random.default_rng(0), stats=stats)
+        arr = arrange("patch", ex, region, rng=np.random.default_rng(0), stats=stats)
         found = conflict_counts(arr, ex.prototypes, stats, np.ones(len(arr), dtype=bool))
         if len(arr) == 0 or found["overlaps_total"] or found["violators_total"]:
             problems.append((path.name, len(arr), found["overlaps_total"], found["violators_total"]))

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import shapely
 from conftest import TINY
-from svgtile.cli.main import main
 
 from svgtile.apps import inkscape as ink
+from svgtile.cli.main import main
 from svgtile.svg.writer import same_file
 
 OUTER_CCW = [[0, 0], [10, 0], [10, 10], [0, 10]]

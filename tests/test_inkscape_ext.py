@@ -34,7 +34,7 @@ EXT = Path(__file__).resolve().parents[1] / "inkscape_ext"
 DATA = Path(__file__).resolve().parent / "inkscape_data"
 sys.path.insert(0, str(EXT))
 import svgtile_fill  # noqa: E402
-from svgtile_fill import FillWithTexture
+from svgtile_fill import FillWithTexture  # noqa: E402
 
 XLINK_HREF = "{http://www.w3.org/1999/xlink}href"
 #: The footprints of the test symbols in their own frame (fill.svg: dot and bar).
@@ -123,26 +123,33 @@ class FillInx(InxMixin, TestCase):
         self.assertInxIsGood("svgtile_fill.inx")
         self.assertInxSchemaValid("svgtile_fill.inx")
 
-    def test_inx_defaults_are_the_cli_defaults(self):
-        from svgtile.cli.main import synth
+    def test_inx_and_script_follow_the_engine_parameter_classes(self):
+        """The dialog cannot drift from the engines: every public parameter of every engine is in
+        the .inx with its default, interval, choices and help, the script passes each on with the
+        same default, and the .inx has nothing else but engine, boundary, seed and the tabs."""
+        from svgtile.core.region import BOUNDARY_MODES
+        from svgtile.engines import ENGINES, public_params
 
         inx = inkex.inx.InxFile(str(EXT / "svgtile_fill.inx"))
-        defaults = {p.name: (p.options[0] if p.param_type == "optiongroup" else p.text) for p in inx.params}
-        names = ("engine", "grid", "overlap", "max_rotation", "vary_orientation", "boundary")
-        cli = {o.name.replace("_", "-"): (o.default if not o.is_flag else bool(o.default is True))
-               for o in synth.params if o.name in names}  # fmt: skip
-        assert len(cli) == len(names)
-        assert set(cli) <= set(defaults)
-        for name, value in cli.items():
-            inx_value = defaults[name]
-            if isinstance(value, bool):
-                assert inx_value == str(value).lower(), name
-            elif isinstance(value, float):
-                assert float(inx_value) == value, name
+        params = {p.name: p for p in inx.params if p.param_type != "notebook"}
+        public = {p.option.removeprefix("--"): p for p in public_params().values()}
+        assert set(params) == {*public, "engine", "boundary", "seed"}
+        assert svgtile_fill.ENGINE_OPTIONS == tuple(public)
+        assert params["engine"].options == list(ENGINES)
+        assert sorted(params["boundary"].options) == sorted(BOUNDARY_MODES)
+        elements = {el.get("name"): el for el in inx.xml.xpath("//*[local-name()='param']")}
+        script = FillWithTexture().arg_parser.parse_args([])
+        for name, p in public.items():
+            el, value = elements[name], getattr(script, name.replace("-", "_"))
+            assert el.get("gui-description").startswith(p.help), name
+            if p.type is bool:
+                assert (el.get("type"), el.text, value) == ("bool", str(p.default).lower(), p.default), name
+            elif p.choices:
+                assert (params[name].options, value) == (list(p.choices), p.default), name
             else:
-                assert inx_value == value, name
-        assert all(p.get("gui-description") for p in inx.xml.xpath("//*[local-name()='param'][@type!='notebook']"))
-
+                assert (float(el.text), value) == (p.default, p.default), name
+                low, high = p.interval
+                assert float(el.get("min")) == low and float(el.get("max")) <= high, name
 
 class FillBehaviour(_Base):
     def test_container_with_a_hole_in_a_transformed_layer_centroid(self):

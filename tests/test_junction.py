@@ -14,13 +14,15 @@ import shapely
 import shapely.affinity
 from conftest import XLINK, random_exemplar
 from scipy.spatial import cKDTree
-from svgtile.analysis.stats import GAP_MIN_SAMPLES, in_arcs, junction_distance
-from svgtile.engines.patch.engine import _rank_within, _roomiest, grid, turn
 
 from svgtile import Region, analyze, read_exemplar
+from svgtile.analysis.stats import GAP_MIN_SAMPLES, in_arcs, junction_distance
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import find_conflicts
 from svgtile.core.footprint import Prototype, world_footprints
+from svgtile.engines.patch.density import _rank_within, _roomiest
+from svgtile.engines.patch.engine import grid
+from svgtile.engines.patch.orientation import turn
 from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"

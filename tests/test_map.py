@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 import shapely
 from conftest import PLAIN, TINY, VIEWBOX
-from svgtile.cli.main import main
 
 from svgtile.apps.mapfill import fill_map, parse_styles, read_styles
+from svgtile.cli.main import main
 from svgtile.core.footprint import world_footprints
 from svgtile.errors import ParameterError
 from svgtile.svg.dialect import SVG_NS

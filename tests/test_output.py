@@ -14,13 +14,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from conftest import EXEMPLARS, SVG_HEAD, TINY
+from conftest import EXEMPLARS, SVG_HEAD, TINY, arrange
+
 from svgtile.analysis.stats import analyze
 from svgtile.cli.main import main
-
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
-from svgtile.engines.patch import engine as patch
 from svgtile.errors import OutputError
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import parse_exemplar, read_exemplar
@@ -44,7 +43,7 @@ def synthesize(path: Path, size=(60.0, 40.0), seed: int = 1, **params):
     ex = read_exemplar(path)
     stats = analyze(ex)
     region = Region.rectangle(*size)
-    arr = patch.synthesize(ex, region, rng=np.random.default_rng(seed), stats=stats, **params)
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(seed), stats=stats, **params)
     text = svg_document(ex, arr, region, boundary=params.get("boundary", "clip"), params={"seed": seed, **params})
     return ex, arr, region, text
 

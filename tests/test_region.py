@@ -7,13 +7,14 @@ that stay byte-identical (issue 5, item 5).
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 import shapely
-from conftest import TINY
+from conftest import TINY, arrange, fake_engine
 
 from svgtile import analyze
 from svgtile.apps.mapread import read_avoid_shape, read_region_shape, synth_region
@@ -66,7 +67,7 @@ def test_no_footprint_in_holes_or_avoid_zones(engine, mode):
     stats = analyze(ex)
     shape, hole, avoid = _donut_case()
     region = Region.from_geometry(shape, avoid=avoid)
-    arr = ENGINES[engine](ex, region, rng=np.random.default_rng(5), stats=stats, boundary=mode)
+    arr = arrange(engine, ex, region, rng=np.random.default_rng(5), stats=stats, boundary=mode)
     assert len(arr) > 20
     fp = world_footprints(arr, ex.prototypes)
     # the hole was there to be filled: motifs come close to it (the checks below are not vacuous)
@@ -88,7 +89,7 @@ def test_clip_path_excludes_holes_and_avoid_zones():
     ex = parse_exemplar(TINY)
     shape, hole, avoid = _donut_case()
     region = Region.from_geometry(shape, avoid=avoid)
-    arr = ENGINES["patch"](ex, region, rng=np.random.default_rng(1), boundary="clip")
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(1), boundary="clip")
     text = svg_document(ex, arr, region, boundary="clip", params={})
     d = re.search(r'<clipPath id="svgtile-clip">\s*<path d="([^"]+)" clip-rule="evenodd"', text).group(1)
     rings = [np.array(re.findall(r"(-?[\d.]+) (-?[\d.]+)", ring), float) for ring in d.split("Z") if ring.strip()]
@@ -100,7 +101,7 @@ def test_clip_path_excludes_holes_and_avoid_zones():
 def test_keep_drops_motifs_meeting_avoid_zones_only():
     ex = parse_exemplar(TINY)
     region = Region.from_geometry(shapely.box(0, 0, 40, 40), avoid=shapely.box(10, 10, 20, 20))
-    arr = ENGINES["tile"](ex, Region.rectangle(40, 40), rng=np.random.default_rng(0), boundary="none")
+    arr = arrange("tile", ex, Region.rectangle(40, 40), rng=np.random.default_rng(0), boundary="none")
     fp = world_footprints(arr, ex.prototypes)
     kept = region.keep(arr, ex.prototypes, "none")
     assert (kept == ~shapely.intersects(region.avoid, fp)).all()
@@ -224,7 +225,8 @@ def _lines(arr) -> list[str]:
     return [" ".join(row) for row in zip(map(str, arr.kind.tolist()), *cols, strict=True)]
 
 
-def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int = 3, mode: str = "clip"):
+def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int = 3, mode: str = "clip",
+                   engine: str = "patch"):
     """Fraction of motifs farther than two exemplar widths from a one-vertex edit of a large
     polygon that stay byte-identical (as written), and how many such motifs there are."""
     ex = read_exemplar(exemplar_path)
@@ -238,8 +240,8 @@ def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int
     moved = pts.copy()
     moved[5] += (pts[5] - centre) / np.linalg.norm(pts[5] - centre) * w  # one vertex, one width out
     before, after = shapely.Polygon(pts), shapely.Polygon(moved)
-    arr_a = ENGINES["patch"](ex, Region(before), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
-    arr_b = ENGINES["patch"](ex, Region(after), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
+    arr_a = arrange(engine, ex, Region(before), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
+    arr_b = arrange(engine, ex, Region(after), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
     edit = shapely.symmetric_difference(before, after)
     far = shapely.distance(edit, shapely.points(arr_a.xy)) > 2 * w
     same = np.isin(_lines(arr_a), _lines(arr_b))
@@ -263,16 +265,14 @@ def test_edit_stability_measure_can_fail(monkeypatch):
     path = REPO / "exemplars" / "gravel.svg"
     if not path.exists():
         pytest.skip("bundled exemplars missing")
-    original = patch.synthesize
-
-    def unanchored(exemplar, region, *, rng, **kw):
+    def unanchored(ctx, params):
         # shift the world anchor with the region's area: every copy moves when the outline does
-        dx = (region.area * 1e-3) % 97.0
-        moved = Region(shapely.transform(region.shape, lambda c: c - np.array([dx, 0.0])))
-        arr = original(exemplar, moved, rng=rng, **kw)
+        dx = (ctx.region.area * 1e-3) % 97.0
+        moved = Region(shapely.transform(ctx.region.shape, lambda c: c - np.array([dx, 0.0])))
+        arr = patch.PATCH.place(dataclasses.replace(ctx, region=moved), params)
         return type(arr)(arr.kind, arr.xy + np.array([dx, 0.0]), arr.angle, arr.scale)
 
-    monkeypatch.setitem(ENGINES, "patch", unanchored)
+    monkeypatch.setitem(ENGINES, "patch", fake_engine(unanchored))
     stable, _ = edit_stability(path, radius_widths=4.0)
     assert stable < 0.5
 

@@ -6,9 +6,9 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from svgtile.cli.main import main
 
 from svgtile.apps.swatches import collect, read_names, swatch_sheet
+from svgtile.cli.main import main
 from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import SVG_NS
 
@@ -104,9 +104,9 @@ def test_tile_failing_after_import_is_a_refused_swatch(tmp_path):
 
 
 def test_swatch_above_the_motif_limit_is_refused(tiles, tmp_path, capsys, monkeypatch):
-    import svgtile.cli.main
+    import svgtile.cli.tiles
 
-    monkeypatch.setattr(svgtile.cli.main, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
+    monkeypatch.setattr(svgtile.cli.tiles, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
     out = tmp_path / "s.svg"
     assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--size", "100"]) == 0
     assert "0 of 1 pattern(s) synthesized, 1 refused" in capsys.readouterr().err

@@ -15,13 +15,11 @@ import csv
 import io
 from pathlib import Path
 
-import numpy as np
-from svgtile.engines.patch.engine import synthesize
-from svgtile.metrics.figures import score
-
 from svgtile import Region, analyze
 from svgtile.apps.swatches import collect, read_names, render_png, swatch_sheet
+from svgtile.engines import synthesize
 from svgtile.errors import SvgtileError
+from svgtile.metrics.figures import score
 from svgtile.svg.reader import parse_exemplar
 from svgtile.tiles.importer import import_tile
 
@@ -49,7 +47,7 @@ def row(path: Path, names: dict[str, str]) -> dict:
     stats = analyze(ex)
     x0, y0, w, h = imported.box
     region = Region.rectangle(TILES * w, TILES * h, x0, y0)
-    arr = synthesize(ex, region, rng=np.random.default_rng(SEED), stats=stats)
+    arr = synthesize(ex, region, "patch", seed=SEED, stats=stats).arrangement
     figures = score(ex, stats, arr, region)
     out.update(
         motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),

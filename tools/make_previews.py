@@ -11,11 +11,10 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-import numpy as np
 import resvg_py
-from svgtile.engines.patch.engine import synthesize
 
 from svgtile import Region, analyze, read_exemplar
+from svgtile.engines import synthesize
 from svgtile.svg.writer import svg_document
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -37,7 +36,7 @@ def main() -> None:
         name = path.stem
         ex = read_exemplar(path)
         region = Region.rectangle(*SIZE)
-        arr = synthesize(ex, region, rng=np.random.default_rng(1), stats=analyze(ex))
+        arr = synthesize(ex, region, "patch", seed=1, stats=analyze(ex)).arrangement
         text = svg_document(ex, arr, region, boundary="clip", params={"seed": 1})
         x0, _, x1, _ = ex.region.bounds
         (PREVIEWS / f"{name}.png").write_bytes(render(path.read_text(), round((x1 - x0) * SCALE)))

@@ -11,13 +11,11 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-import numpy as np
-
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
-from svgtile.engines import ENGINES
+from svgtile.engines import ENGINES, synthesize
 from svgtile.errors import ParameterError
 from svgtile.metrics import figures as metrics
 
@@ -51,7 +49,7 @@ class Result:
 
 def compare(
     exemplar: Exemplar, stats: Stats, region: Region, *, engines: Sequence[str] = ("patch", "tile", "random"),
-    seed: int = 1, progress: Callable[[str, float], None] | None = None, **params,
+    seed: int = 1, progress: Callable[[str, float], None] | None = None, boundary: str = "clip", **params,
 ) -> list[Result]:  # fmt: skip
     """Synthesize ``region`` with each engine (one seed for all) and score each texture.
 
@@ -62,7 +60,8 @@ def compare(
     engines : names in :data:`svgtile.engines.ENGINES`, in the order of the table's columns
     seed : each engine gets ``numpy.random.default_rng(seed)``
     progress : called as ``progress(engine, fraction of the engines done)``
-    **params : engine parameters (``grid``, ``overlap`` …, as ``svgtile synth`` passes them)
+    boundary : how motifs meet the region's edge, for every engine
+    **params : engine parameters (``grid``, ``overlap`` …); each engine takes those it has
 
     Raises
     ------
@@ -78,7 +77,9 @@ def compare(
     for n, name in enumerate(engines):
         if progress:
             progress(name, n / len(engines))
-        arr = ENGINES[name](exemplar, region, rng=np.random.default_rng(seed), stats=stats, **params)
+        own = {p.name for p in ENGINES[name].Params.public()}
+        arr = synthesize(exemplar, region, name, seed=seed, stats=stats, boundary=boundary,
+                         params={k: v for k, v in params.items() if k in own}).arrangement  # fmt: skip
         out.append(Result(name, arr, metrics.score(exemplar, stats, arr, region)))
     return out
 

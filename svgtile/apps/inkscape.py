@@ -28,12 +28,16 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
 
 from svgtile.core.region import Region
-from svgtile.errors import ParameterError, RegionError, SvgtileError
+from svgtile.errors import RegionError, SvgtileError
+
+if TYPE_CHECKING:
+    from svgtile.engines.base import EngineParams
 
 #: The files of the extension, as found in the source tree's ``inkscape_ext/``.
 EXTENSION_FILES = ("svgtile_fill.inx", "svgtile_fill.py")
@@ -60,7 +64,7 @@ def extension_source() -> Path:
     files as data under ``<prefix>/share/svgtile/inkscape``.
     """
     candidates = [
-        Path(__file__).resolve().parents[1] / "inkscape_ext",
+        Path(__file__).resolve().parents[2] / "inkscape_ext",
         Path(sys.prefix) / "share" / "svgtile" / "inkscape",
     ]
     for folder in candidates:
@@ -235,8 +239,9 @@ def fill(
     *,
     engine: str,
     seed: int,
+    boundary: str,
     max_motifs: float,
-    params: dict[str, object],
+    params: EngineParams | dict[str, object],
     load=None,
 ) -> list[Path]:
     """Synthesize a texture in every container; write ``out_dir/texture-<i>.svg`` for each.
@@ -249,44 +254,34 @@ def fill(
     engine : a name in :data:`svgtile.engines.ENGINES`
     seed : every container is filled with a generator seeded by ``seed``, so a container's
         texture does not depend on the other containers selected
+    boundary : how motifs meet a container's edge
     max_motifs : refuse a container whose estimated motif count is larger
-    params : grid, overlap, max_rotation, vary_orientation, boundary (as for ``svgtile synth``)
+    params : the engine's parameters (:func:`svgtile.engines.make_params`)
     load : ``load(path) -> (Exemplar, Stats)``; the CLI passes its own, which prints warnings
 
     Each file is what ``svgtile synth`` writes for that container's area (its bounding box is the
     viewBox, the clip path is the container's area in document coordinates).
     """
-    from svgtile.analysis.stats import analyze, motif_estimate
-    from svgtile.engines import ENGINES
-    from svgtile.svg.reader import read_exemplar
-    from svgtile.svg.writer import svg_document, write_text
-
-    if load is None:
-        def load(p):
-            ex = read_exemplar(p)
-            return ex, analyze(ex)
+    from svgtile.apps.load import check_motif_count, load_exemplar
+    from svgtile.engines import synthesize
+    from svgtile.svg.writer import result_document, write_text
 
     containers = read_containers(containers_path)
-    ex, stats = load(str(exemplar_path))
+    ex, stats = (load or load_exemplar)(str(exemplar_path))
     regions = []
     for ident, shape in containers:
         try:
             region = Region(shape)
         except RegionError:
             raise RegionError(f"the shape {ident!r} encloses no area to fill") from None
-        estimate = motif_estimate(ex, stats, region)
-        if not estimate <= max_motifs:
-            raise ParameterError(
-                f"the shape {ident!r} would hold about {estimate:,.0f} motifs (limit {max_motifs:,.0f}); "
-                "scale the exemplar up or fill a smaller shape"
-            )
+        check_motif_count(ex, stats, region, f"the shape {ident!r}", limit=max_motifs,
+                          hint="scale the exemplar up or fill a smaller shape")  # fmt: skip
         regions.append((ident, region))
     written = []
     for i, (ident, region) in enumerate(regions):
-        arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, **params)
-        meta = {"engine": engine, "seed": seed, "container": ident, **params, "motifs": len(arr)}
+        result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, params=params)
         out = Path(out_dir) / TEXTURE_NAME.format(i)
-        write_text(svg_document(ex, arr, region, boundary=str(params["boundary"]), params=meta), out)
+        write_text(result_document(result, container=ident), out)
         written.append(out)
     return written
 

@@ -34,13 +34,11 @@ import os
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 
-import numpy as np
 import shapely
 
-from svgtile.analysis.stats import Stats, analyze, motif_estimate
+from svgtile.apps.load import check_motif_count, load_exemplar
 from svgtile.apps.mapread import (
     AVOID_MARGIN,
     MAX_AVOID_MARGIN,
@@ -51,22 +49,20 @@ from svgtile.apps.mapread import (
     split_spec,
 )
 from svgtile.core.arrangement import Arrangement
-from svgtile.core.exemplar import Exemplar
-from svgtile.core.region import Region
-from svgtile.engines import ENGINES
-from svgtile.engines.base import CommonParams
+from svgtile.core.region import BOUNDARY_MODES, Region
+from svgtile.engines import ENGINES, make_params, public_params, synthesize
 from svgtile.errors import ParameterError, RegionError, SvgtileError
 from svgtile.gis import geojson
 from svgtile.svg.mapdoc import SvgShapes
-from svgtile.svg.reader import read_exemplar
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-#: Keys of a class table passed to the engine.
-ENGINE_KEYS = ("grid", "overlap", "max_rotation", "junction", "vary_orientation", "boundary")
+#: Keys of a class table passed to the engine: every engine's public parameters, and the boundary.
+PARAM_KEYS = tuple(public_params())
+ENGINE_KEYS = (*PARAM_KEYS, "boundary")
 #: Every key a class table (or the defaults) may have.
 CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit")
 #: Keys only the top level may have.
@@ -84,8 +80,9 @@ class Style:
     cls : the class name
     exemplar : path of the exemplar SVG
     engine : name in :data:`svgtile.engines.ENGINES`
-    params : engine parameters (``grid``, ``overlap``, ``max_rotation``, ``junction``,
-        ``vary_orientation``, ``boundary``)
+    params : the engine's parameters the styles give (checked; the engine's own defaults fill
+        the rest); a top-level default is kept only for classes whose engine has it
+    boundary : how motifs meet the unit's edges and holes
     seed : int or None (the run's seed)
     unit : map units per exemplar user unit
     """
@@ -96,6 +93,7 @@ class Style:
     params: dict = field(default_factory=dict)
     seed: int | None = None
     unit: float = 1.0
+    boundary: str = "clip"
 
 
 @dataclass(frozen=True)
@@ -139,7 +137,10 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
         bad = sorted(set(table) - set(CLASS_KEYS))
         if bad:
             raise ParameterError(f"classes.{name}: unknown key {bad[0]!r} (expected {', '.join(CLASS_KEYS)})", source=source)
-        merged = {**defaults, **table}
+        engine = table.get("engine", defaults.get("engine", "patch"))
+        own = {p.name for p in ENGINES[engine].Params.public()} if isinstance(engine, str) and engine in ENGINES else set()
+        # a top-level engine parameter is a default for the classes whose engine has it
+        merged = {**{k: v for k, v in defaults.items() if k not in PARAM_KEYS or k in own}, **table}
         classes[str(name)] = _style(str(name), merged, source, folder)
     avoid = data.get("avoid", [])
     if isinstance(avoid, str):
@@ -165,18 +166,17 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
     engine = t.get("engine", "patch")
     if engine not in ENGINES:
         raise ParameterError(f"{where}: engine must be one of {', '.join(sorted(ENGINES))}, not {engine!r}", source=source)
-    params = {k: t[k] for k in ENGINE_KEYS if k in t}
-    number = (int, float)
-    types = {"grid": str, "overlap": number, "max_rotation": number, "junction": number, "vary_orientation": bool, "boundary": str}
-    for key, value in params.items():
-        if not isinstance(value, types[key]) or (isinstance(value, bool) and key != "vary_orientation"):
+    params = {k: t[k] for k in PARAM_KEYS if k in t}
+    boundary = t.get("boundary", "clip")
+    types = {p.name: (int, float) if p.type is float else p.type for p in public_params().values()}
+    for key, value in [*params.items(), ("boundary", boundary)]:
+        want = types.get(key, str)
+        if not isinstance(value, want) or (isinstance(value, bool) and want is not bool):
             raise ParameterError(f"{where}: {key} has the wrong type ({value!r})", source=source)
+    if boundary not in BOUNDARY_MODES:
+        raise ParameterError(f"{where}: --boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}", source=source)
     try:
-        CommonParams(**params)
-        if engine == "patch":
-            from svgtile.engines.patch.engine import PatchParams
-
-            PatchParams(**params)
+        make_params(engine, params)
     except ParameterError as exc:
         raise ParameterError(f"{where}: {' '.join(str(exc).split())}", source=source) from None
     seed = t.get("seed")
@@ -185,17 +185,10 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
     unit = t.get("unit", 1.0)
     if not isinstance(unit, (int, float)) or isinstance(unit, bool) or not (unit > 0 and math.isfinite(unit)):
         raise ParameterError(f"{where}: unit must be a positive number", source=source)
-    return Style(name, folder / t["exemplar"], engine, params, seed, float(unit))
+    return Style(name, folder / t["exemplar"], engine, params, seed, float(unit), boundary)
 
 
 # ----------------------------------------------------------------------------- one region
-
-
-@lru_cache(maxsize=32)
-def _load(path: str) -> tuple[Exemplar, Stats]:
-    """An exemplar and its analysis, once per process (workers fill many regions of a class)."""
-    ex = read_exemplar(path)
-    return ex, analyze(ex)
 
 
 def fill_region(
@@ -211,17 +204,15 @@ def fill_region(
     seed : the run's seed (the style's own wins)
     max_motifs : refuse a region whose estimated motif count is larger
     """
-    ex, stats = _load(str(style.exemplar))
+    ex, stats = load_exemplar(str(style.exemplar))
     unit = style.unit
     region = Region.from_geometry(geojson.to_working(shape, unit),
                                   avoid=None if avoid is None else geojson.to_working(avoid, unit))  # fmt: skip
-    estimate = motif_estimate(ex, stats, region)
-    if not estimate <= max_motifs:
-        about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
-        raise ParameterError(f"the region would hold {about} motifs (limit {max_motifs:,.0f}); "
-                             f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
-    rng = np.random.default_rng(style.seed if style.seed is not None else seed)
-    arr = ENGINES[style.engine](ex, region, rng=rng, stats=stats, **style.params)
+    check_motif_count(ex, stats, region, "the region", limit=max_motifs,
+                      hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
+    seed = style.seed if style.seed is not None else seed
+    arr = synthesize(ex, region, style.engine, seed=seed, stats=stats, boundary=style.boundary,
+                     params=style.params).arrangement  # fmt: skip
     if unit != 1.0:
         arr = Arrangement(arr.kind, arr.xy * unit, arr.angle, arr.scale * unit)
     return arr

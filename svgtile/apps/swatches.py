@@ -19,11 +19,10 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
-from svgtile.analysis.stats import analyze, motif_estimate
+from svgtile.analysis.stats import analyze
+from svgtile.apps.load import check_motif_count
 from svgtile.core.region import Region
-from svgtile.engines import ENGINES
+from svgtile.engines import synthesize
 from svgtile.errors import ExemplarError, OutputError, SvgtileError
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import parse_exemplar
@@ -185,11 +184,8 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         exemplar = parse_exemplar(imported.text, source=str(path))
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
-        estimate = motif_estimate(exemplar, stats, region)
-        if not estimate <= max_motifs:
-            about = f"about {estimate:,.0f}" if math.isfinite(estimate) else "countless"
-            raise ExemplarError(f"the swatch would hold {about} motifs (limit {max_motifs:,.0f}); choose a smaller --size")
-        arr = ENGINES["patch"](exemplar, region, rng=np.random.default_rng(seed), stats=stats)
+        check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
+        arr = synthesize(exemplar, region, "patch", seed=seed, stats=stats).arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None

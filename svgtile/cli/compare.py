@@ -9,8 +9,9 @@ import click
 
 from svgtile.apps.compare import compare as run_compare
 from svgtile.apps.compare import format_table
+from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.preview import contact_sheet, render_png, write_bytes
-from svgtile.cli.main import _check_motif_count, _json_safe, _load, _size, _Stderr
+from svgtile.cli.common import Stderr, json_safe, load, parse_size
 from svgtile.core.region import Region
 from svgtile.errors import OutputError
 from svgtile.svg.writer import fmt, svg_document, write_text
@@ -29,24 +30,24 @@ SHEET_PANEL = 320
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
 def compare(exemplar, size, engines, seed, png_dir, as_json):
     """Synthesize EXEMPLAR with each engine and print their figures side by side."""
-    width, height = _size(size)
+    width, height = parse_size(size)
     names = [e.strip() for e in engines.split(",") if e.strip()]
     if png_dir is not None:
         folder = Path(png_dir)
         if folder.exists() and not folder.is_dir():
             raise OutputError("is a file, not a folder", source=png_dir)
         render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
-    ex, stats = _load(exemplar)
+    ex, stats = load(exemplar)
     region = Region.rectangle(width, height)
-    _check_motif_count(ex, stats, region, f"--size {size}", force=None)  # every engine holds them, and the scoring
+    check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them, and the scoring
     results = run_compare(ex, stats, region, engines=names, seed=seed)
-    _Stderr.clear()
+    Stderr.clear()
     if png_dir is not None:
         _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}", "seed": seed,
                "engines": {r.engine: r.score for r in results}}  # fmt: skip
-        click.echo(json.dumps(_json_safe(out), indent=2, allow_nan=False))
+        click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(exemplar).name} on {fmt(width)} x {fmt(height)}, seed {seed}")
         click.echo(format_table(results))

@@ -7,11 +7,10 @@ from pathlib import Path
 import click
 
 from svgtile.apps import inkscape as ink
-from svgtile.cli.main import MAX_MOTIFS, _load
+from svgtile.apps.load import MAX_MOTIFS
+from svgtile.cli.common import engine_options, load
 from svgtile.core.region import BOUNDARY_MODES
-from svgtile.engines import ENGINES
-from svgtile.engines.patch.engine import PatchParams
-from svgtile.errors import ParameterError
+from svgtile.engines import get_engine, make_params
 
 _USER_DIR = click.option(
     "--user-dir", type=click.Path(file_okay=False), default=None,
@@ -48,23 +47,18 @@ def uninstall(user_dir):
 @click.argument("exemplar", type=click.Path(dir_okay=False))
 @click.argument("containers", type=click.Path(dir_okay=False))
 @click.option("--out-dir", required=True, type=click.Path(file_okay=False, exists=True))
-@click.option("--engine", type=click.Choice(sorted(ENGINES)), default="patch")
-@click.option("--grid", type=click.Choice(["square", "hex"]), default="square")
-@click.option("--overlap", type=float, default=PatchParams.overlap)
-@click.option("--max-rotation", type=float, default=PatchParams.max_rotation)
-@click.option("--vary-orientation", is_flag=True)
+@engine_options
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip")
 @click.option("--seed", type=click.IntRange(min=0), required=True)
-def fill(exemplar, containers, out_dir, engine, grid, overlap, max_rotation, vary_orientation, boundary, seed):
+def fill(exemplar, containers, out_dir, engine, boundary, seed, **values):
     """(For the extension.) Fill every container of CONTAINERS (JSON) with a texture like EXEMPLAR.
 
-    Writes OUT_DIR/texture-<i>.svg per container; see svgtile.apps.inkscape.
+    Writes OUT_DIR/texture-<i>.svg per container; see svgtile.apps.inkscape.  The dialog shows
+    every engine's parameters and the extension passes them all: those the chosen engine does not
+    have are left out here (the dialog's help says which engine each is for).
     """
-    if not 0.0 <= overlap <= 0.5:
-        raise ParameterError(f"overlap must be between 0 and 0.5, not {overlap:g}")
-    if not 0.0 <= max_rotation <= 180.0:
-        raise ParameterError(f"max rotation must be between 0 and 180 degrees, not {max_rotation:g}")
-    params = dict(grid=grid, overlap=overlap, max_rotation=max_rotation,
-                  vary_orientation=vary_orientation, boundary=boundary)  # fmt: skip
-    ink.fill(Path(exemplar), Path(containers), Path(out_dir), engine=engine, seed=seed,
-             max_motifs=MAX_MOTIFS, params=params, load=_load)  # fmt: skip
+    own = {p.name for p in get_engine(engine).Params.public()}
+    params = make_params(engine, {k: v for k, v in values.items() if k in own and v is not None},
+                         spell=lambda name: name.replace("_", " "))  # fmt: skip
+    ink.fill(Path(exemplar), Path(containers), Path(out_dir), engine=engine, seed=seed, boundary=boundary,
+             max_motifs=MAX_MOTIFS, params=params, load=load)  # fmt: skip

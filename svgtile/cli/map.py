@@ -10,9 +10,9 @@ from pathlib import Path
 import click
 import numpy as np
 
-from svgtile.apps.mapfill import MapFill, _load, default_jobs, fill_map, read_styles
-from svgtile.cli import main as cli
-from svgtile.cli.main import _Stderr, _warn
+from svgtile.apps.load import MAX_MOTIFS, load_exemplar
+from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
+from svgtile.cli.common import Stderr, warn
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.gis import geojson
 from svgtile.svg.writer import (
@@ -56,12 +56,12 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
     result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress(),
-                      max_motifs=cli.MAX_MOTIFS)  # fmt: skip
-    _Stderr.clear()
+                      max_motifs=MAX_MOTIFS)  # fmt: skip
+    Stderr.clear()
     for message in result.warnings:
-        _warn(message)
+        warn(message)
     for ident, message in result.errors.items():
-        _warn(f"region {ident!r} not filled: {message}")
+        warn(f"region {ident!r} not filled: {message}")
     if str(output).lower().endswith(".geojson"):
         text = placements_document(result)
     else:
@@ -81,7 +81,7 @@ def _progress():
 
     def report(done: int, total: int, ident: str, error: str | None) -> None:
         click.echo(f"\rsvgtile: map {done}/{total} regions ({ident[:30]})\033[K", err=True, nl=False)
-        _Stderr.progress_shown = True
+        Stderr.progress_shown = True
 
     return report
 
@@ -92,11 +92,11 @@ def svg_map(result: MapFill, params: dict) -> str:
     defs, kinds = [], {}
     for cls in sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}):
         prefix = "svgtile-" + re.sub(r"[^A-Za-z0-9_.-]+", "-", cls).strip("-") + "-"
-        ex, _ = _load(str(styles.classes[cls].exemplar))
+        ex, _ = load_exemplar(str(styles.classes[cls].exemplar))
         style_defs, kinds[cls] = prefixed_defs(ex, prefix)
         defs.extend(style_defs)
     layers = [
-        MapLayer(r.ident, r.cls, r.shape, kinds[r.cls], arr, styles.classes[r.cls].params.get("boundary", "clip"),
+        MapLayer(r.ident, r.cls, r.shape, kinds[r.cls], arr, styles.classes[r.cls].boundary,
                  r.element, r.matrix)
         for r, arr in zip(result.regions, result.results, strict=True)
         if arr is not None
@@ -112,7 +112,7 @@ def placements_document(result: MapFill) -> str:
     for r, arr in zip(result.regions, result.results, strict=True):
         if arr is None:
             continue
-        ex, _ = _load(str(result.styles.classes[r.cls].exemplar))
+        ex, _ = load_exemplar(str(result.styles.classes[r.cls].exemplar))
         names = [k.name for k in ex.kinds]
         radius = np.array([k.prototype.radius for k in ex.kinds])
         for f in geojson.placements(arr, names, radius)["features"]:

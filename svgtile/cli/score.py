@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps.compare import format_score
-from svgtile.cli.main import _json_safe, _load
+from svgtile.cli.common import json_safe, load
 from svgtile.metrics import figures as metrics
 from svgtile.svg.texture import read_texture
 
@@ -24,12 +24,12 @@ def score(exemplar, texture, as_json):
     overlaps, distance-rule violators, density, kind mix, orientation, structure, repetition,
     coverage.  See the README for their definitions.
     """
-    ex, stats = _load(exemplar)
+    ex, stats = load(exemplar)
     arr, region = read_texture(texture, ex)
     result = metrics.score(ex, stats, arr, region)
     result = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result}
     if as_json:
-        click.echo(json.dumps(_json_safe(result), indent=2, allow_nan=False))
+        click.echo(json.dumps(json_safe(result), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs")
         click.echo(format_score(result))

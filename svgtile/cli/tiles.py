@@ -7,23 +7,11 @@ from pathlib import Path
 
 import click
 
-from svgtile.analysis.stats import Stats, analyze
-from svgtile.cli import main as cli
-from svgtile.cli.main import _size, _warn
-from svgtile.core.exemplar import Exemplar
+from svgtile.apps.load import MAX_MOTIFS
+from svgtile.cli.common import parse_size, warn
 from svgtile.errors import OutputError, ParameterError
-from svgtile.svg.reader import parse_exemplar
 from svgtile.svg.writer import check_output, same_file, write_text
 from svgtile.tiles.importer import import_tile
-
-
-def load_tile(path: str) -> tuple[Exemplar, Stats]:
-    """Import a pattern tile and analyse it, as ``synth --import`` does (warnings on stderr)."""
-    imported = import_tile(path)
-    for note in imported.notes:
-        _warn(f"{path}: {note}")
-    exemplar = parse_exemplar(imported.text, source=path)
-    return exemplar, analyze(exemplar)
 
 
 @click.command(name="import")
@@ -42,7 +30,7 @@ def import_cmd(tile, output):
     check_output(output, protect=(tile,))
     imported = import_tile(tile)
     for note in imported.notes:
-        _warn(f"{tile}: {note}")
+        warn(f"{tile}: {note}")
     write_text(imported.text, output, protect=(Path(tile),))
     click.echo(
         f"svgtile: {tile}: {len(imported)} motif(s) of {imported.kinds} kind(s), "
@@ -82,9 +70,9 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
     check_output(output, protect=tuple(files))
     if png_path is not None:
         check_output(str(png_path), protect=tuple(files))
-    swatch = _size(size) if size is not None else None
+    swatch = parse_size(size) if size is not None else None
     table = read_names(names) if names else None
-    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=cli.MAX_MOTIFS)
+    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS)
     if png_path is not None:
         write_bytes(render_png(sheet.text, png_width), png_path)
     write_text(sheet.text, output, protect=tuple(files))

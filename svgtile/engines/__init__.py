@@ -1,17 +1,169 @@
-"""Synthesis engines: each is a module with ``synthesize(exemplar, region, *, rng, **params)``.
+"""Synthesis engines behind one protocol (:mod:`svgtile.engines.base`), and :func:`synthesize`.
+
+Built in:
 
 * ``patch`` — patch-based synthesis (AlMeraj, Kaplan & Asente 2013), the default;
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
 * ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline).
 
-Every engine obeys the output contract of :mod:`svgtile.engines.base`.
+Other packages add engines through the ``svgtile.engines`` entry-point group (the ecosystem's
+plug-in convention, as vpype's): an entry point ``NAME = module:ENGINE`` naming an object that
+follows :class:`~svgtile.engines.base.Engine`.  A plug-in cannot replace a built-in engine.
+
+:func:`synthesize` is the one place an engine is called: the CLI, ``svgtile map``, ``compare``,
+``swatches`` and the Inkscape bridge all go through it.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Mapping
+from importlib.metadata import entry_points
 
-from svgtile.engines import random, tile
-from svgtile.engines.patch import engine as patch
+import numpy as np
 
-ENGINES: dict[str, Callable] = {"patch": patch.synthesize, "tile": tile.synthesize, "random": random.synthesize}
+from svgtile.analysis.stats import Stats, analyze
+from svgtile.core import cellrng
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import BOUNDARY_MODES, Region
+from svgtile.engines.base import (
+    Context,
+    Engine,
+    EngineParams,
+    Progress,
+    PublicParam,
+    Result,
+    reading_order,
+)
+from svgtile.engines.patch.engine import PATCH
+from svgtile.engines.random import RANDOM
+from svgtile.engines.tile import TILE
+from svgtile.errors import ParameterError
+
+#: The entry-point group plug-in engines register under.
+ENTRY_POINT_GROUP = "svgtile.engines"
+
+
+def _registry() -> dict[str, Engine]:
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM)}
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        if ep.name in engines:
+            continue
+        try:
+            engine = ep.load()
+        except Exception:  # a broken plug-in must not break svgtile
+            continue
+        if isinstance(engine, Engine) and engine.name == ep.name:
+            engines[ep.name] = engine
+    return engines
+
+
+#: name -> engine, built-in first.
+ENGINES: dict[str, Engine] = _registry()
+
+
+def get_engine(name: str) -> Engine:
+    """The engine called ``name``; a clear error naming the choices otherwise."""
+    try:
+        return ENGINES[name]
+    except (KeyError, TypeError):
+        raise ParameterError(f"unknown engine {name!r} (choose from {', '.join(sorted(ENGINES))})") from None
+
+
+def public_params() -> dict[str, PublicParam]:
+    """Every engine's public parameters, by name (the union the CLI offers as options).
+
+    Two engines that share a parameter name must give it the same type and option.
+    """
+    out: dict[str, PublicParam] = {}
+    for engine in ENGINES.values():
+        for p in engine.Params.public():
+            seen = out.setdefault(p.name, p)
+            if (seen.type, seen.option) != (p.type, p.option):  # pragma: no cover - a programming error
+                raise TypeError(f"engines disagree on the parameter {p.name!r}")
+    return out
+
+
+def engines_with(name: str) -> list[str]:
+    """Names of the engines that have the public parameter ``name``."""
+    return [e.name for e in ENGINES.values() if any(p.name == name for p in e.Params.public())]
+
+
+def make_params(engine: Engine | str, params: Mapping[str, object] | EngineParams | None = None, *,
+                spell=repr) -> EngineParams:  # fmt: skip
+    """The engine's parameter object from ``params``, checked.
+
+    Parameters
+    ----------
+    engine : an engine or its name
+    params : values by field name (missing ones take their defaults), or a parameter object
+    spell : how a message names a parameter (the CLI passes its option spelling)
+
+    Raises
+    ------
+    ParameterError
+        A parameter the engine does not have, or a value out of its range.
+    """
+    engine = get_engine(engine) if isinstance(engine, str) else engine
+    if isinstance(params, EngineParams):
+        if not isinstance(params, engine.Params):
+            raise ParameterError(f"engine {engine.name!r} takes {engine.Params.__name__}, not {type(params).__name__}")
+        return params
+    params = dict(params or {})
+    fields = set(engine.Params.__dataclass_fields__)
+    unknown = [k for k in params if k not in fields]
+    if unknown:
+        own = ", ".join(spell(p.name) for p in engine.Params.public()) or "none"
+        raise ParameterError(f"engine {engine.name!r} has no parameter {spell(unknown[0])} (its parameters: {own})")
+    return engine.Params(**params)
+
+
+def synthesize(
+    exemplar: Exemplar,
+    region: Region,
+    engine: Engine | str = "patch",
+    *,
+    seed: int | None = None,
+    rng: np.random.Generator | None = None,
+    stats: Stats | None = None,
+    boundary: str = "clip",
+    progress: Progress | None = None,
+    params: Mapping[str, object] | EngineParams | None = None,
+) -> Result:
+    """Fill ``region`` with a texture like ``exemplar``, with one engine.
+
+    Parameters
+    ----------
+    exemplar : the parsed exemplar
+    region : the output region, user units (with its avoid zones)
+    engine : an engine or its name (:data:`ENGINES`)
+    seed, rng : the only source of randomness, exactly one of them: a seed (recorded in the
+        result) or a generator; one 63-bit key is drawn from it
+        (:func:`svgtile.core.cellrng.root_key`)
+    stats : the exemplar's analysis, if already computed
+    boundary : one of :data:`svgtile.core.region.BOUNDARY_MODES`
+    progress : called as ``progress(stage, fraction)``; ``("done", 1.0)`` last
+    params : the engine's parameters (see :func:`make_params`)
+
+    Returns
+    -------
+    Result whose arrangement has no overlaps and no distance-rule violations, is filtered by the
+    boundary mode and in reading order.
+    """
+    engine = get_engine(engine) if isinstance(engine, str) else engine
+    p = make_params(engine, params)
+    if boundary not in BOUNDARY_MODES:
+        raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}")
+    if (seed is None) == (rng is None):
+        raise TypeError("synthesize takes exactly one of seed and rng")
+    stats = stats or analyze(exemplar)
+    report = progress or (lambda stage, fraction: None)
+    key = cellrng.root_key(np.random.default_rng(seed) if rng is None else rng)
+    ctx = Context(exemplar, stats, region, boundary, key, report)
+    arr = engine.place(ctx, p)
+    arr = reading_order(arr.take(region.keep(arr, exemplar.prototypes, boundary)))
+    report("done", 1.0)
+    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
+
+
+__all__ = ["ENGINES", "Context", "Engine", "EngineParams", "Result", "engines_with", "get_engine", "make_params",
+           "public_params", "synthesize"]  # fmt: skip

@@ -1,58 +1,173 @@
-"""What every engine's output has in common: precision, order, and the shared parameters.
+"""The engine protocol: what every synthesis engine declares, and what it is handed.
 
-Every engine returns an :class:`~svgtile.core.arrangement.Arrangement` that
+An engine is an object with
 
-* has no overlapping footprints and no distance-rule violations (:mod:`svgtile.core.conflicts`),
-* is filtered by the boundary mode (:meth:`svgtile.core.region.Region.keep`),
-* has positions, angles and scales rounded to :data:`DECIMALS` when they are created, so every
-  check runs on exactly what is written,
-* lists its motifs in reading order (:func:`reading_order`),
-* draws one key from the caller's ``rng`` and derives every random choice from it with
-  world-anchored hashes (:mod:`svgtile.core.cellrng`): the same seed gives the same texture.
+* ``name`` — how users call it (``--engine NAME``, ``engine = "NAME"`` in a styles file);
+* ``summary`` — one sentence for ``--help``, in the user's words;
+* ``Params`` — a frozen dataclass subclassing :class:`EngineParams`: its fields are the engine's
+  parameters, each with a default, and the fields declared with :func:`param` (help text, option
+  name, choices) are the public ones, from which the CLI options, the styles-file keys of
+  ``svgtile map`` and the Inkscape dialog are made (tests check the ``.inx`` against them);
+  ``__post_init__`` checks ranges and raises :class:`~svgtile.errors.ParameterError`;
+* ``place(ctx, params) -> Arrangement`` — the synthesis itself, given a :class:`Context`;
+* ``reach(exemplar, params) -> float`` — how far, in user units, what happens outside a tile can
+  change the motifs inside it; a tiled run (one tile synthesized with a halo this wide, keeping
+  only the motifs anchored in the tile) equals the whole run exactly when the reach is finite.
+  ``math.inf`` says the engine is not tile-exact and must be run whole.
 
-The CLI passes ``grid``, ``overlap``, ``max_rotation``, ``vary_orientation``, ``junction`` and
-``boundary`` to every engine; :class:`CommonParams` accepts them all, and each engine documents
-which it uses.
+:func:`svgtile.engines.synthesize` does what every engine shares: it checks the parameters (a
+parameter the engine does not have is an error), draws the run's world-anchored key from the
+seed, filters the motifs by the boundary mode, puts them in reading order, and returns a
+:class:`Result` that carries everything a writer needs.
+
+What an engine's ``place`` must return: an :class:`~svgtile.core.arrangement.Arrangement` with
+no overlapping footprints and no distance-rule violations (:mod:`svgtile.core.conflicts`), its
+positions, angles and scales rounded to :data:`~svgtile.core.arrangement.DECIMALS` when they are
+created (so every check runs on exactly what is written), every random choice derived from
+``ctx.key`` with world-anchored hashes (:mod:`svgtile.core.cellrng`).  It may leave motifs the
+boundary mode drops, and any order.
 """
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 
+from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
-from svgtile.core.region import BOUNDARY_MODES
-from svgtile.errors import ParameterError
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import Region
 
-#: Decimals of positions, angles and scales in the output (as in the patch engine).
-DECIMALS = 4
+Progress = Callable[[str, float], None]
+
+
+def param(default: Any, help: str, *, option: str | None = None, choices: tuple[str, ...] | None = None,
+          interval: tuple[float, float] | None = None, metavar: str | None = None) -> Any:  # fmt: skip
+    """A public engine parameter: a dataclass field with what the CLI and dialogs show.
+
+    Parameters
+    ----------
+    default : its value when not given
+    help : what it does, in the user's words (CLI ``--help``, tooltips)
+    option : the CLI option, default ``--`` + the field name with ``-`` for ``_``
+    choices : the allowed values of a text parameter
+    interval : ``(low, high)``, the interval of a number parameter (for dialogs; the parameter
+        class's ``__post_init__`` checks it, and may exclude an end)
+    metavar : how ``--help`` names its value
+    """
+    return dataclasses.field(default=default, metadata={"help": help, "option": option, "choices": choices,
+                                                        "interval": interval, "metavar": metavar})  # fmt: skip
 
 
 @dataclass(frozen=True)
-class CommonParams:
-    """The parameters the CLI passes to every engine.
+class PublicParam:
+    """One public parameter of an engine, as the CLI, styles files and dialogs see it."""
+
+    name: str
+    type: type
+    default: Any
+    help: str
+    option: str
+    choices: tuple[str, ...] | None
+    interval: tuple[float, float] | None
+    metavar: str | None
+
+
+@dataclass(frozen=True)
+class EngineParams:
+    """Base of every engine's parameter class (frozen; ranges checked in ``__post_init__``)."""
+
+    @classmethod
+    def public(cls) -> tuple[PublicParam, ...]:
+        """The parameters declared with :func:`param`, in field order."""
+        out = []
+        types = {"float": float, "int": int, "bool": bool, "str": str}
+        for f in dataclasses.fields(cls):
+            if "help" not in f.metadata:
+                continue
+            m = f.metadata
+            option = m["option"] or "--" + f.name.replace("_", "-")
+            out.append(PublicParam(f.name, types[str(f.type)], f.default, m["help"], option, m["choices"], m["interval"],
+                                   m["metavar"]))
+        return tuple(out)
+
+    def public_values(self) -> dict[str, Any]:
+        """``{name: value}`` of the public parameters (what a texture's metadata records)."""
+        return {p.name: getattr(self, p.name) for p in self.public()}
+
+
+@dataclass(frozen=True, eq=False)
+class Context:
+    """What an engine's ``place`` is handed.
 
     Attributes
     ----------
-    grid, overlap, max_rotation, vary_orientation, junction
-        Parameters of the patch engine (:class:`svgtile.engines.patch.engine.PatchParams`).  Engines
-        that have no use for them accept and ignore them, so one command line works with every
-        engine; their values are not checked here (the CLI checks their ranges).
-    boundary : one of ``inside``, ``centroid``, ``clip``, ``none``
-        How motifs meet the output region's boundary (see :mod:`svgtile.core.region`).
+    exemplar : the parsed exemplar
+    stats : its analysis
+    region : the output region (with its avoid zones)
+    boundary : one of :data:`svgtile.core.region.BOUNDARY_MODES`
+    key : the run's 63-bit key (:func:`svgtile.core.cellrng.root_key`): every random choice is a
+        hash of it and world-anchored integers
+    progress : called as ``progress(stage, fraction)``; never None
     """
 
-    grid: str = "square"
-    overlap: float = 0.05
-    max_rotation: float = 30.0
-    vary_orientation: bool = False
-    boundary: str = "clip"
-    junction: float = 0.6
+    exemplar: Exemplar
+    stats: Stats
+    region: Region
+    boundary: str
+    key: int
+    progress: Progress
 
-    def __post_init__(self) -> None:
-        if self.boundary not in BOUNDARY_MODES:
-            raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {self.boundary!r}")
+
+@runtime_checkable
+class Engine(Protocol):
+    """A synthesis engine (see the module docstring)."""
+
+    name: ClassVar[str]
+    summary: ClassVar[str]
+    Params: ClassVar[type[EngineParams]]
+
+    def place(self, ctx: Context, params: EngineParams) -> Arrangement: ...
+
+    def reach(self, exemplar: Exemplar, params: EngineParams) -> float: ...
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """A synthesized texture with everything needed to write, score or reproduce it.
+
+    Attributes
+    ----------
+    arrangement : the motifs, filtered by ``boundary``, in reading order
+    exemplar, stats : the exemplar and its analysis
+    region : the output region
+    boundary : how motifs met the region's edge
+    engine : the engine's name
+    params : the engine's parameters, all resolved
+    seed : the seed the run was made with (None when the caller passed a generator)
+    """
+
+    arrangement: Arrangement
+    exemplar: Exemplar
+    stats: Stats
+    region: Region
+    boundary: str
+    engine: str
+    params: EngineParams
+    seed: int | None
+
+    def __len__(self) -> int:
+        return len(self.arrangement)
+
+    def metadata(self, **where: object) -> dict[str, object]:
+        """What a texture records of its run: engine, seed, ``where`` (exemplar, region …), the
+        public parameters, the boundary mode and the motif count."""
+        return {"engine": self.engine, "seed": self.seed, **where, **self.params.public_values(),
+                "boundary": self.boundary, "motifs": len(self.arrangement)}  # fmt: skip
 
 
 def reading_order(arr: Arrangement) -> Arrangement:

@@ -42,39 +42,36 @@ What this guarantees:
   region, on 99–100 % of those one width inside, and on 92–98 % of all its motifs.  The tests
   hold the engine to the first figure; nothing stronger is promised.
 
-Parameters of the patch engine are accepted: ``grid``, ``overlap`` and ``max_rotation`` are
-ignored (there are no exemplar copies), and ``vary_orientation`` is moot — orientations are always
-drawn from the arcs, which is what that option asks of the patch engine.
+The patch engine's parameters are not this engine's (there are no exemplar copies; orientations
+are always drawn from the arcs, which is what ``vary_orientation`` asks of the patch engine): one
+given to it is an error.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.analysis.stats import Stats, analyze
+from svgtile.analysis.stats import Stats
 from svgtile.core import cellrng
-from svgtile.core.arrangement import Arrangement
+from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
-from svgtile.engines.base import DECIMALS, CommonParams, reading_order
+from svgtile.engines.base import Context, EngineParams, Progress
 from svgtile.errors import ParameterError
-
-Progress = Callable[[str, float], None]
 
 # hash streams: one per independent random choice
 _DART, _X, _Y, _ANGLE, _SCALE, _PRIORITY, _TARGET = range(7)
 
 
 @dataclass(frozen=True)
-class RandomParams(CommonParams):
-    """Parameters of the random engine (besides those of :class:`CommonParams`).
+class RandomParams(EngineParams):
+    """Parameters of the random engine (library only: the CLI offers none).
 
     Attributes
     ----------
@@ -93,7 +90,6 @@ class RandomParams(CommonParams):
     min_acceptance: float = 0.01
 
     def __post_init__(self) -> None:
-        super().__post_init__()
         if not self.oversample >= 1.0:
             raise ParameterError(f"oversample must be at least 1, not {self.oversample:g}")
         if not self.max_rounds >= 1:
@@ -110,44 +106,29 @@ MAX_BOOST = 40.0
 MIN_FRACTION = 0.05
 
 
-def synthesize(
-    exemplar: Exemplar,
-    region: Region,
-    *,
-    rng: np.random.Generator,
-    stats: Stats | None = None,
-    progress: Progress | None = None,
-    **params,
-) -> Arrangement:
-    """Fill ``region`` by dart throwing to the exemplar's statistics (the Random strategy).
+class RandomEngine:
+    """The Random strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
-    Parameters
-    ----------
-    exemplar : the parsed exemplar
-    region : the output region
-    rng : the only source of randomness; one 63-bit key is drawn from it
-    stats : the exemplar's analysis, if already computed
-    progress : called as ``progress(stage, fraction)``
-    **params : fields of :class:`RandomParams` (see the module docstring for those ignored)
+    name = "random"
+    summary = ("motifs scattered by dart throwing to the exemplar's statistics, a baseline: no repetition and "
+               "only the structure the distance rule imposes")
+    Params = RandomParams
 
-    Returns
-    -------
-    Arrangement with no overlaps and no distance-rule violations, filtered by the boundary mode,
-    in reading order.
-    """
-    p = RandomParams(**params)
-    stats = stats or analyze(exemplar)
-    report = progress or (lambda stage, fraction: None)
-    key = cellrng.root_key(rng)
-    arr = throw(exemplar, stats, region, p, key=key, progress=report)
-    arr = arr.take(region.keep(arr, exemplar.prototypes, p.boundary))
-    arr = reading_order(arr)
-    report("done", 1.0)
-    return arr
+    def place(self, ctx: Context, p: RandomParams) -> Arrangement:
+        """Fill ``ctx.region`` by dart throwing to the exemplar's statistics (the Random strategy)."""
+        return throw(ctx.exemplar, ctx.stats, ctx.region, p, ctx.boundary, key=ctx.key, progress=ctx.progress)
+
+    def reach(self, exemplar: Exemplar, params: RandomParams) -> float:
+        """Not tile-exact: a dart's fate depends on what was placed nearby, kind after kind and round
+        after round, so a difference travels about a cell per round; run it whole."""
+        return math.inf
+
+
+RANDOM = RandomEngine()
 
 
 def throw(
-    exemplar: Exemplar, stats: Stats, region: Region, p: RandomParams, *, key: int,
+    exemplar: Exemplar, stats: Stats, region: Region, p: RandomParams, boundary: str, *, key: int,
     progress: Progress | None = None,
 ) -> Arrangement:  # fmt: skip
     """Dart throwing in rounds until every cell holds the exemplar's count of each kind.
@@ -171,7 +152,7 @@ def throw(
     x0, y0, x1, y1 = exemplar.region.bounds
     size = np.array([x1 - x0, y1 - y0])
     reach = float(np.max([pr.radius for pr in protos]) * motifs.scale.max())
-    domain = region.shape if p.boundary in ("inside", "centroid") else shapely.buffer(region.shape, reach)
+    domain = region.shape if boundary in ("inside", "centroid") else shapely.buffer(region.shape, reach)
     shapely.prepare(domain)
 
     # cells meeting the domain, and the area of each inside it
@@ -210,7 +191,7 @@ def throw(
             new, priority = _darts(exemplar, stats, kk, lo[gc], size, dart, key=key)
 
             ok = shapely.contains_xy(domain, new.xy[:, 0], new.xy[:, 1])
-            if p.boundary == "inside":
+            if boundary == "inside":
                 ok[ok] = region.keep(new.take(ok), protos, "inside")
             offered = np.bincount(gc[ok], minlength=c)
             if tree is not None:

@@ -21,28 +21,25 @@ stamped texture instead would make copies differ at their seams — and the cost
 that of one exemplar, whatever the output size.  Which motif of a conflicting pair leaves is the
 only random choice, a hash of the run's key and the motif's index in the exemplar.
 
-Parameters of the patch engine (``grid``, ``overlap``, ``max_rotation``, ``vary_orientation``)
-are accepted and ignored: the Tiling strategy is defined by a square grid, σ = 0, no rotation and
-the exemplar's own orientations.  Only ``boundary`` is used.
+The engine has no parameters: the Tiling strategy is defined by a square grid, σ = 0, no
+rotation and the exemplar's own orientations (a patch parameter given to it is an error).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
-from svgtile.analysis.stats import Stats, analyze
+from svgtile.analysis.stats import Stats
 from svgtile.core import cellrng
-from svgtile.core.arrangement import Arrangement
+from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import RULE_SLACK, Conflicts, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
-from svgtile.engines.base import DECIMALS, CommonParams, reading_order
-
-Progress = Callable[[str, float], None]
+from svgtile.engines.base import Context, EngineParams
 
 _PRIORITY = 0  # hash stream: which motif of a conflicting pair leaves the tiling
 
@@ -55,47 +52,36 @@ _PRIORITY = 0  # hash stream: which motif of a conflicting pair leaves the tilin
 SEAM_MARGIN = 2 * RULE_SLACK
 
 
-def synthesize(
-    exemplar: Exemplar,
-    region: Region,
-    *,
-    rng: np.random.Generator,
-    stats: Stats | None = None,
-    progress: Progress | None = None,
-    **params,
-) -> Arrangement:
-    """Fill ``region`` with translated copies of the exemplar (the Tiling strategy).
+@dataclass(frozen=True)
+class TileParams(EngineParams):
+    """The Tiling strategy has no parameters: a square grid, σ = 0, no rotation."""
 
-    Parameters
-    ----------
-    exemplar : the parsed exemplar
-    region : the output region
-    rng : one 63-bit key is drawn from it; it only decides which motif of a pair conflicting
-        across a seam leaves the tiling (an exemplar with enough padding gives the same texture
-        for every seed)
-    stats : the exemplar's analysis, if already computed
-    progress : called as ``progress(stage, fraction)``
-    **params : fields of :class:`~svgtile.engines.base.CommonParams`; only ``boundary`` is
-        used (see the module docstring)
 
-    Returns
-    -------
-    Arrangement with no overlaps and no distance-rule violations, filtered by the boundary mode,
-    in reading order.
-    """
-    p = CommonParams(**params)
-    stats = stats or analyze(exemplar)
-    report = progress or (lambda stage, fraction: None)
-    key = cellrng.root_key(rng)
+class TileEngine:
+    """The Tiling strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
-    report("seams", 0.0)
-    keep = periodic_keep(exemplar, stats, key=key)
-    report("tiles", 0.3)
-    arr = stamp(exemplar, region, keep)
-    arr = arr.take(region.keep(arr, exemplar.prototypes, p.boundary))
-    arr = reading_order(arr)
-    report("done", 1.0)
-    return arr
+    name = "tile"
+    summary = ("plain repeated copies of the exemplar, a baseline: the most faithful structure and "
+               "obvious repetition (svgtile score and compare measure against it)")
+    Params = TileParams
+
+    def place(self, ctx: Context, p: TileParams) -> Arrangement:
+        """Translated copies of the exemplar over ``ctx.region`` (the Tiling strategy).
+
+        ``ctx.key`` only decides which motif of a pair conflicting across a seam leaves the tiling
+        (an exemplar with enough padding gives the same texture for every seed).
+        """
+        ctx.progress("seams", 0.0)
+        keep = periodic_keep(ctx.exemplar, ctx.stats, key=ctx.key)
+        ctx.progress("tiles", 0.3)
+        return stamp(ctx.exemplar, ctx.region, keep)
+
+    def reach(self, exemplar: Exemplar, params: TileParams) -> float:
+        """Tile-exact with no halo: a copy is a function of its grid cell alone."""
+        return 0.0
+
+
+TILE = TileEngine()
 
 
 def tile_size(exemplar: Exemplar) -> tuple[float, float, float, float]:
@@ -199,7 +185,7 @@ def copies(exemplar: Exemplar, motifs: Arrangement, a: np.ndarray, b: np.ndarray
 
     Copy ``(a, b)`` translates by ``(a·w − x0, b·h − y0)``.  Positions are rounded before and after
     the translation, so every copy is the same rounded pattern whenever the translation itself
-    has at most :data:`~svgtile.engines.base.DECIMALS` decimals.
+    has at most :data:`~svgtile.core.arrangement.DECIMALS` decimals.
 
     Parameters
     ----------

@@ -23,16 +23,14 @@ import shapely
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
+from svgtile.engines.base import Result
 from svgtile.errors import OutputError
 from svgtile.svg.dialect import INKSCAPE_NS, SVG_NS, XLINK_NS
+from svgtile.svg.numbers import fmt, fmt_array
 
 META_NS = "urn:svgtile:run:1"
 SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
 USES_MARK = "svgtile-uses"
-#: Decimals written for every number (positions, angles, scales, sizes).
-DECIMALS = 4
-# Below this magnitude np.round(v, 4) has a short repr with at most 4 decimals and no exponent.
-_FAST_LIMIT = 1e11
 # Characters XML 1.0 forbids (and lone surrogates from undecodable file names).
 _NOT_XML = re.compile("[^\x09\x0A\x0D\x20-\uD7FF\uE000-\uFFFD\U00010000-\U0010FFFF]")
 # ElementTree's namespace registry is process-wide; these are the prefixes any SVG tool expects.
@@ -41,30 +39,6 @@ ET.register_namespace("xlink", XLINK_NS)
 ET.register_namespace("svgtile", META_NS)
 ET.register_namespace("inkscape", INKSCAPE_NS)
 ET.register_namespace("sodipodi", SODIPODI_NS)
-
-
-def fmt(v: float) -> str:
-    """Fixed number format: four decimals at most, no trailing zeros, no ``-0``.
-
-    >>> fmt(1.0), fmt(-0.00001), fmt(2.50004), fmt(-3.14159)
-    ('1', '0', '2.5', '-3.1416')
-    """
-    return fmt_array(np.array([v]))[0]
-
-
-def fmt_array(values: np.ndarray) -> list[str]:
-    """:func:`fmt` for a whole array at once, (n,) floats to n strings.
-
-    Values are rounded with ``np.round(v, 4)``; the shortest repr of such a float is its decimal
-    value with at most four decimals, so only the ``.0`` of whole numbers needs removing.  Huge or
-    non-finite values (never written in practice) take the slow path.
-    """
-    v = np.round(np.asarray(values, dtype=np.float64).reshape(-1), DECIMALS) + 0.0  # + 0.0: no -0
-    out = [s[:-2] if s[-2:] == ".0" else s for s in map(repr, v.tolist())]
-    for i in np.flatnonzero(~(np.abs(v) < _FAST_LIMIT)).tolist():
-        s = f"{v[i]:.{DECIMALS}f}".rstrip("0").rstrip(".")
-        out[i] = "0" if s in ("-0", "") else s
-    return out
 
 
 def use_transform_suffix(kind: Kind) -> str:
@@ -99,6 +73,14 @@ def use_elements(arr: Arrangement, kinds: tuple[Kind, ...], indent: str = "    "
         f"{heads[k]}{x} {y}{r}{s}){tails[k]}"
         for k, x, y, r, s in zip(arr.kind.tolist(), xs, ys, rot, scl, strict=True)
     ]
+
+
+def result_document(result: Result, **where: object) -> str:
+    """A synthesis :class:`~svgtile.engines.base.Result` as SVG text (:func:`svg_document`),
+    its run recorded in the metadata (:meth:`Result.metadata`: engine, seed, ``where``,
+    parameters, boundary, motif count)."""
+    return svg_document(result.exemplar, result.arrangement, result.region, boundary=result.boundary,
+                        params=result.metadata(**where))  # fmt: skip
 
 
 def svg_document(

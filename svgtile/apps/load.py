@@ -1,0 +1,83 @@
+"""The one exemplar loader (read or import, then analyse, once per process) and the one
+motif-count guard every command runs before synthesis."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from functools import lru_cache
+
+from svgtile.analysis.stats import Stats, analyze, motif_estimate
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.region import Region
+from svgtile.errors import ParameterError
+from svgtile.svg.reader import parse_exemplar, read_exemplar
+
+#: Above this estimated motif count synthesis is refused unless forced (the estimate is the
+#: exemplar's motifs per unit area times the output area).  Two million motifs take about a
+#: minute and a few GB of memory, and make an SVG of some 180 MB that few viewers can open.
+MAX_MOTIFS = 2_000_000
+#: Refused even when forced: no machine holds this many motifs (about 1 kB each) in memory.
+HARD_MAX_MOTIFS = 1e9
+
+
+@lru_cache(maxsize=32)
+def _read(path: str, as_tile: bool) -> tuple[Exemplar, Stats, tuple[str, ...]]:
+    if as_tile:
+        from svgtile.tiles.importer import import_tile
+
+        imported = import_tile(path)
+        exemplar = parse_exemplar(imported.text, source=path)
+        notes = tuple(imported.notes)
+    else:
+        exemplar = read_exemplar(path)
+        notes = exemplar.warnings
+    stats = analyze(exemplar)
+    if stats.overlaps:
+        notes = (*notes, f"{stats.overlaps} pair(s) of motifs overlap in the exemplar; continuing")
+    return exemplar, stats, notes
+
+
+def load_exemplar(path: str, *, as_tile: bool = False,
+                  warn: Callable[[str], None] | None = None) -> tuple[Exemplar, Stats]:  # fmt: skip
+    """An exemplar and its analysis, read once per process (a map fills many units of a class).
+
+    Parameters
+    ----------
+    path : the exemplar SVG, or with ``as_tile`` a seamless pattern tile to import first
+        (:func:`svgtile.tiles.importer.import_tile`)
+    warn : called with each non-fatal problem, ``"PATH: message"`` (the reader's warnings, the
+        import's notes, overlapping motifs), on every call
+    """
+    exemplar, stats, notes = _read(str(path), as_tile)
+    if warn is not None:
+        for note in notes:
+            warn(f"{path}: {note}")
+    return exemplar, stats
+
+
+def check_motif_count(exemplar: Exemplar, stats: Stats, region: Region, where: str, *,
+                      limit: float = MAX_MOTIFS, hint: str = "", forceable: bool = False) -> float:  # fmt: skip
+    """Refuse ``region`` if its estimated motif count is above ``limit`` or :data:`HARD_MAX_MOTIFS`.
+
+    Parameters
+    ----------
+    where : names the region in the message (``--size 800x600``, ``the shape 'path12'`` …)
+    limit : the caller's limit (``math.inf`` with ``--force``)
+    hint : what the user can do, appended to the message (``choose a smaller --size`` …)
+    forceable : the caller has ``--force``: say so when only ``limit`` is exceeded
+
+    Returns
+    -------
+    The estimate (:func:`svgtile.analysis.stats.motif_estimate`).
+    """
+    estimate = motif_estimate(exemplar, stats, region)
+    if not estimate <= HARD_MAX_MOTIFS:
+        about = f"about {estimate:.3g}" if math.isfinite(estimate) else "countless"
+        raise ParameterError(f"{where} would hold {about} motifs, more than svgtile can hold in memory"
+                             + (f"; {hint}" if hint else ""))  # fmt: skip
+    if estimate > limit:
+        hints = [h for h in (hint, "use --force to run anyway" if forceable else "") if h]
+        raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs (limit {limit:,.0f})"
+                             + "".join(f"; {h}" for h in hints))  # fmt: skip
+    return estimate

@@ -1,0 +1,79 @@
+"""``svgtile analyze``: what synthesis must reproduce from an exemplar."""
+
+from __future__ import annotations
+
+import json
+
+import click
+import numpy as np
+
+from svgtile.analysis.stats import Stats
+from svgtile.cli.common import json_safe, load
+from svgtile.core.exemplar import Exemplar
+
+
+@click.command(name="analyze")
+@click.argument("exemplar", type=click.Path(dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
+def analyze_cmd(exemplar, as_json):
+    """Print what synthesis reproduces from EXEMPLAR: kinds, density, distances, orientations."""
+    ex, stats = load(exemplar)
+    report = stats_report(ex, stats)
+    if as_json:
+        click.echo(json.dumps(json_safe(report), indent=2, allow_nan=False))
+    else:
+        click.echo(format_report(report))
+
+
+def stats_report(ex: Exemplar, stats: Stats) -> dict:
+    """The analysis as plain data (what ``analyze --json`` prints)."""
+    x0, y0, x1, y1 = ex.region.bounds
+    counts = np.bincount(ex.motifs.kind, minlength=len(ex.kinds))
+    return {
+        "exemplar": ex.source,
+        "region": {"bounds": [x0, y0, x1, y1], "area": ex.region.area},
+        "motifs": len(ex.motifs),
+        "density": stats.density,
+        "motifs_per_unit_area": stats.count_density,
+        "kinds": [
+            {
+                "name": k.name,
+                "count": int(counts[i]),
+                "frequency": float(stats.frequency[i]),
+                "area": k.prototype.area,
+                "arc": {"start": float(stats.arc_start[i]), "width": float(stats.arc_width[i])},
+            }
+            for i, k in enumerate(ex.kinds)
+        ],
+        "distance": stats.distance.tolist(),
+        "distance_measured": stats.measured.tolist(),
+        "overlapping_pairs": stats.overlaps,
+    }
+
+
+def format_report(r: dict) -> str:
+    """The analysis as the table ``svgtile analyze`` prints."""
+    x0, y0, x1, y1 = r["region"]["bounds"]
+    lines = [
+        f"exemplar      {r['exemplar']}",
+        f"input region  {x1 - x0:g} x {y1 - y0:g} at ({x0:g}, {y0:g}), area {r['region']['area']:.4g}",
+        f"motifs        {r['motifs']} in {len(r['kinds'])} kind(s)",
+        f"density ρ     {r['density']:.4f} of the area covered, {r['motifs_per_unit_area']:.4g} motifs per unit²",
+        "",
+        f"  {'#':>2}  {'kind':<20} {'count':>5} {'share':>6} {'area':>8}   orientation arc",
+    ]
+    for i, k in enumerate(r["kinds"]):
+        a = k["arc"]
+        arc = f"{a['start']:+.1f}° … {a['start'] + a['width']:+.1f}° ({a['width']:.1f}°)"
+        lines.append(f"  {i:>2}  {k['name']:<20} {k['count']:>5} {k['frequency']:>6.3f} {k['area']:>8.3f}   {arc}")
+    lines += ["", "minimum distances d_ij (* = fallback, the exemplar has no such pair):"]
+    names = [k["name"][:10] for k in r["kinds"]]
+    lines.append("  " + " " * 12 + "".join(f"{n:>12}" for n in names))
+    for i, row in enumerate(r["distance"]):
+        cells = "".join(
+            f"{v:>11.3f}{' ' if r['distance_measured'][i][j] else '*'}" for j, v in enumerate(row)
+        )
+        lines.append(f"  {names[i]:<12}{cells}")
+    if r["overlapping_pairs"]:
+        lines.append(f"\nwarning: {r['overlapping_pairs']} overlapping pair(s) in the exemplar")
+    return "\n".join(lines)

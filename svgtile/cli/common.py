@@ -1,0 +1,133 @@
+"""What the commands share: option parsing, one-line messages, the progress line, and the engine
+options made from the engines' parameter classes (:mod:`svgtile.engines.base`)."""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+from collections.abc import Callable
+
+import click
+from click.core import ParameterSource
+
+from svgtile.analysis.stats import Stats
+from svgtile.apps.load import load_exemplar
+from svgtile.core.exemplar import Exemplar
+from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
+from svgtile.engines.base import EngineParams
+from svgtile.errors import ParameterError
+
+
+def parse_size(text: str) -> tuple[float, float]:
+    """``WIDTHxHEIGHT`` (or one number for a square) in user units, both positive and finite."""
+    match = re.fullmatch(r"\s*([0-9.eE+-]+)\s*(?:[xX×]\s*([0-9.eE+-]+))?\s*", text)
+    try:
+        w = float(match.group(1))
+        h = float(match.group(2) or match.group(1))
+    except (AttributeError, ValueError):
+        raise ParameterError(f"--size must look like 800x600 (user units), not {text!r}") from None
+    if not (w > 0 and h > 0):
+        raise ParameterError(f"--size must be positive, not {text!r}")
+    if not (math.isfinite(w) and math.isfinite(h)):
+        raise ParameterError(f"--size {text!r} is too large to represent")
+    return w, h
+
+
+class Stderr:
+    """One-line messages on stderr, aware of the progress line a terminal may be showing."""
+
+    progress_shown = False
+
+    @classmethod
+    def line(cls, message: str) -> None:
+        cls.clear()
+        click.echo(" ".join(message.split("\n")), err=True)
+
+    @classmethod
+    def clear(cls) -> None:
+        if cls.progress_shown:
+            click.echo("\r\033[K", err=True, nl=False)
+            cls.progress_shown = False
+
+
+def warn(message: str) -> None:
+    Stderr.line(f"svgtile: warning: {message}")
+
+
+def showwarning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Python warnings (numpy, shapely …) as one svgtile line instead of two lines of source."""
+    warn(f"{message} ({category.__name__})")
+
+
+def load(path: str, *, as_tile: bool = False) -> tuple[Exemplar, Stats]:
+    """The exemplar and its analysis (:func:`svgtile.apps.load.load_exemplar`), warnings on stderr."""
+    return load_exemplar(path, as_tile=as_tile, warn=warn)
+
+
+def progress_line() -> Callable[[str, float], None] | None:
+    """A ``progress(stage, fraction)`` callback drawing one self-erasing line, when stderr is a
+    terminal; None otherwise (logs and pipes get nothing)."""
+    if not sys.stderr.isatty():
+        return None
+
+    def report(stage: str, fraction: float) -> None:
+        if stage == "done":
+            Stderr.clear()
+            return
+        click.echo(f"\rsvgtile: {stage:<10} {fraction:4.0%}", err=True, nl=False)
+        Stderr.progress_shown = True
+
+    return report
+
+
+def json_safe(value):
+    """``value`` with NaN and infinities as None: JSON has no spelling for them."""
+    if isinstance(value, dict):
+        return {k: json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
+
+
+# ----------------------------------------------------------------------------- engine options
+
+
+def engine_help() -> str:
+    """``--engine``'s help: every engine's summary."""
+    return "Synthesis algorithm: " + "; ".join(f"{e.name} = {e.summary}" for e in ENGINES.values()) + "."
+
+
+def engine_options(f):
+    """Decorate a command with ``--engine`` and one option per public engine parameter.
+
+    The options have no default of their own (each engine has its defaults, shown in the help);
+    :func:`engine_params` passes only those the user gave, so one the chosen engine does not
+    have is an error instead of being ignored.
+    """
+    for p in reversed(list(public_params().values())):
+        owners = engines_with(p.name)
+        default = "off" if p.type is bool else f"{p.default:g}" if isinstance(p.default, float) else p.default
+        text = f"{p.help} [{', '.join(owners)}; default: {default}]"
+        if p.type is bool:
+            f = click.option(p.option, p.name, is_flag=True, default=None, help=text)(f)
+        else:
+            kind = click.Choice(p.choices) if p.choices else p.type
+            f = click.option(p.option, p.name, type=kind, default=None, metavar=p.metavar, help=text)(f)
+    return click.option("--engine", type=click.Choice(list(ENGINES)), default="patch", show_default=True,
+                        help=engine_help())(f)  # fmt: skip
+
+
+def engine_params(ctx: click.Context, engine: str, values: dict) -> EngineParams:
+    """The chosen engine's parameters from the options the user gave (see :func:`engine_options`)."""
+    options = public_params()
+    given = {name: values[name] for name in options
+             if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)}  # fmt: skip
+    spell = {name: p.option for name, p in options.items()}
+    return make_params(get_engine(engine), given, spell=lambda name: spell.get(name, name.replace("_", "-")))

@@ -1,0 +1,462 @@
+"""Density repair of the patch engine (almeraj2013 §3.4): windows the size of the input region
+brought to the exemplar's density ρ by random removal, or by pasting discs of the exemplar.
+
+See :mod:`svgtile.engines.patch.engine` for the engine and the deviations from the paper.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import (
+    Stats,
+    footprint_areas,
+)
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import cross_conflicts, cross_pairs, cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import motif_radius, rotation
+from svgtile.core.region import Region
+from svgtile.engines.base import Progress
+from svgtile.engines.patch.orientation import turn, vary_orientations
+
+# hash streams: one per independent random choice of the engine
+_ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
+
+#: How strongly density thinning favours removing kinds the texture has too many of.
+KIND_BALANCE = 4.0
+
+#: How strongly density filling favours kinds the window lacks (against chance, which weighs 1).
+LACK_WEIGHT = 3.0
+
+#: At most this many motifs may be displaced by one motif of a lacking kind (§3.4 insertion).
+DISPLACE_MAX = 5
+
+#: A density-repair round adds no more motifs of a kind to a window than keep it within this
+#: fraction above its exemplar frequency there (§3.4).
+KIND_CAP = 0.05
+
+#: The roomiest spot for a lacking kind is refined around this many samples per window, on a grid
+#: this many times finer (:func:`_roomiest`).
+REFINE_KEEP, REFINE = 3, 4
+
+#: … after the room is measured only at the samples (this many per window) where the nearest motif
+#: leaves the most (:func:`_roomiest`).
+SCREEN = 24
+
+
+# ----------------------------------------------------------------------------- §3.4
+
+
+def adjust_density(
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, p, boundary: str, *,
+    key: int, progress: Progress, rules: Sequence[np.ndarray] = (),
+) -> Arrangement:  # fmt: skip
+    """Bring every exemplar-sized window to density ρ (almeraj2013 §3.4).
+
+    Windows the size of the input region's bounding box tile the plane from the world origin,
+    shifted by half a window every other round.  A window denser than ρ(1 + tol) loses random
+    motifs (rule violators and motifs of over-represented kinds first) until it is just above ρ;
+    a window sparser than ρ(1 − tol) receives the motifs of a disc of the exemplar, congruent to
+    the window's largest empty disc and placed at random over the exemplar, if they break neither
+    the overlap nor the distance rule.  Rounds stop when all windows are within tolerance for a
+    full cycle of offsets, or after ``p.density_rounds`` rounds.
+
+    ``rules`` are (k, k) distances (user units) pasted motifs keep from the texture, used in equal
+    shares of the rounds in turn (default: ``d_ij`` throughout).  The patch engine passes the
+    junction rule relaxed step by step to ``d_ij`` (:func:`svgtile.analysis.stats.junction_distance`):
+    holes too small for one step are filled at the next.
+    """
+    rules = list(rules) or [stats.distance]
+    x0, y0, x1, y1 = exemplar.region.bounds
+    size = np.array([x1 - x0, y1 - y0])
+    offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
+    protos = exemplar.prototypes
+    quiet = 0
+    for rnd in range(p.density_rounds):
+        progress("density", 0.3 + 0.7 * rnd / p.density_rounds)
+        windows = _windows(region, size, offsets[rnd % 4])
+        if windows is None:
+            break
+        origin, ids, area = windows
+        win = _window_of(arr.xy, origin, size, ids)
+        covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+        density = covered / area
+        dense = density > stats.density * (1 + p.density_tolerance)
+        sparse = density < stats.density * (1 - p.density_tolerance)
+        if not dense.any() and not sparse.any():
+            quiet += 1
+            if quiet >= 4:
+                break
+            continue
+        quiet = 0
+        if dense.any():
+            arr = arr.take(_thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd))
+        if sparse.any():
+            win = _window_of(arr.xy, origin, size, ids)
+            covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+            deficit = (stats.density * area - covered)[sparse]
+            rule = rules[min(len(rules) - 1, len(rules) * rnd // p.density_rounds)]
+            new, removed = _fill(
+                arr, exemplar, stats, region, p, boundary, origin, size, ids[sparse], deficit, key=key, rnd=rnd,
+                rule=rule,
+            )
+            arr = Arrangement.concat([arr.take(~removed), new])
+    return arr
+
+
+def _windows(region: Region, size: np.ndarray, offset: np.ndarray):
+    """Windows meeting the region: (origin, (w, 2) integer ids, (w,) area inside the region)."""
+    X0, Y0, X1, Y1 = region.bounds
+    ia = np.arange(math.floor((X0 - offset[0]) / size[0]), math.ceil((X1 - offset[0]) / size[0]))
+    ib = np.arange(math.floor((Y0 - offset[1]) / size[1]), math.ceil((Y1 - offset[1]) / size[1]))
+    IA, IB = (v.ravel() for v in np.meshgrid(ia, ib))
+    lo = offset + np.stack([IA, IB], -1) * size
+    boxes = shapely.box(lo[:, 0], lo[:, 1], lo[:, 0] + size[0], lo[:, 1] + size[1])
+    area = shapely.area(shapely.intersection(boxes, region.shape))
+    # a window mostly outside the region measures its border, not its density
+    full = area >= 0.5 * size[0] * size[1]
+    if not full.any():
+        return None
+    return offset, np.stack([IA, IB], -1)[full], area[full]
+
+
+def _window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """(n,) index into ``ids`` of the window holding each point, or -1."""
+    cell = np.floor((xy - origin) / size).astype(np.int64)
+    lo = ids.min(axis=0)
+    span = ids.max(axis=0) - lo + 1
+    table = np.full(span[0] * span[1], -1, dtype=np.int64)
+    table[(ids[:, 0] - lo[0]) * span[1] + (ids[:, 1] - lo[1])] = np.arange(len(ids))
+    rel = cell - lo
+    ok = (rel >= 0).all(axis=1) & (rel < span).all(axis=1)
+    out = np.full(len(xy), -1, dtype=np.int64)
+    out[ok] = table[rel[ok, 0] * span[1] + rel[ok, 1]]
+    return out
+
+
+def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> np.ndarray:
+    """Remove random motifs from dense windows until each is just above its target area.
+
+    Returns the (n,) mask of motifs kept.
+    """
+    area = footprint_areas(arr, protos)
+    cand = np.flatnonzero((win >= 0) & dense[np.maximum(win, 0)])
+    # weighted random order (Efraimidis & Spirakis 2006): kinds over-represented against the
+    # exemplar's frequencies are removed first, which repairs the kind mix culling skewed
+    freq = np.bincount(arr.kind, minlength=len(protos)) / max(len(arr), 1)
+    weight = (np.maximum(freq, 1e-9) / np.maximum(stats.frequency, 1e-9)) ** KIND_BALANCE
+    u = cellrng.uniform(key, _REMOVE, rnd, _cell_key(arr.xy[cand]))
+    rank = np.log(np.maximum(u, 1e-300)) / weight[arr.kind[cand]]
+    order = np.lexsort((-rank, win[cand]))  # per window, highest rank first
+    cand = cand[order]
+    w = win[cand]
+    covered = np.bincount(w, weights=area[cand], minlength=len(dense))
+    starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
+    csum = np.cumsum(area[cand])
+    removed = csum - np.repeat(csum[starts] - area[cand][starts], np.diff(np.r_[starts, len(w)]))
+    remove = covered[w] - removed >= target[w]  # a prefix of each window: stops just above ρ
+    keep = np.ones(len(arr), dtype=bool)
+    keep[cand[remove]] = False
+    return keep
+
+
+def _cell_key(xy: np.ndarray) -> np.ndarray:
+    """A world-anchored integer per position (to derive per-motif randomness from)."""
+    q = np.round(xy * 1e3).astype(np.int64)
+    return q[:, 0] * np.int64(0x1F3D5B79) ^ q[:, 1]
+
+
+def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit, *, key: int, rnd: int, rule: np.ndarray):
+    """The motifs to insert into each sparse window (almeraj2013 §3.4, "too sparse").
+
+    For each window, the largest empty disc is found and a congruent disc is placed at random
+    over the exemplar, as in the paper; the exemplar is then superimposed so that the two discs
+    coincide (turned by θ ~ U[−M, M], motifs turned as for the grid copies, :func:`turn`).  Its
+    motifs inside the window are the candidates: those in the empty disc first (the paper's
+    insertion), then the rest, which fill the window's smaller holes in the same pass.  A
+    candidate is rejected if it would overlap the texture or come closer to it than ``rule``
+    (motif by motif, so one bad motif at the rim does not waste the whole disc); of the rest, a
+    conflict-free set is taken, favouring kinds the window lacks, until the window's ``deficit``
+    of footprint area is met, and no kind beyond its share of the window (:data:`KIND_CAP`).
+    ``p.disc_tries`` placements are tried per window; every other one is centred on a motif of
+    the kind the window lacks most and pasted where that kind has the most room
+    (:func:`_roomiest`); it may displace a few motifs (see :func:`_displacement`).  Candidates
+    of different placements are held to ``rule`` too, those of one placement to ``d_ij``.
+    Kinds are counted per window, so a far edit does not change what a window receives (thinning
+    and §3.3's kind balancing still count over the whole texture).
+
+    Returns
+    -------
+    new : Arrangement of the motifs to insert
+    removed : (len(arr),) bool, the motifs they displace
+    """
+    protos = exemplar.prototypes
+    tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False) if len(arr) else None
+    centre, radius = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
+
+    ex = exemplar.motifs
+    x0, y0, x1, y1 = exemplar.region.bounds
+    wins, tries, m = len(ids), p.disc_tries, len(ex)
+    wid = np.repeat(np.arange(wins), tries)
+    tid = np.tile(np.arange(tries), wins)
+    u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
+    r = np.minimum(radius[wid, None], np.array([(x1 - x0) / 2, (y1 - y0) / 2]))
+    source = np.array([x0, y0]) + r + u * (np.array([x1 - x0, y1 - y0]) - 2 * r)  # disc centres over the exemplar
+    # every other try centres the exemplar on a motif of the kind the window lacks most, placed
+    # where that kind has the most room (usually the largest kind, the hardest to place); each
+    # window counts its own kinds, so a far edit does not change its choice
+    k = len(protos)
+    mine = _window_of(arr.xy, origin, size, ids)
+    have = np.bincount(mine[mine >= 0] * k + arr.kind[mine >= 0], minlength=wins * k).reshape(wins, k)
+    freq = (have + stats.frequency) / (have.sum(axis=1, keepdims=True) + 1.0)  # one motif of prior
+    lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))  # (windows, k)
+    want = np.argmin(np.where(stats.frequency > 0, lack, np.inf), axis=1)  # (windows,)
+    by_kind = np.argsort(ex.kind, kind="stable")
+    first, count = np.searchsorted(ex.kind[by_kind], want), np.bincount(ex.kind, minlength=k)[want]
+    pick = by_kind[first[wid] + (u[:, 0] * count[wid]).astype(np.int64) % count[wid]]
+    odd = tid % 2 == 1
+    source = np.where(odd[:, None], ex.xy[pick], source)
+    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, want, rule, ex)
+    centre = np.where(odd[:, None], spot[wid], centre[wid])  # (tries, 2): where each try is pasted
+    radius = np.where(odd, room[wid], radius[wid])
+    theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
+
+    # every exemplar motif of every placement, then those whose centroid falls in the window
+    t_of = np.repeat(np.arange(len(wid)), m)
+    e_of = np.tile(np.arange(m), len(wid))
+    offset = np.matmul(rotation(theta)[t_of], (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
+    xy = centre[t_of] + offset
+    lo = origin + ids[wid[t_of]] * size
+    inside = ((xy >= lo) & (xy < lo + size)).all(axis=1)
+    t_of, e_of, xy = t_of[inside], e_of[inside], xy[inside]
+    angle = turn(ex.kind[e_of], ex.angle[e_of], theta[t_of], stats)
+    new = Arrangement(ex.kind[e_of], xy, angle, ex.scale[e_of]).quantized(DECIMALS)
+    if p.vary_orientation:
+        new = vary_orientations(new, stats, cellrng.uniform(key, _ORIENT, rnd, _cell_key(new.xy)))
+    if len(new) == 0:
+        return new, np.zeros(len(arr), dtype=bool)
+    in_disc = np.hypot(*(new.xy - centre[t_of]).T) <= radius[t_of]
+    if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
+        near, idx = tree.query(new.xy, k=1, workers=-1)
+        inner = np.array([pr.inner for pr in protos])
+        a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
+        bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
+        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
+        clash &= ~in_disc  # those may still displace (see _displacement)
+        new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
+    free = ~cross_conflicts(new, arr, protos, rule, tree)
+    inside = region.keep(new, protos, boundary)
+    candidate = in_disc & ~free & inside & odd[t_of]
+    displace, victim_of = _displacement(new, arr, rule, protos, tree, lack, candidate, wid[t_of])
+    ok = (free & inside) | displace
+
+    # a conflict-free subset: displacing motifs, then motifs of the empty disc, then kinds the
+    # window lacks
+    orig = np.flatnonzero(ok)
+    new, t_of, in_disc, displace = new.take(ok), t_of[ok], in_disc[ok], displace[ok]
+    score = (
+        cellrng.uniform(key, _PRIORITY, rnd, _cell_key(new.xy))
+        + LACK_WEIGHT * (np.clip(lack[wid[t_of], new.kind], -1, 1) - 2.0 * in_disc)
+        - 8.0 * LACK_WEIGHT * displace
+    )
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance, group=t_of, junction=rule), score)
+    new, score, w, orig, displace = new.take(keep), score[keep], wid[t_of[keep]], orig[keep], displace[keep]
+
+    # per window, in score order, until its deficit of covered area is met
+    order = np.lexsort((score, w))
+    new, w, orig, displace, score = new.take(order), w[order], orig[order], displace[order], score[order]
+    area = footprint_areas(new, protos)
+    csum = np.cumsum(area)
+    starts = np.r_[0, np.flatnonzero(np.diff(w)) + 1] if len(w) else np.zeros(0, np.int64)
+    before = csum - area - np.repeat(csum[starts] - area[starts], np.diff(np.r_[starts, len(w)]))
+    take = (before < deficit[w]) | displace
+    # no kind beyond its share in its window: small kinds fit every hole, and would stand in for the
+    # large (counted per window, like the lacking kind above)
+    added = np.flatnonzero(take & ~displace)
+    total = have.sum(axis=1) + np.bincount(w[added], minlength=len(ids))
+    room_for = np.ceil(stats.frequency[None, :] * total[:, None] * (1 + KIND_CAP)) - have  # (windows, k)
+    added = added[np.argsort(score[added], kind="stable")]  # the best of each kind first
+    slot = w[added] * k + new.kind[added]
+    take[added[_rank_within(slot) >= room_for.ravel()[slot]]] = False
+    removed = np.isin(victim_of, orig[take & displace]) & (victim_of >= 0)
+    return new.take(take), removed
+
+
+def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
+    """Which candidates may take their place by removing the few motifs in their way.
+
+    A kind hard to place (large, with wide distances) finds no empty disc big enough once
+    culling has packed the small kinds around it, so the texture lacks it for good.  A candidate
+    of the kind its window lacks most, centred where that kind has the most room, may displace up
+    to DISPLACE_MAX conflicting motifs of kinds the window has enough of and whose area together is
+    smaller than its own — one per window and round.
+
+    Returns
+    -------
+    displace : (len(new),) bool, the candidates that displace
+    victim_of : (len(arr),) int, the candidate displacing each motif, or -1
+    """
+    displace = np.zeros(len(new), dtype=bool)
+    victim_of = np.full(len(arr), -1, dtype=np.int64)
+    idx = np.flatnonzero(candidate)
+    if len(idx) == 0:
+        return displace, victim_of
+    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree)
+    area_new = footprint_areas(new, protos)[idx]
+    area_old = footprint_areas(arr, protos)
+    count = np.bincount(a, minlength=len(idx))
+    cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
+    scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
+    good = (count <= DISPLACE_MAX) & (cost < area_new) & (scarce == 0) & (count > 0)
+    # one per window: the first good candidate; and no motif displaced twice
+    first = np.full(window.max() + 1, -1)
+    for c in idx[good][::-1]:  # a loop over windows' few candidates, not over motifs
+        first[window[c]] = c
+    chosen = first[first >= 0]
+    local = {int(c): k for k, c in enumerate(idx)}
+    sel = np.isin(a, [local[int(c)] for c in chosen])
+    owners = np.unique(a[sel])
+    for k in owners:
+        victims = b[a == k]
+        if (victim_of[victims] >= 0).any():
+            continue
+        victim_of[victims] = idx[k]
+        displace[idx[k]] = True
+    return displace, victim_of
+
+
+def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 12):
+    """Centre and radius of (approximately) the largest empty disc in each window.
+
+    Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
+    of its distance to every footprint (distance to the nearest centroids minus their bounding
+    radius, and the window's edges), so the returned disc is empty.
+    """
+    g = (np.arange(samples) + 0.5) / samples
+    gx, gy = (v.ravel() for v in np.meshgrid(g, g))
+    lo = origin + ids * size  # (w, 2)
+    pts = lo[:, None, :] + np.stack([gx, gy], -1)[None, :, :] * size  # (w, s, 2)
+    pts = pts.reshape(-1, 2)
+    owner = np.repeat(np.arange(len(ids)), len(gx))
+    edge = np.minimum(
+        np.minimum(pts[:, 0] - lo[owner, 0], lo[owner, 0] + size[0] - pts[:, 0]),
+        np.minimum(pts[:, 1] - lo[owner, 1], lo[owner, 1] + size[1] - pts[:, 1]),
+    )
+    clear = edge.copy()
+    if len(arr):
+        radius = motif_radius(arr, protos)
+        k = min(6, len(arr))
+        dist, idx = tree.query(pts, k=k, workers=-1)
+        dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
+        bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
+        clear = np.minimum(clear, bound)
+    clear[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+    best = _best_per_owner(clear, owner)
+    return pts[best], np.maximum(clear[best], 0.0)
+
+
+def _best_per_owner(value: np.ndarray, owner: np.ndarray) -> np.ndarray:
+    """Index of the largest ``value`` of each owner present (the last of ties), by owner."""
+    order = np.lexsort((value, owner))
+    return order[np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]]
+
+
+def _rank_within(labels: np.ndarray) -> np.ndarray:
+    """(n,) int: how many earlier entries share each entry's label (0 for the first of each)."""
+    order = np.argsort(labels, kind="stable")
+    rank = np.empty(len(labels), dtype=np.int64)
+    rank[order] = np.arange(len(labels)) - np.searchsorted(labels[order], labels[order])
+    return rank
+
+
+def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, ex, samples: int = 12):
+    """Per window, the point where a motif of ``kind[window]`` has the most room under ``rule``.
+
+    The largest empty disc (§3.4) is where a small motif fits best, not a large one with wide
+    distances: a motif of kind L at p keeps ``rule`` from every motif m if
+    ``|p − x_m| − r_m − r_L ≥ rule[L, kind m]`` (bounding radii: a lower bound of the footprint
+    distance), so its room at p is the smallest left-hand minus right-hand side.  The nearest
+    motif of each kind is found in that kind's own k-d tree (the nearest motif overall may not
+    be the binding one) and taken at the kind's largest radius.  Each window is sampled on a
+    ``samples × samples`` grid, then around its :data:`REFINE_KEEP` roomiest samples on a grid
+    :data:`REFINE` times finer.
+
+    Parameters
+    ----------
+    kind : (w,) int array, the kind to make room for in each window
+    rule : (k, k) float array, user units
+    ex : the exemplar's motifs (their largest scale per kind sizes the motif)
+
+    Returns
+    -------
+    spot : (w, 2) the roomiest sample of each window inside the region (if it has one)
+    clear : (w,) its clearance to every footprint (the empty-disc radius there), ≥ 0; 0 for a
+        spot outside the region
+    """
+    radius = motif_radius(arr, protos)
+    largest = np.zeros(len(protos))
+    np.maximum.at(largest, ex.kind, ex.scale)
+    size_of = np.array([p.radius for p in protos]) * largest  # (k,) bounding radius at the largest scale
+    # a kind's motifs are exemplar copies: none is larger than the kind at its largest exemplar scale
+    trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(size_of[j])) for j in np.unique(arr.kind)]
+    far = float(rule.max() + size_of.max()) + float(size.max())  # beyond: room to spare (+ r_j)
+    lo = origin + ids * size  # (w, 2)
+
+    def measure(pts, owner):
+        inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
+        room = np.where(inside, np.inf, -np.inf)
+        clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
+        clear[~inside] = -np.inf
+        q = np.flatnonzero(inside)
+        want = kind[owner[q]]
+        for j, t, r_j in trees:
+            need = size_of[want] + rule[want, j]
+            d, _ = t.query(pts[q], k=1, distance_upper_bound=far + r_j, workers=-1)
+            clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
+            room[q] = np.minimum(room[q], d - r_j - need)
+        return room, clear
+
+    g = (np.arange(samples) + 0.5) / samples
+    cell = np.stack([v.ravel() for v in np.meshgrid(g, g)], -1)  # (s², 2) in window units
+    pts = (lo[:, None, :] + cell[None, :, :] * size).reshape(-1, 2)
+    owner = np.repeat(np.arange(len(ids)), len(cell))
+    if tree is not None and len(cell) > SCREEN:
+        # the nearest motif's term bounds the room from above: only the best bounds are measured
+        d, m = tree.query(pts, k=1, workers=-1)
+        want = kind[owner]
+        upper = d - radius[m] - size_of[want] - rule[want, arr.kind[m]]
+        upper[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+        upper = upper.reshape(len(ids), len(cell))
+        pick = np.argsort(-upper, axis=1, kind="stable")[:, :SCREEN]
+        cell_of = pick.ravel()
+        pts = (lo[:, None, :] + cell[pick] * size).reshape(-1, 2)
+        owner = np.repeat(np.arange(len(ids)), SCREEN)
+    else:
+        cell_of = np.tile(np.arange(len(cell)), len(ids))
+    room, clear = measure(pts, owner)
+    # the best few samples of each window, each refined on a finer grid over its own cell
+    per = len(pts) // len(ids)
+    keep = min(REFINE_KEEP, per)
+    best = np.argsort(-room.reshape(len(ids), per), axis=1, kind="stable")[:, :keep]
+    f = ((np.arange(REFINE) + 0.5) / REFINE - 0.5) / samples
+    sub = np.stack([v.ravel() for v in np.meshgrid(f, f)], -1)  # (REFINE², 2)
+    centre = cell[cell_of.reshape(len(ids), per)[np.arange(len(ids))[:, None], best]]  # (w, keep, 2)
+    fine = (lo[:, None, None, :] + (centre[:, :, None, :] + sub[None, None, :, :]) * size).reshape(-1, 2)
+    fine_owner = np.repeat(np.arange(len(ids)), keep * len(sub))
+    f_room, f_clear = measure(fine, fine_owner)
+    pts, owner = np.concatenate([pts, fine]), np.concatenate([owner, fine_owner])
+    room, clear = np.concatenate([room, f_room]), np.concatenate([clear, f_clear])
+    top = _best_per_owner(room, owner)
+    return pts[top], np.maximum(clear[top], 0.0)
+
+
+
+def uniform_at(key: int, stream: int, cell: np.ndarray) -> np.ndarray:
+    return cellrng.uniform(key, stream, cell[:, 0], cell[:, 1], cell[:, 2])
