@@ -60,7 +60,7 @@ def extension_source() -> Path:
     files as data under ``<prefix>/share/svgtile/inkscape``.
     """
     candidates = [
-        Path(__file__).resolve().parents[1] / "inkscape_ext",
+        Path(__file__).resolve().parents[2] / "inkscape_ext",  # svgtile/apps/inkscape.py
         Path(sys.prefix) / "share" / "svgtile" / "inkscape",
     ]
     for folder in candidates:
