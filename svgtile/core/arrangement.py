@@ -10,6 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+#: Decimals of positions, angles, scales and every number written (the output's precision).
+DECIMALS = 4
+
 
 @dataclass(frozen=True, eq=False)
 class Arrangement:
@@ -54,7 +57,7 @@ class Arrangement:
     def with_angle(self, angle: np.ndarray) -> Arrangement:
         return Arrangement(self.kind, self.xy, angle, self.scale)
 
-    def quantized(self, decimals: int = 4) -> Arrangement:
+    def quantized(self, decimals: int = DECIMALS) -> Arrangement:
         """Rounded to the output's precision, so what is checked is exactly what is written."""
         return Arrangement(
             self.kind, np.round(self.xy, decimals), np.round(self.angle, decimals), np.round(self.scale, decimals)

@@ -21,12 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from svgtile.core.arrangement import Arrangement
+from svgtile.core.arrangement import DECIMALS, Arrangement  # noqa: F401  (DECIMALS: engines import it from here)
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.errors import ParameterError
-
-#: Decimals of positions, angles and scales in the output (as in the patch engine).
-DECIMALS = 4
 
 
 @dataclass(frozen=True)
