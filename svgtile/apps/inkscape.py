@@ -32,8 +32,9 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from svgtile.core.region import Region
+from svgtile.core.region import FILL_RULES, Region, winding_fill
 from svgtile.errors import ParameterError, RegionError, SvgtileError
+from svgtile.files import write_file
 
 #: The files of the extension, as found in the source tree's ``inkscape_ext/``.
 EXTENSION_FILES = ("svgtile_fill.inx", "svgtile_fill.py")
@@ -43,7 +44,6 @@ CONFIG_NAME = "svgtile_fill.json"
 FOLDER = "svgtile"
 #: Name of the texture file for container ``i`` in the output folder.
 TEXTURE_NAME = "texture-{}.svg"
-FILL_RULES = ("nonzero", "evenodd")
 
 
 class InstallError(SvgtileError):
@@ -123,9 +123,7 @@ def install(user_dir: str | Path | None = None, *, python: str | None = None) ->
         for name in EXTENSION_FILES:
             shutil.copyfile(source / name, target / name)
         config = {"python": python or sys.executable, "svgtile": __version__}
-        tmp = target / f".{CONFIG_NAME}.tmp"
-        tmp.write_text(json.dumps(config, indent=2) + "\n", encoding="utf-8")
-        os.replace(tmp, target / CONFIG_NAME)
+        write_file(json.dumps(config, indent=2) + "\n", target / CONFIG_NAME)
     except OSError as exc:
         raise InstallError(f"cannot install here ({exc.strerror or exc})", source=str(target)) from None
     return target
@@ -149,56 +147,6 @@ def uninstall(user_dir: str | Path | None = None) -> Path:
 # ----------------------------------------------------------------------------- containers
 
 
-def winding_numbers(rings: list[np.ndarray], x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """(m,) int: the winding number of all ``rings`` together around each point (x[i], y[i]).
-
-    Parameters
-    ----------
-    rings : closed polylines, each a (k, 2) float array (the closing edge is implied)
-    x, y : (m,) float arrays, the points, which must not lie on an edge
-
-    Counts signed crossings of the horizontal ray to the right of each point (Sunday's
-    algorithm), all edges at once.
-    """
-    edges = [np.concatenate([r, np.roll(r, -1, axis=0)], axis=1) for r in rings if len(r) >= 2]
-    if not edges:
-        return np.zeros(len(x), dtype=np.int64)
-    e = np.concatenate(edges)
-    x0, y0, x1, y1 = (e[:, i][None, :] for i in range(4))
-    px, py = np.asarray(x, float)[:, None], np.asarray(y, float)[:, None]
-    side = (x1 - x0) * (py - y0) - (px - x0) * (y1 - y0)
-    up = (y0 <= py) & (y1 > py) & (side > 0)
-    down = (y0 > py) & (y1 <= py) & (side < 0)
-    return up.sum(axis=1) - down.sum(axis=1)
-
-
-def container_shape(rings: list[np.ndarray], fill_rule: str = "nonzero") -> shapely.Geometry:
-    """The area an SVG shape with these subpaths fills, holes and self-crossings included.
-
-    Parameters
-    ----------
-    rings : subpaths as (k, 2) float arrays in user units (each closed implicitly, as SVG fills)
-    fill_rule : ``nonzero`` or ``evenodd``, the shape's ``fill-rule``
-
-    The rings are noded into faces; a face is filled when the winding number around a point
-    inside it is odd (``evenodd``) or not zero (``nonzero``).
-    """
-    if fill_rule not in FILL_RULES:
-        raise ValueError(f"unknown fill rule {fill_rule!r}")
-    rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in rings]
-    rings = [r for r in rings if len(np.unique(r, axis=0)) >= 3]
-    if not rings:
-        return shapely.Polygon()
-    lines = shapely.linestrings([np.concatenate([r, r[:1]]) for r in rings])
-    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.node(shapely.multilinestrings(lines)))))
-    if len(faces) == 0:
-        return shapely.Polygon()
-    inner = shapely.point_on_surface(faces)
-    wind = winding_numbers(rings, shapely.get_x(inner), shapely.get_y(inner))
-    keep = (wind % 2 == 1) if fill_rule == "evenodd" else (wind != 0)
-    return shapely.union_all(faces[keep])
-
-
 def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
     """Read ``containers.json`` (see the module docstring): (id, area) per container, in order."""
     source = str(path)
@@ -213,7 +161,7 @@ def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
             rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in item["rings"]]
             if not all(np.isfinite(r).all() for r in rings):
                 raise ValueError(f"container {ident!r} has coordinates that are not finite")
-            out.append((ident, container_shape(rings, rule)))
+            out.append((ident, winding_fill(rings, rule)))
     except OSError as exc:
         raise RegionError(f"cannot read file ({exc.strerror or exc})", source=source) from None
     except RecursionError:
@@ -259,7 +207,7 @@ def fill(
     from svgtile.analysis.stats import analyze, motif_estimate
     from svgtile.engines import ENGINES
     from svgtile.svg.reader import read_exemplar
-    from svgtile.svg.writer import svg_document, write_text
+    from svgtile.svg.writer import svg_document
 
     if load is None:
         def load(p):
@@ -286,7 +234,7 @@ def fill(
         arr = ENGINES[engine](ex, region, rng=np.random.default_rng(seed), stats=stats, **params)
         meta = {"engine": engine, "seed": seed, "container": ident, **params, "motifs": len(arr)}
         out = Path(out_dir) / TEXTURE_NAME.format(i)
-        write_text(svg_document(ex, arr, region, boundary=str(params["boundary"]), params=meta), out)
+        write_file(svg_document(ex, arr, region, boundary=str(params["boundary"]), params=meta), out)
         written.append(out)
     return written
 

@@ -22,9 +22,10 @@ from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import ENGINES
 from svgtile.engines.patch.engine import PatchParams
 from svgtile.errors import ParameterError, SvgtileError
+from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
 from svgtile.svg.reader import read_exemplar
-from svgtile.svg.writer import check_output, fmt, same_file, svg_document, write_text
+from svgtile.svg.writer import fmt, svg_document
 
 #: Above this estimated motif count ``synth`` refuses to run without ``--force`` (the estimate is
 #: the exemplar's motifs per unit area times the output area).  Two million motifs take about a
@@ -189,7 +190,7 @@ def synth(exemplar, output, size, region_spec, avoid, avoid_margin, engine, grid
         text = exemplar_placements(ex, arr)
     else:
         text = svg_document(ex, arr, region, boundary=boundary, params=meta)
-    write_text(text, output, protect=(Path(exemplar),))
+    write_file(text, output, protect=(Path(exemplar),))
 
 
 @cli.command(name="analyze")
