@@ -370,7 +370,7 @@ def test_reader_leaving_stdout_is_quiet(capsys, tiny, monkeypatch):
     def reader_left(text, out, **kwargs):
         raise BrokenPipeError(32, "Broken pipe")
 
-    monkeypatch.setattr(svgtile.cli.synth, "write_text", reader_left)
+    monkeypatch.setattr(svgtile.cli.synth, "write_file", reader_left)
     rc, out, err = synth(capsys, tiny, "-", "--seed", "1")
     assert (rc, out, err) == (1, "", "")
 

@@ -23,6 +23,7 @@ import svgelements as se
 from shapely import affinity
 
 from svgtile.apps import inkscape as ink
+from svgtile.core.region import winding_fill
 
 INKSCAPE, XVFB = shutil.which("inkscape"), shutil.which("xvfb-run")
 pytestmark = pytest.mark.skipif(not (INKSCAPE and XVFB), reason="needs Inkscape and xvfb-run (apt-get install inkscape xvfb)")
@@ -141,7 +142,7 @@ def test_fill_in_real_inkscape(profile, tmp_path, boundary):
     (path,) = list(clip_el)
     rings = [np.array([(seg.end.x, seg.end.y) for seg in sub]) for sub in se.Path(path.get("d")).as_subpaths()]
     m = _composed(chain)
-    clip_area = ink.container_shape([np.c_[r, np.ones(len(r))] @ np.array([[m.a, m.b], [m.c, m.d], [m.e, m.f]]) for r in rings], "evenodd")
+    clip_area = winding_fill([np.c_[r, np.ones(len(r))] @ np.array([[m.a, m.b], [m.c, m.d], [m.e, m.f]]) for r in rings], "evenodd")
     assert clip_area.symmetric_difference(area).area < 1e-3 * area.area
 
 

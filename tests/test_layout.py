@@ -13,7 +13,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "svgtile"
 
 #: Pipeline stages, earliest first: a module may import its own stage and earlier ones.
 STAGES = [
-    ("svgtile.errors", "svgtile.core"),
+    ("svgtile.errors", "svgtile.files", "svgtile.core"),
     ("svgtile.svg.dialect", "svgtile.svg.numbers", "svgtile.svg.reader", "svgtile.svg.kinds", "svgtile.svg.tilepieces",
      "svgtile.svg.mapdoc", "svgtile.svg.texture"),
     ("svgtile.analysis", "svgtile.tiles"),

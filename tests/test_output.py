@@ -21,17 +21,10 @@ from svgtile.cli.main import main
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
 from svgtile.errors import OutputError
+from svgtile.files import check_output, write_file
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import parse_exemplar, read_exemplar
-from svgtile.svg.writer import (
-    check_output,
-    fmt,
-    fmt_array,
-    path_data,
-    svg_document,
-    use_elements,
-    write_text,
-)
+from svgtile.svg.writer import fmt, fmt_array, path_data, svg_document, use_elements
 
 GOLDEN = Path(__file__).parent / "golden"
 HREF = f"{{{XLINK_NS}}}href"
@@ -217,7 +210,7 @@ def test_round_trip(write_svg, name, grid, boundary):
 # ----------------------------------------------------------------------------- writing
 
 
-def test_write_text_is_atomic_when_the_rename_fails(tmp_path, monkeypatch):
+def test_write_file_is_atomic_when_the_rename_fails(tmp_path, monkeypatch):
     out = tmp_path / "out.svg"
     out.write_text("old")
 
@@ -226,12 +219,12 @@ def test_write_text_is_atomic_when_the_rename_fails(tmp_path, monkeypatch):
 
     monkeypatch.setattr(os, "replace", fail)
     with pytest.raises(OutputError, match=r"out\.svg: cannot write \(Permission denied\)"):
-        write_text("new document", out)
+        write_file("new document", out)
     assert out.read_text() == "old"
     assert os.listdir(tmp_path) == ["out.svg"]
 
 
-def test_write_text_is_atomic_when_interrupted_while_writing(tmp_path, monkeypatch):
+def test_write_file_is_atomic_when_interrupted_while_writing(tmp_path, monkeypatch):
     out = tmp_path / "out.svg"
     out.write_text("old")
 
@@ -240,15 +233,15 @@ def test_write_text_is_atomic_when_interrupted_while_writing(tmp_path, monkeypat
 
     monkeypatch.setattr(os, "fsync", interrupted)  # after the data went into the temporary file
     with pytest.raises(KeyboardInterrupt):
-        write_text("new document", out)
+        write_file("new document", out)
     assert out.read_text() == "old"
     assert os.listdir(tmp_path) == ["out.svg"]
 
 
-def test_write_text_replaces_and_writes_exact_bytes(tmp_path):
+def test_write_file_replaces_and_writes_exact_bytes(tmp_path):
     out = tmp_path / "out.svg"
     out.write_text("old")
-    write_text("line 1\nlíne 2\n", out)
+    write_file("line 1\nlíne 2\n", out)
     assert out.read_bytes() == "line 1\nlíne 2\n".encode()
     assert os.listdir(tmp_path) == ["out.svg"]
 
@@ -256,23 +249,23 @@ def test_write_text_replaces_and_writes_exact_bytes(tmp_path):
 def test_new_file_gets_usual_permissions_and_replaced_file_keeps_its_own(tmp_path):
     old = os.umask(0o022)
     try:
-        write_text("x", tmp_path / "new.svg")
+        write_file("x", tmp_path / "new.svg")
     finally:
         os.umask(old)
     assert stat.S_IMODE((tmp_path / "new.svg").stat().st_mode) == 0o644
     kept = tmp_path / "kept.svg"
     kept.write_text("old")
     kept.chmod(0o640)
-    write_text("new", kept)
+    write_file("new", kept)
     assert stat.S_IMODE(kept.stat().st_mode) == 0o640 and kept.read_text() == "new"
 
 
-def test_write_text_writes_into_a_fifo_instead_of_replacing_it(tmp_path):
+def test_write_file_writes_into_a_fifo_instead_of_replacing_it(tmp_path):
     fifo = tmp_path / "out.svg"
     os.mkfifo(fifo)
     reader = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)  # so opening it for writing does not block
     try:
-        write_text("<svg/>\n", fifo)
+        write_file("<svg/>\n", fifo)
         received = os.read(reader, 1000)
     finally:
         os.close(reader)
@@ -281,20 +274,20 @@ def test_write_text_writes_into_a_fifo_instead_of_replacing_it(tmp_path):
     assert os.listdir(tmp_path) == ["out.svg"]
 
 
-def test_write_text_writes_through_a_symlink(tmp_path):
+def test_write_file_writes_through_a_symlink(tmp_path):
     (tmp_path / "real").mkdir()
     target = tmp_path / "real" / "out.svg"
     target.write_text("old")
     link = tmp_path / "link.svg"
     link.symlink_to(target)
-    write_text("new", link)
+    write_file("new", link)
     assert link.is_symlink() and target.read_text() == "new"
     assert sorted(os.listdir(tmp_path)) == ["link.svg", "real"]
     assert os.listdir(tmp_path / "real") == ["out.svg"]
 
 
 @pytest.mark.parametrize("spelling", ["same", "dotdot", "hardlink"])
-def test_write_text_protects_inputs(tmp_path, spelling):
+def test_write_file_protects_inputs(tmp_path, spelling):
     src = tmp_path / "in.svg"
     src.write_text("input")
     (tmp_path / "d").mkdir()
@@ -302,8 +295,47 @@ def test_write_text_protects_inputs(tmp_path, spelling):
     if spelling == "hardlink":
         os.link(src, out)
     with pytest.raises(OutputError, match="refusing to overwrite an input file"):
-        write_text("output", out, protect=(src,))
+        write_file("output", out, protect=(src,))
     assert src.read_text() == "input"
+
+
+PNG_LIKE = b"\x89PNG\r\n\x1a\n\x00\xff\r\n"  # not UTF-8, with CR LF that must stay as they are
+
+
+def test_write_file_writes_bytes_exactly_and_atomically(tmp_path, monkeypatch):
+    out = tmp_path / "out.png"
+    write_file(PNG_LIKE, out)
+    assert out.read_bytes() == PNG_LIKE
+
+    def fail(src, dst):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(os, "replace", fail)
+    with pytest.raises(OutputError, match=r"out\.png: cannot write \(No space left on device\)$"):
+        write_file(b"other", out)
+    assert out.read_bytes() == PNG_LIKE
+    assert os.listdir(tmp_path) == ["out.png"]  # no temporary file left
+
+
+def test_write_file_bytes_keep_permissions_and_protect_inputs(tmp_path):
+    # the PNG writers it replaces forced 0o644, and did not look at the inputs
+    png = tmp_path / "sheet.png"
+    png.write_bytes(b"old")
+    png.chmod(0o600)
+    write_file(PNG_LIKE, png)
+    assert stat.S_IMODE(png.stat().st_mode) == 0o600
+    with pytest.raises(OutputError, match="refusing to overwrite an input file"):
+        write_file(b"new", tmp_path / "." / "sheet.png", protect=(png,))
+    assert png.read_bytes() == PNG_LIKE
+
+
+def test_write_file_bytes_to_a_text_only_stdout_is_refused(monkeypatch):
+    text_only = io.StringIO()
+    monkeypatch.setattr(sys, "stdout", text_only)
+    with pytest.raises(OutputError, match=r"^-: standard output takes text only here$"):
+        write_file(PNG_LIKE, "-")
+    write_file("<svg/>\n", "-")
+    assert text_only.getvalue() == "<svg/>\n"
 
 
 def test_check_output_names_the_problem(tmp_path):
@@ -322,7 +354,7 @@ def test_dash_writes_bytes_to_stdout(monkeypatch, tmp_path):
     raw = io.BytesIO()
     stdout = io.TextIOWrapper(raw, encoding="ascii", newline="\r\n")  # a hostile console
     monkeypatch.setattr(sys, "stdout", stdout)
-    write_text("<svg>é</svg>\n", "-")
+    write_file("<svg>é</svg>\n", "-")
     assert raw.getvalue() == "<svg>é</svg>\n".encode()
     assert os.listdir(tmp_path) == []
 
@@ -347,7 +379,7 @@ def test_dash_reports_a_reader_that_left(monkeypatch):
     pipe = Pipe()
     monkeypatch.setattr(sys, "stdout", types.SimpleNamespace(buffer=pipe, flush=lambda: None))
     with pytest.raises(BrokenPipeError):
-        write_text("x" * 100, "-")
+        write_file("x" * 100, "-")
     assert pipe.data == b"x" * 10
 
 

@@ -19,10 +19,10 @@ from conftest import TINY, arrange, fake_engine
 from svgtile import analyze
 from svgtile.apps.mapread import read_avoid_shape, read_region_shape, synth_region
 from svgtile.core.footprint import world_footprints
-from svgtile.core.region import BOUNDARY_MODES, Region
+from svgtile.core.region import BOUNDARY_MODES, Region, winding_fill, winding_numbers
 from svgtile.engines import ENGINES
 from svgtile.errors import RegionError, SvgtileError
-from svgtile.svg.mapdoc import SvgShapes, winding_fill
+from svgtile.svg.mapdoc import SvgShapes
 from svgtile.svg.reader import parse_exemplar, read_exemplar
 from svgtile.svg.writer import fmt_array, svg_document
 
@@ -30,6 +30,11 @@ REPO = Path(__file__).parents[1]
 
 SQUARE = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)
 INNER = np.array([[2, 2], [8, 2], [8, 8], [2, 8]], float)  # same direction as SQUARE
+CORE = np.array([[4, 4], [6, 4], [6, 6], [4, 6]], float)  # same direction, inside INNER
+HOLE_CW = np.array([[3, 3], [3, 7], [7, 7], [7, 3]], float)  # against SQUARE
+FAR = np.array([[20, 0], [24, 0], [24, 4], [20, 4]], float)
+TRIANGLE_CW = np.array([[2, 2], [2, 6], [6, 2]], float)  # 3 vertices against SQUARE's 4
+BOWTIE = np.array([[0, 0], [10, 10], [10, 0], [0, 10]], float)  # crosses itself: two triangles
 
 
 @pytest.mark.parametrize(
@@ -41,12 +46,55 @@ INNER = np.array([[2, 2], [8, 2], [8, 8], [2, 8]], float)  # same direction as S
         ([SQUARE, INNER], "evenodd", 64.0),
         ([SQUARE, INNER[::-1]], "evenodd", 64.0),
         ([SQUARE, INNER + 20], "evenodd", 136.0),  # two separate parts
-        ([np.array([[0, 0], [10, 10], [10, 0], [0, 10]], float)], "nonzero", 50.0),  # a bow tie
+        ([SQUARE, HOLE_CW], "nonzero", 84.0),
+        ([SQUARE, HOLE_CW], "evenodd", 84.0),
+        ([SQUARE, FAR], "nonzero", 116.0),
+        ([SQUARE, INNER, CORE], "nonzero", 100.0),  # nested, all one direction: winding 1, 2, 3
+        ([SQUARE, INNER, CORE], "evenodd", 68.0),  # 1, 2, 3: the ring between INNER and CORE is out
+        ([SQUARE, INNER[::-1], CORE], "nonzero", 68.0),  # 1, 0, 1
+        ([SQUARE, TRIANGLE_CW], "nonzero", 92.0),  # rings of different lengths
+        ([SQUARE, TRIANGLE_CW[::-1]], "evenodd", 92.0),
+        ([SQUARE, TRIANGLE_CW[::-1]], "nonzero", 100.0),
+        ([BOWTIE], "nonzero", 50.0),
+        ([BOWTIE], "evenodd", 50.0),
+        ([SQUARE, SQUARE], "evenodd", 0.0),  # drawn twice: even
+        ([SQUARE, SQUARE], "nonzero", 100.0),
+        ([np.vstack([SQUARE, SQUARE[:1]]), HOLE_CW], "nonzero", 84.0),  # an explicit closing point
         ([SQUARE[:2]], "nonzero", 0.0),  # two points enclose nothing
+        ([np.array([[0, 0], [5, 0], [9, 0]], float)], "nonzero", 0.0),  # a line encloses nothing
+        ([], "nonzero", 0.0),
     ],
 )
 def test_winding_fill_paints_as_svg_does(rings, rule, area):
-    assert winding_fill(rings, rule).area == pytest.approx(area)
+    shape = winding_fill(rings, rule)
+    assert shape.area == pytest.approx(area)
+    assert shape.is_valid
+    assert isinstance(shape, (shapely.Polygon, shapely.MultiPolygon))  # an empty result too
+
+
+def test_winding_fill_hole_is_a_hole():
+    shape = winding_fill([SQUARE, HOLE_CW])
+    assert not shape.contains(shapely.Point(5, 5)) and shape.contains(shapely.Point(1, 1))
+
+
+def test_winding_fill_refuses_an_unknown_rule():
+    with pytest.raises(ValueError, match="unknown fill rule 'inherit'"):
+        winding_fill([SQUARE], "inherit")
+
+
+def test_winding_numbers_by_hand():
+    rings = [SQUARE, INNER, TRIANGLE_CW]
+    w = winding_numbers(rings, np.array([1.0, 5.0, 15.0, 2.5]), np.array([9.0, 5.0, 5.0, 2.5]))
+    assert list(w * np.sign(w[0])) == [1, 2, 0, 1]  # (2.5, 2.5): in SQUARE, INNER and the clockwise triangle: 1 + 1 - 1
+
+
+def test_invalid_fill_rule_in_a_map_is_nonzero(tmp_path):
+    d = "M0 0 H10 V10 H0 Z M2 2 H8 V8 H2 Z"  # same direction: a hole only under evenodd
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+           f'<path id="a" d="{d}" fill-rule="bogus"/><path id="b" d="{d}" fill-rule="evenodd"/></svg>')
+    shapes = SvgShapes(doc.encode(), "map.svg")
+    assert shapes.area(shapes.element("a")).area == pytest.approx(100)
+    assert shapes.area(shapes.element("b")).area == pytest.approx(64)
 
 
 # ----------------------------------------------------------------------------- invariants

@@ -33,8 +33,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from svgtile.core.region import Region
+from svgtile.core.region import FILL_RULES, Region, winding_fill
 from svgtile.errors import RegionError, SvgtileError
+from svgtile.files import write_file
 
 if TYPE_CHECKING:
     from svgtile.engines.base import EngineParams
@@ -47,7 +48,6 @@ CONFIG_NAME = "svgtile_fill.json"
 FOLDER = "svgtile"
 #: Name of the texture file for container ``i`` in the output folder.
 TEXTURE_NAME = "texture-{}.svg"
-FILL_RULES = ("nonzero", "evenodd")
 
 
 class InstallError(SvgtileError):
@@ -64,7 +64,7 @@ def extension_source() -> Path:
     files as data under ``<prefix>/share/svgtile/inkscape``.
     """
     candidates = [
-        Path(__file__).resolve().parents[2] / "inkscape_ext",
+        Path(__file__).resolve().parents[2] / "inkscape_ext",  # svgtile/apps/inkscape.py
         Path(sys.prefix) / "share" / "svgtile" / "inkscape",
     ]
     for folder in candidates:
@@ -127,9 +127,7 @@ def install(user_dir: str | Path | None = None, *, python: str | None = None) ->
         for name in EXTENSION_FILES:
             shutil.copyfile(source / name, target / name)
         config = {"python": python or sys.executable, "svgtile": __version__}
-        tmp = target / f".{CONFIG_NAME}.tmp"
-        tmp.write_text(json.dumps(config, indent=2) + "\n", encoding="utf-8")
-        os.replace(tmp, target / CONFIG_NAME)
+        write_file(json.dumps(config, indent=2) + "\n", target / CONFIG_NAME)
     except OSError as exc:
         raise InstallError(f"cannot install here ({exc.strerror or exc})", source=str(target)) from None
     return target
@@ -153,56 +151,6 @@ def uninstall(user_dir: str | Path | None = None) -> Path:
 # ----------------------------------------------------------------------------- containers
 
 
-def winding_numbers(rings: list[np.ndarray], x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """(m,) int: the winding number of all ``rings`` together around each point (x[i], y[i]).
-
-    Parameters
-    ----------
-    rings : closed polylines, each a (k, 2) float array (the closing edge is implied)
-    x, y : (m,) float arrays, the points, which must not lie on an edge
-
-    Counts signed crossings of the horizontal ray to the right of each point (Sunday's
-    algorithm), all edges at once.
-    """
-    edges = [np.concatenate([r, np.roll(r, -1, axis=0)], axis=1) for r in rings if len(r) >= 2]
-    if not edges:
-        return np.zeros(len(x), dtype=np.int64)
-    e = np.concatenate(edges)
-    x0, y0, x1, y1 = (e[:, i][None, :] for i in range(4))
-    px, py = np.asarray(x, float)[:, None], np.asarray(y, float)[:, None]
-    side = (x1 - x0) * (py - y0) - (px - x0) * (y1 - y0)
-    up = (y0 <= py) & (y1 > py) & (side > 0)
-    down = (y0 > py) & (y1 <= py) & (side < 0)
-    return up.sum(axis=1) - down.sum(axis=1)
-
-
-def container_shape(rings: list[np.ndarray], fill_rule: str = "nonzero") -> shapely.Geometry:
-    """The area an SVG shape with these subpaths fills, holes and self-crossings included.
-
-    Parameters
-    ----------
-    rings : subpaths as (k, 2) float arrays in user units (each closed implicitly, as SVG fills)
-    fill_rule : ``nonzero`` or ``evenodd``, the shape's ``fill-rule``
-
-    The rings are noded into faces; a face is filled when the winding number around a point
-    inside it is odd (``evenodd``) or not zero (``nonzero``).
-    """
-    if fill_rule not in FILL_RULES:
-        raise ValueError(f"unknown fill rule {fill_rule!r}")
-    rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in rings]
-    rings = [r for r in rings if len(np.unique(r, axis=0)) >= 3]
-    if not rings:
-        return shapely.Polygon()
-    lines = shapely.linestrings([np.concatenate([r, r[:1]]) for r in rings])
-    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.node(shapely.multilinestrings(lines)))))
-    if len(faces) == 0:
-        return shapely.Polygon()
-    inner = shapely.point_on_surface(faces)
-    wind = winding_numbers(rings, shapely.get_x(inner), shapely.get_y(inner))
-    keep = (wind % 2 == 1) if fill_rule == "evenodd" else (wind != 0)
-    return shapely.union_all(faces[keep])
-
-
 def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
     """Read ``containers.json`` (see the module docstring): (id, area) per container, in order."""
     source = str(path)
@@ -217,7 +165,7 @@ def read_containers(path: str | Path) -> list[tuple[str, shapely.Geometry]]:
             rings = [np.asarray(r, dtype=np.float64).reshape(-1, 2) for r in item["rings"]]
             if not all(np.isfinite(r).all() for r in rings):
                 raise ValueError(f"container {ident!r} has coordinates that are not finite")
-            out.append((ident, container_shape(rings, rule)))
+            out.append((ident, winding_fill(rings, rule)))
     except OSError as exc:
         raise RegionError(f"cannot read file ({exc.strerror or exc})", source=source) from None
     except RecursionError:
@@ -264,7 +212,7 @@ def fill(
     """
     from svgtile.apps.load import check_motif_count, load_exemplar
     from svgtile.engines import synthesize
-    from svgtile.svg.writer import result_document, write_text
+    from svgtile.svg.writer import result_document
 
     containers = read_containers(containers_path)
     ex, stats = (load or load_exemplar)(str(exemplar_path))
@@ -281,7 +229,7 @@ def fill(
     for i, (ident, region) in enumerate(regions):
         result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, params=params)
         out = Path(out_dir) / TEXTURE_NAME.format(i)
-        write_text(result_document(result, container=ident), out)
+        write_file(result_document(result, container=ident), out)
         written.append(out)
     return written
 

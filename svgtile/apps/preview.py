@@ -1,4 +1,4 @@
-"""PNG previews and a contact sheet (``svgtile compare --png``), rendered with resvg.
+"""PNG rendering (previews, contact sheet, swatch sheet) and the contact sheet of ``compare --png``.
 
 resvg (the ``resvg-py`` binding, optional extra ``png``) is a well-kept, dependency-free SVG
 renderer: it draws ``<symbol>``/``<use>``, clip paths and strokes as browsers do, which is all a
@@ -8,13 +8,11 @@ same scale, labelled — rendered once, so what a reader sees is also an SVG the
 
 from __future__ import annotations
 
-import os
 import re
-import tempfile
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 
-from svgtile.errors import OutputError, SvgtileError
+from svgtile.errors import OutputError
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.writer import fmt
 
@@ -25,12 +23,19 @@ CHAR = 9
 _HREF = (f"{{{XLINK_NS}}}href", "href")
 
 
-class RendererMissing(SvgtileError):
-    """The optional PNG renderer is not installed."""
+class RendererMissing(OutputError):
+    """The optional PNG renderer is not installed (so no PNG can be written)."""
 
 
-def render_png(svg: str, width: int) -> bytes:
-    """PNG bytes of the SVG text ``svg``, ``width`` pixels wide, on white.
+def render_png(svg: str, width: int, *, sans_serif: str | None = "DejaVu Sans") -> bytes:
+    """PNG bytes of the SVG text ``svg``, ``width`` pixels wide, on white: every PNG svgtile writes.
+
+    Parameters
+    ----------
+    svg : an SVG document as text
+    width : int, pixels (at least 1); the height follows the document's aspect ratio
+    sans_serif : the font resvg draws for the generic ``sans-serif`` family; None leaves resvg's
+        own default (the swatch sheet renders so)
 
     Raises
     ------
@@ -42,24 +47,7 @@ def render_png(svg: str, width: int) -> bytes:
     except ImportError:
         raise RendererMissing("--png needs the optional renderer: pip install 'svgtile[png]' (resvg-py)") from None
     return bytes(resvg_py.svg_to_bytes(svg_string=svg, width=max(1, int(width)), background="white",
-                                           sans_serif_family="DejaVu Sans"))
-
-
-def write_bytes(data: bytes, out: os.PathLike | str) -> None:
-    """Write ``data`` to ``out`` atomically (a temporary file renamed into place)."""
-    folder = os.path.dirname(os.fspath(out)) or "."
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".svgtile-", suffix=".tmp", dir=folder)
-    except OSError as exc:
-        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, out)
-    except OSError as exc:
-        os.unlink(tmp)
-        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+                                       sans_serif_family=sans_serif))
 
 
 def contact_sheet(panels: Sequence[tuple[str, str]], scale: float) -> tuple[str, int]:

@@ -23,7 +23,7 @@ from svgtile.analysis.stats import analyze
 from svgtile.apps.load import check_motif_count
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
-from svgtile.errors import ExemplarError, OutputError, SvgtileError
+from svgtile.errors import ExemplarError, SvgtileError
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import parse_exemplar
 from svgtile.svg.writer import fmt, svg_document
@@ -149,15 +149,6 @@ def swatch_sheet(
         _frame(cell, x + PANEL + GAP, top)
     ET.indent(root, space=" ")
     return Sheet(ET.tostring(root, encoding="unicode") + "\n", tuple(done))
-
-
-def render_png(svg: str, width: int) -> bytes:
-    """The sheet as PNG (needs the optional ``resvg-py``: ``pip install 'svgtile[png]'``)."""
-    try:
-        import resvg_py
-    except ImportError:
-        raise OutputError("--png needs the optional renderer: pip install 'svgtile[png]'") from None
-    return bytes(resvg_py.svg_to_bytes(svg_string=svg, width=width, background="white"))
 
 
 # ----------------------------------------------------------------------------- one pattern

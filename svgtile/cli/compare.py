@@ -10,11 +10,12 @@ import click
 from svgtile.apps.compare import compare as run_compare
 from svgtile.apps.compare import format_table
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
-from svgtile.apps.preview import contact_sheet, render_png, write_bytes
+from svgtile.apps.preview import contact_sheet, render_png
 from svgtile.cli.common import Stderr, json_safe, load, parse_size
 from svgtile.core.region import Region
 from svgtile.errors import OutputError
-from svgtile.svg.writer import fmt, svg_document, write_text
+from svgtile.files import write_file
+from svgtile.svg.writer import fmt, svg_document
 
 #: Pixels per user unit of the contact sheet are chosen so a texture panel is this wide.
 SHEET_PANEL = 320
@@ -66,10 +67,10 @@ def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) ->
     for r in results:
         meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement)}
         text = svg_document(ex, r.arrangement, region, boundary="clip", params=meta)
-        write_text(text, folder / f"{r.engine}.svg", protect=(path,))
+        write_file(text, folder / f"{r.engine}.svg", protect=(path,))
         png = render_png(text, round(SHEET_PANEL * (x1 - x0) / max(x1 - x0, y1 - y0)))
-        write_bytes(png, folder / f"{r.engine}.png")
+        write_file(png, folder / f"{r.engine}.png", protect=(path,))
         panels.append((r.engine, text))
     sheet, width = contact_sheet(panels, scale)
-    write_text(sheet, folder / "contact-sheet.svg", protect=(path,))
-    write_bytes(render_png(sheet, width), folder / "contact-sheet.png")
+    write_file(sheet, folder / "contact-sheet.svg", protect=(path,))
+    write_file(render_png(sheet, width), folder / "contact-sheet.png", protect=(path,))

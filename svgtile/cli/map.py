@@ -14,15 +14,9 @@ from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import Stderr, warn
 from svgtile.errors import ParameterError, SvgtileError
+from svgtile.files import check_output, same_file, write_file
 from svgtile.gis import geojson
-from svgtile.svg.writer import (
-    MapLayer,
-    check_output,
-    map_document,
-    prefixed_defs,
-    same_file,
-    write_text,
-)
+from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
 
 
 @click.command(name="map")
@@ -68,7 +62,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": seed,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
         text = svg_map(result, params)
-    write_text(text, output, protect=inputs)
+    write_file(text, output, protect=inputs)
     if result.errors:
         raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} regions failed (see the warnings); "
                            f"the others were written", source=str(output))  # fmt: skip

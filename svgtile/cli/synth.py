@@ -21,8 +21,9 @@ from svgtile.cli.common import (
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import synthesize
 from svgtile.errors import ParameterError
+from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
-from svgtile.svg.writer import check_output, fmt, result_document, same_file, write_text
+from svgtile.svg.writer import fmt, result_document
 
 
 @click.command(name="synth")
@@ -74,4 +75,4 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         text = exemplar_placements(ex, result.arrangement)
     else:
         text = result_document(result, exemplar=Path(exemplar).name, **where_meta)
-    write_text(text, output, protect=(Path(exemplar),))
+    write_file(text, output, protect=(Path(exemplar),))

@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import click
 
 from svgtile.apps.load import MAX_MOTIFS
 from svgtile.cli.common import parse_size, warn
-from svgtile.errors import OutputError, ParameterError
-from svgtile.svg.writer import check_output, same_file, write_text
+from svgtile.errors import ParameterError
+from svgtile.files import check_output, same_file, write_file
 from svgtile.tiles.importer import import_tile
 
 
@@ -31,7 +30,7 @@ def import_cmd(tile, output):
     imported = import_tile(tile)
     for note in imported.notes:
         warn(f"{tile}: {note}")
-    write_text(imported.text, output, protect=(Path(tile),))
+    write_file(imported.text, output, protect=(Path(tile),))
     click.echo(
         f"svgtile: {tile}: {len(imported)} motif(s) of {imported.kinds} kind(s), "
         f"{int(imported.wrapped.sum())} reassembled across the tile's edge",
@@ -57,7 +56,8 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
 
     INPUTS are tile SVG files or directories of them.
     """
-    from svgtile.apps.swatches import collect, read_names, render_png, swatch_sheet
+    from svgtile.apps.preview import render_png
+    from svgtile.apps.swatches import collect, read_names, swatch_sheet
 
     files = collect(inputs)
     if not files:
@@ -74,17 +74,8 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
     table = read_names(names) if names else None
     sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS)
     if png_path is not None:
-        write_bytes(render_png(sheet.text, png_width), png_path)
-    write_text(sheet.text, output, protect=tuple(files))
+        # resvg's default sans-serif, as the sheet's PNG was always drawn
+        write_file(render_png(sheet.text, png_width, sans_serif=None), png_path, protect=tuple(files))
+    write_file(sheet.text, output, protect=tuple(files))
     click.echo(f"svgtile: {sheet.accepted} of {len(files)} pattern(s) synthesized, {sheet.refused} refused", err=True)
 
-
-def write_bytes(data: bytes, path: Path) -> None:
-    """Write ``data`` atomically (a temporary file beside ``path``, then a rename)."""
-    tmp = path.with_name(f".{path.name}.svgtile-tmp")
-    try:
-        tmp.write_bytes(data)
-        os.replace(tmp, path)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise OutputError(f"{path}: cannot write ({exc.strerror or exc})") from None

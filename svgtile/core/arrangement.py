@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: Decimals of positions, angles and scales in the output: engines round to it when they create
-#: motifs, so every check runs on exactly what is written.
+#: Decimals of positions, angles, scales and every number written: engines round to it when they
+#: create motifs, so every check runs on exactly what is written.
 DECIMALS = 4
 
 

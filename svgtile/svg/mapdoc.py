@@ -1,4 +1,4 @@
-"""Map documents: shapes of an SVG map addressed by id, fill-rule polygons, text boxes."""
+"""Map documents: shapes of an SVG map addressed by id (filled by their fill rule), text boxes."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from svgtile.core.region import FILL_RULES, winding_fill
 from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import (
     CONTAINERS,
@@ -44,44 +45,6 @@ DEFAULT_FONT_SIZE = 16.0
 GLYPH_WIDTH = 0.6
 #: A text line's box reaches this far above and below its baseline, in font sizes.
 ASCENT, DESCENT = 0.8, 0.25
-
-
-def winding_fill(rings: list[np.ndarray], rule: str = "nonzero") -> shapely.Geometry:
-    """The area SVG paints for closed rings under a fill rule, holes included.
-
-    The rings' linework is noded and polygonized into faces; a face is painted when the winding
-    number of its interior point is non-zero (``nonzero``) or odd (``evenodd``), as in SVG 1.1
-    §11.3.  Works for self-intersecting rings and rings drawn in any direction.
-
-    Parameters
-    ----------
-    rings : list of (k, 2) float arrays, user units (closing point optional)
-    rule : "nonzero" or "evenodd"
-
-    Returns
-    -------
-    shapely (Multi)Polygon, possibly empty.
-    """
-    rings = [np.asarray(r, dtype=np.float64) for r in rings if len(np.unique(np.round(r, 12), axis=0)) >= 3]
-    if not rings:
-        return shapely.Polygon()
-    closed = [r if np.array_equal(r[0], r[-1]) else np.vstack([r, r[:1]]) for r in rings]
-    lines = shapely.union_all(shapely.linestrings(np.concatenate(closed), indices=np.repeat(
-        np.arange(len(closed)), [len(r) for r in closed])))
-    faces = np.array(shapely.get_parts(shapely.polygonize(shapely.get_parts(lines))), dtype=object)
-    if len(faces) == 0:
-        return shapely.Polygon()
-    probe = shapely.get_coordinates(shapely.point_on_surface(faces))  # (f, 2)
-    wind = np.zeros(len(faces), dtype=np.int64)
-    for r in closed:  # a loop over rings; faces and edges are vectorised
-        a, b = r[:-1], r[1:]
-        px, py = probe[:, 0, None], probe[:, 1, None]
-        left = (b[:, 0] - a[:, 0]) * (py - a[:, 1]) - (px - a[:, 0]) * (b[:, 1] - a[:, 1])
-        up = (a[:, 1] <= py) & (b[:, 1] > py) & (left > 0)
-        down = (a[:, 1] > py) & (b[:, 1] <= py) & (left < 0)
-        wind += up.sum(axis=1) - down.sum(axis=1)
-    painted = wind % 2 == 1 if rule == "evenodd" else wind != 0
-    return shapely.union_all(faces[painted]) if painted.any() else shapely.Polygon()
 
 
 def _font_size(chain: list[ET.Element]) -> float:
@@ -188,7 +151,8 @@ class SvgShapes:
         tag = local_tag(el.tag)
         if tag in SHAPES:
             rings = [pts for pts, _ in flat_subpaths(el, self.source, REGION_FLATNESS)]
-            geom = winding_fill(rings, style.get("fill-rule", "nonzero").strip())
+            rule = style.get("fill-rule", "nonzero").strip()
+            geom = winding_fill(rings, rule if rule in FILL_RULES else "nonzero")  # CSS: an invalid value is the initial one
             return apply_matrix(m, geom)
         if tag in (*CONTAINERS, "svg"):
             parts = [self._area(c, style, m) for c in el]

@@ -2,20 +2,16 @@
 
 This is the only module that writes XML.  Numbers have a fixed format (at most four decimals,
 no trailing zeros), elements a stable order, and nothing depends on the clock or the machine, so
-the same inputs and seed give a byte-identical file.  Files are written atomically.
+the same inputs and seed give a byte-identical file.  :func:`svgtile.files.write_file` puts it
+on disk (atomically).
 """
 
 from __future__ import annotations
 
 import copy
 import dataclasses
-import os
 import re
-import stat
-import sys
-import tempfile
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 import shapely
@@ -24,7 +20,6 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.engines.base import Result
-from svgtile.errors import OutputError
 from svgtile.svg.dialect import INKSCAPE_NS, SVG_NS, XLINK_NS
 from svgtile.svg.numbers import fmt, fmt_array
 
@@ -140,114 +135,6 @@ def path_data(geom: shapely.Geometry) -> str:
             xy = fmt_array(np.asarray(ring.coords)[:-1].ravel())
             parts.append("M" + " L".join(f"{x} {y}" for x, y in zip(xy[::2], xy[1::2], strict=True)) + " Z")
     return " ".join(parts)
-
-
-def check_output(out: str | Path, *, protect: tuple[str | Path, ...] = ()) -> None:
-    """Raise :class:`OutputError` unless ``out`` can be written (``-`` always can).
-
-    ``out`` must not be any path in ``protect`` (under any spelling, symlink or hard link), must
-    not be a folder, and its folder must exist.  Call it before the work to fail early;
-    :func:`write_text` calls it again.
-    """
-    if str(out) == "-":
-        return
-    out = Path(out)
-    for p in protect:
-        if same_file(out, Path(p)):
-            raise OutputError("refusing to overwrite an input file", source=str(out))
-    if out.is_dir():
-        raise OutputError("is a folder; give a file name", source=str(out))
-    folder = out.parent
-    if not folder.is_dir():
-        problem = "is a file, not a folder" if folder.exists() else "does not exist"
-        raise OutputError(f"folder {str(folder)!r} {problem}", source=str(out))
-
-
-def write_text(text: str, out: str | Path, *, protect: tuple[Path, ...] = ()) -> None:
-    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``out`` atomically (``-`` is standard output).
-
-    Refuses to overwrite any path in ``protect`` (the inputs).  The text goes to a temporary file
-    in the target folder that is flushed to disk and renamed into place, so a failure never
-    leaves half a file, and a file that was there stays untouched.  A symbolic link is written
-    through (the file it points to is replaced); a device or FIFO (``/dev/null``, a named pipe)
-    is written into directly, never replaced.  A new file gets the usual
-    permissions (``0o666`` less the umask); a replaced file keeps its permissions.
-
-    Raises
-    ------
-    OutputError
-        The path is protected or unusable, or writing failed (disk full, no permission …).
-    """
-    data = text.encode("utf-8")
-    if str(out) == "-":
-        stream = sys.stdout
-        binary = getattr(stream, "buffer", None)
-        if binary is None:  # a text-only stream (an embedding application's)
-            stream.write(text)
-        else:  # bytes, so the document is the same as the file on every platform
-            stream.flush()
-            view = memoryview(data)
-            while view:  # a pipe whose reader left may take part and report success
-                written = binary.write(view)
-                if not written:
-                    raise OutputError("standard output takes no more data", source="-")
-                view = view[written:]
-            binary.flush()
-        stream.flush()
-        return
-    check_output(out, protect=protect)
-    out = Path(out)
-    try:
-        special = not stat.S_ISREG(os.stat(out).st_mode)  # follows symlinks
-    except OSError:  # no such file (yet)
-        special = False
-    if special:  # a device (/dev/null) or a FIFO: a rename would replace it with a regular file
-        try:
-            with open(out, "wb") as fh:
-                fh.write(data)
-        except OSError as exc:
-            raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
-        return
-    if out.is_symlink():  # replace the file the link points to, not the link
-        out = Path(os.path.realpath(out))
-    mode = _file_mode(out)
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
-    except OSError as exc:
-        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, out)
-    except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
-        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def same_file(a: str | Path, b: str | Path) -> bool:
-    """Do ``a`` and ``b`` name one file (``./d/../x.svg`` and ``x.svg``, symlinks, hard links)?"""
-    if Path(a).resolve() == Path(b).resolve():
-        return True
-    try:
-        return os.path.samefile(a, b)
-    except OSError:  # one of them does not exist
-        return False
-
-
-def _file_mode(out: Path) -> int:
-    """Permissions for the file written at ``out`` (mkstemp's are ``0o600``)."""
-    try:
-        return stat.S_IMODE(os.stat(out).st_mode)
-    except OSError:
-        umask = os.umask(0o022)
-        os.umask(umask)
-        return 0o666 & ~umask
 
 
 def _unique_id(base: str, taken: set[str | None]) -> str:
