@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import re
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -366,11 +367,7 @@ def leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapel
         if not stroked:
             continue
         if distinct == 1:
-            if cap == "round":
-                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=16))
-            elif cap == "square":
-                x, y = pts[0]
-                parts.append(shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2))
+            parts.extend(dot_footprint(pts[0], width, cap))
             continue
         line = np.vstack([pts, pts[:1]]) if closed else pts
         parts.append(
@@ -398,3 +395,22 @@ def fill_holes(geom: shapely.Geometry) -> shapely.Geometry:
 
 
 # ----------------------------------------------------------------------------- the reader
+
+
+def dot_footprint(point: np.ndarray, width: float, cap: str) -> list[shapely.Geometry]:
+    """The footprint of a zero-length stroke: a disc (round cap) or a square (square cap) of the
+    stroke's width around ``point`` (2,), user units; none for a butt cap, which draws nothing."""
+    if cap == "round":
+        return [shapely.Point(point).buffer(width / 2, quad_segs=16)]
+    if cap == "square":
+        x, y = point
+        return [shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2)]
+    return []
+
+
+def read_svg_bytes(path: str | Path) -> bytes:
+    """The bytes of an SVG file; an unreadable file is an :class:`ExemplarError` naming it."""
+    try:
+        return Path(path).read_bytes()
+    except OSError as exc:
+        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None

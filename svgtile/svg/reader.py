@@ -73,6 +73,7 @@ from svgtile.svg.dialect import (
     one_line,
     parse_matrix,
     polygons_of,
+    read_svg_bytes,
     shorten,
     tag_ns,
     translation,
@@ -88,12 +89,7 @@ def read_exemplar(path: str | Path) -> Exemplar:
     ExemplarError
         With the file name and a one-line description of what is wrong.
     """
-    path = Path(path)
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
-    return parse_exemplar(data, source=str(path))
+    return parse_exemplar(read_svg_bytes(path), source=str(path))
 
 
 def parse_exemplar(data: bytes | str, *, source: str = "<exemplar>") -> Exemplar:

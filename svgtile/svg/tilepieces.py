@@ -25,6 +25,7 @@ from svgtile.svg.dialect import (
     apply_matrix,
     cascade_style,
     describe,
+    dot_footprint,
     fill_holes,
     flat_subpaths,
     fmt_number,
@@ -35,6 +36,7 @@ from svgtile.svg.dialect import (
     number_attr,
     one_line,
     parse_matrix,
+    read_svg_bytes,
     tag_ns,
     translation,
 )
@@ -91,12 +93,7 @@ class TilePieces:
 
 def read_tile(path: str | Path) -> TilePieces:
     """Read a pattern tile SVG file into pieces (see :func:`parse_tile`)."""
-    path = Path(path)
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
-    return parse_tile(data, source=str(path))
+    return parse_tile(read_svg_bytes(path), source=str(path))
 
 
 def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
@@ -284,11 +281,7 @@ def _subpath_footprint(
         parts.append(shapely.make_valid(shapely.Polygon(pts)))
     if width > 0:
         if distinct == 1:
-            if cap == "round":
-                parts.append(shapely.Point(pts[0]).buffer(width / 2, quad_segs=16))
-            elif cap == "square":
-                x, y = pts[0]
-                parts.append(shapely.box(x - width / 2, y - width / 2, x + width / 2, y + width / 2))
+            parts.extend(dot_footprint(pts[0], width, cap))
         else:
             line = np.vstack([pts, pts[:1]]) if closed else pts
             parts.append(shapely.LineString(line).buffer(width / 2, quad_segs=16, cap_style=cap, join_style=join, mitre_limit=limit))
