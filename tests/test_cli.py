@@ -532,3 +532,17 @@ def test_analyze_warns_about_overlaps(capsys, write_svg):
     assert rc == 0 and json.loads(out)["overlapping_pairs"] == 1
     assert err.count("\n") == 1 and "overlap" in err
 
+
+
+@pytest.mark.parametrize(("value", "text"), [(1e4, "10,000"), (123456.7, "123,457"), (12.5664, "12.57"), (0.5, "0.5"),
+                                            (3e20, "3e+20")])  # fmt: skip
+def test_areas_are_printed_readably(value, text):
+    from svgtile.cli.analyze import readable
+
+    assert readable(value) == text
+
+
+def test_analyze_prints_a_large_area_without_an_exponent(capsys):
+    assert main(["analyze", str(Path(__file__).parents[1] / "exemplars" / "gravel.svg")]) == 0
+    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("input region"))
+    assert "e+" not in line and ", area " in line and "," in line.split("area ")[1]

@@ -239,3 +239,29 @@ def test_example_map_is_filled_by_one_command(tmp_path, capsys):
     assert set(groups(out)) == {"svgtile-qal", "svgtile-qm", "svgtile-qt", "svgtile-ksh", "svgtile-tb"}
     for group in groups(out).values():
         assert len(group) > 50
+
+
+def _run_seed(path: Path) -> str:
+    run = next(ET.parse(path).getroot().iter("{urn:svgtile:run:1}run"))
+    return run.get("seed")
+
+
+@pytest.mark.parametrize(("top", "cli", "want"), [
+    ("seed = 1", [], "1"),                        # every class's seed is the styles' 1: say so, not 0
+    ("seed = 1", ["--seed", "5"], "1"),           # the styles' seed wins over --seed for every class
+    ("", ["--seed", "5"], "5"),                   # no class seed: the run's
+])  # fmt: skip
+def test_map_metadata_records_the_seed_used(folder, top, cli, want):
+    (folder / "styles.toml").write_text(STYLES.replace("seed = 3", top))
+    out = folder / "filled.svg"
+    assert main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out), *cli]) == 0
+    assert _run_seed(out) == want
+
+
+def test_map_metadata_names_each_class_seed_when_they_differ(folder):
+    styles = STYLES.replace("seed = 3\n", "").replace('boundary = "inside"', 'boundary = "inside"\nseed = 2')
+    styles = styles.replace('engine = "random"', 'engine = "random"\nseed = 4').replace('grid = "hex"', 'grid = "hex"\nseed = 4')
+    (folder / "styles.toml").write_text(styles)
+    out = folder / "filled.svg"
+    assert main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out)]) == 0
+    assert _run_seed(out) == "dots=2 plain=4 rings=4"

@@ -51,12 +51,18 @@ def stats_report(ex: Exemplar, stats: Stats) -> dict:
     }
 
 
+def readable(value: float) -> str:
+    """A number as people read it: thousands separated and no exponent from 1000 up (``10,000``),
+    four significant digits below (``12.57``)."""
+    return f"{value:,.0f}" if abs(value) >= 1000 and abs(value) < 1e15 else f"{value:.4g}"
+
+
 def format_report(r: dict) -> str:
     """The analysis as the table ``svgtile analyze`` prints."""
     x0, y0, x1, y1 = r["region"]["bounds"]
     lines = [
         f"exemplar      {r['exemplar']}",
-        f"input region  {x1 - x0:g} x {y1 - y0:g} at ({x0:g}, {y0:g}), area {r['region']['area']:.4g}",
+        f"input region  {x1 - x0:g} x {y1 - y0:g} at ({x0:g}, {y0:g}), area {readable(r['region']['area'])}",
         f"motifs        {r['motifs']} in {len(r['kinds'])} kind(s)",
         f"density ρ     {r['density']:.4f} of the area covered, {r['motifs_per_unit_area']:.4g} motifs per unit²",
         "",

@@ -44,11 +44,19 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)
-    if seed is None and all(s.seed is not None for s in styles.classes.values()):
-        seed = 0  # every class has its own seed: the run's is never used
-    elif seed is None:
+    own = {s.seed for s in styles.classes.values()}
+    if seed is None and None in own:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
+    # the metadata records the seeds used: the run's, or (every class having its own) theirs
+    if None in own:
+        used = str(seed)
+    elif len(own) == 1:
+        used = str(own.pop())
+    else:
+        used = " ".join(f"{c}={s.seed}" for c, s in sorted(styles.classes.items()))
+    if seed is None:
+        seed = 0  # every class has its own seed: the run's is never used
     result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress(),
                       max_motifs=MAX_MOTIFS)  # fmt: skip
     Stderr.clear()
@@ -59,7 +67,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     if str(output).lower().endswith(".geojson"):
         text = placements_document(result)
     else:
-        params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": seed,
+        params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
         text = svg_map(result, params)
     write_file(text, output, protect=inputs)
