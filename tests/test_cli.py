@@ -546,3 +546,25 @@ def test_analyze_prints_a_large_area_without_an_exponent(capsys):
     assert main(["analyze", str(Path(__file__).parents[1] / "exemplars" / "gravel.svg")]) == 0
     line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("input region"))
     assert "e+" not in line and ", area " in line and "," in line.split("area ")[1]
+
+
+@pytest.mark.parametrize("name", ["x.pdf", "x.txt", "x.svg.bak"])
+def test_an_output_suffix_svgtile_does_not_write_is_refused(capsys, tiny, tmp_path, name):
+    out = tmp_path / name
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1")
+    assert rc == 1 and not out.exists()
+    assert err.count("\n") == 1 and "svgtile writes .svg, .geojson, .png" in err
+
+
+def test_a_png_output_is_a_picture_not_svg_text(capsys, tiny, tmp_path):
+    pytest.importorskip("resvg_py")
+    out = tmp_path / "x.png"
+    rc, _, _ = synth(capsys, tiny, out, "--seed", "1")
+    assert rc == 0 and out.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+    width = int.from_bytes(out.read_bytes()[16:20], "big")
+    assert width == 120  # 60 user units, 2 pixels each
+
+
+def test_map_refuses_a_png_output(capsys, tiny, tmp_path):
+    rc = main(["map", str(tiny), "--styles", str(tmp_path / "none.toml"), "-o", str(tmp_path / "m.png")])
+    assert rc == 1 and "svgtile writes .svg, .geojson" in capsys.readouterr().err

@@ -7,6 +7,7 @@ import math
 import re
 import sys
 from collections.abc import Callable
+from pathlib import Path
 
 import click
 from click.core import ParameterSource
@@ -94,6 +95,32 @@ def json_safe(value):
 
 def one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split())
+
+
+#: Output formats by file suffix (``-``, standard output, and a name without suffix are SVG).
+FORMATS = {".svg": "svg", ".geojson": "geojson", ".png": "png"}
+#: Pixels per user unit of a ``.png`` output, and the limits of its width in pixels.
+PNG_SCALE, PNG_MIN, PNG_MAX = 2.0, 64, 8192
+
+
+def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "png")) -> str:
+    """What ``-o OUTPUT`` asks for, by its suffix; another suffix is refused (never SVG text in a
+    file named ``.png`` or ``.pdf``)."""
+    suffix = Path(output).suffix.lower() if output != "-" else ""
+    fmt = FORMATS.get(suffix, "svg" if suffix == "" else None)
+    if fmt not in allowed:
+        names = ", ".join(s for s, f in FORMATS.items() if f in allowed)
+        raise ParameterError(f"{output}: svgtile writes {names} (by the file's suffix), not {suffix}")
+    if fmt == "png":
+        from svgtile.apps.preview import render_png
+
+        render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
+    return fmt
+
+
+def png_width(width: float) -> int:
+    """Pixels of a ``.png`` output for a document ``width`` user units wide."""
+    return int(min(PNG_MAX, max(PNG_MIN, round(width * PNG_SCALE))))
 
 
 # ----------------------------------------------------------------------------- engine options

@@ -12,7 +12,7 @@ import numpy as np
 
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
-from svgtile.cli.common import Stderr, warn
+from svgtile.cli.common import Stderr, output_format, warn
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.gis import geojson
@@ -39,6 +39,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     keeps the map and adds one texture group per unit, above the unit and below what follows it.
     A unit that fails is reported; the others are written, and the exit code is 1.
     """
+    kind = output_format(output, ("svg", "geojson"))
     styles = read_styles(styles_file)
     inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
     if output != "-" and any(same_file(output, p) for p in inputs):
@@ -64,7 +65,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         warn(message)
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
-    if str(output).lower().endswith(".geojson"):
+    if kind == "geojson":
         text = placements_document(result)
     else:
         params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used,

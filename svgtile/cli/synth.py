@@ -9,12 +9,15 @@ import click
 
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapread import synth_region
+from svgtile.apps.preview import render_png
 from svgtile.cli.common import (
     Stderr,
     engine_options,
     engine_params,
     load,
+    output_format,
     parse_size,
+    png_width,
     progress_line,
     warn,
 )
@@ -28,7 +31,7 @@ from svgtile.svg.writer import fmt, result_document
 
 @click.command(name="synth")
 @click.argument("exemplar", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, help="Output SVG file, or - for standard output; a .geojson file gets one point per motif (kind, angle, scale) for GIS.")
+@click.option("-o", "--output", required=True, help="Output file, its format by its suffix: .svg (or - for standard output), .geojson (one point per motif: kind, angle, scale, for GIS) or .png (a picture, 2 pixels per user unit; needs the 'png' extra).")
 @click.option("--size", default=None,
               help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600 (one number: a square).")
 @click.option("--region", "region_spec", default=None, metavar="MAP.svg#ID|FILE.geojson",
@@ -56,6 +59,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     region = synth_region(parse_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
+    kind = output_format(output)
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after
@@ -71,8 +75,10 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
-    if str(output).lower().endswith(".geojson"):
-        text = exemplar_placements(ex, result.arrangement)
+    if kind == "geojson":
+        data = exemplar_placements(ex, result.arrangement)
     else:
-        text = result_document(result, exemplar=Path(exemplar).name, **where_meta)
-    write_file(text, output, protect=(Path(exemplar),))
+        data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
+        if kind == "png":
+            data = render_png(data, png_width(x1 - x0))
+    write_file(data, output, protect=(Path(exemplar),))
