@@ -65,6 +65,17 @@ OVERLAPPING = SVG_HEAD + """
 EXEMPLARS = {"tiny": TINY, "plain": PLAIN, "viewbox": VIEWBOX}
 
 
+#: Test modules of unit tests on small inputs: ``pytest -m quick`` runs them (README).
+QUICK_MODULES = {"test_layout", "test_engines_contract", "test_junction", "test_analysis", "test_geojson",
+                 "test_preview", "test_inkscape", "test_output", "test_swatches"}
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.path.stem in QUICK_MODULES:
+            item.add_marker(pytest.mark.quick)
+
+
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption(
         "--update-golden",
