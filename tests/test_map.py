@@ -265,3 +265,12 @@ def test_map_metadata_names_each_class_seed_when_they_differ(folder):
     out = folder / "filled.svg"
     assert main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out)]) == 0
     assert _run_seed(out) == "dots=2 plain=4 rings=4"
+
+
+def test_map_help_lists_every_styles_key(capsys):
+    from svgtile.apps.mapfill import CLASS_KEYS, RUN_KEYS
+
+    assert main(["map", "--help"]) == 0
+    text = capsys.readouterr().out
+    missing = [k for k in (*CLASS_KEYS, *RUN_KEYS) if k != "classes" and k not in text]
+    assert not missing, missing

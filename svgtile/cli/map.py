@@ -13,10 +13,18 @@ import numpy as np
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import Stderr, output_format, warn
+from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.gis import geojson
 from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
+
+
+def _with_params(f):
+    """Fill the list of engine parameters into the help (they come from the engines)."""
+    f.__doc__ = f.__doc__ % {"params": ", ".join(f"{p.name} [{', '.join(engines_with(p.name))}]"
+                                                 for p in public_params().values())}
+    return f
 
 
 @click.command(name="map")
@@ -31,6 +39,7 @@ from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
               help="Random seed shared by every region (a class's own seed wins). Without it one is chosen and printed.")
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="Regions filled at once, in separate processes [default: the usable cores].")
+@_with_params
 def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     """Fill every unit of MAP (SVG or GeoJSON) whose class the styles file knows.
 
@@ -38,6 +47,21 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     Inkscape label; in GeoJSON, the property the styles file names (default "class"). The output
     keeps the map and adds one texture group per unit, above the unit and below what follows it.
     A unit that fails is reported; the others are written, and the exit code is 1.
+
+    \b
+    The styles file (TOML), a table [classes.NAME] per class:
+      exemplar = "FILE.svg"   the class's exemplar, relative to the styles file
+      engine = "patch"        one of the engines (svgtile synth --help)
+      seed = 7                this class's seed (else the run's)
+      unit = 1.0              map units per exemplar user unit
+      boundary = "clip"       inside, centroid, clip or none
+    and any parameter of its engine, as in svgtile synth with _ for - (%(params)s).
+    Keys at the top level are defaults for every class (an engine parameter only for the
+    classes whose engine has it), plus:
+      avoid = ["labels"]      ids in the map (or MAP.svg#ID specs) every texture keeps clear of
+      avoid_margin = 2        clear space around them, map units
+      class_attribute = "data-unit"   SVG maps: the attribute naming a unit's class
+      class_property = "unit"         GeoJSON maps: the property naming a feature's class
     """
     kind = output_format(output, ("svg", "geojson"))
     styles = read_styles(styles_file)
