@@ -94,9 +94,10 @@ def path_d_line(line: shapely.LineString) -> str:
 
 
 def render(svg: Path, png: Path, width: int = 960) -> None:
-    import resvg_py
+    """The README's picture, with svgtile's one renderer (labels in DejaVu Sans, a system font)."""
+    from svgtile.apps.preview import render_png
 
-    png.write_bytes(bytes(resvg_py.svg_to_bytes(svg_string=svg.read_text(), width=width, background="white")))
+    png.write_bytes(render_png(svg.read_text(), width))
 
 
 if __name__ == "__main__":

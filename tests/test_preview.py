@@ -53,3 +53,13 @@ def test_swatches_without_renderer_say_the_same(tmp_path, capsys, monkeypatch):
     assert main(["swatches", str(tile), "-o", str(tmp_path / "s.svg"), "--png"]) == 1
     err = capsys.readouterr().err
     assert err == "svgtile: error: --png needs the optional renderer: pip install 'svgtile[png]' (resvg-py)\n"
+
+
+def test_text_is_drawn_in_a_real_font():
+    """Labels must show (issue 17 item 5): the PNG of a text differs from the PNG without it."""
+    pytest.importorskip("resvg_py")
+    from svgtile.apps.preview import render_png
+
+    head = '<svg xmlns="http://www.w3.org/2000/svg" width="120" height="40">'
+    text = '<text x="10" y="30" font-family="sans-serif" font-size="24">Qal</text>'
+    assert render_png(head + text + "</svg>", 120) != render_png(head + "</svg>", 120)

@@ -74,8 +74,7 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
     table = read_names(names) if names else None
     sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS)
     if png_path is not None:
-        # resvg's default sans-serif, as the sheet's PNG was always drawn
-        write_file(render_png(sheet.text, png_width, sans_serif=None), png_path, protect=tuple(files))
+        write_file(render_png(sheet.text, png_width), png_path, protect=tuple(files))
     write_file(sheet.text, output, protect=tuple(files))
     click.echo(f"svgtile: {sheet.accepted} of {len(files)} pattern(s) synthesized, {sheet.refused} refused", err=True)
 
