@@ -11,15 +11,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-import svgtile.cli.main
-from svgtile.analysis.stats import analyze
-from svgtile.cli.main import main
 
+import svgtile.cli.main
+from svgtile import metrics
+from svgtile.analysis.stats import analyze
 from svgtile.apps.compare import FIGURES, compare, format_table
+from svgtile.cli.main import main
 from svgtile.core.region import Region
 from svgtile.engines import ENGINES
 from svgtile.errors import ExemplarError, ParameterError
-from svgtile.metrics import figures as metrics
 from svgtile.svg.dialect import SVG_NS
 from svgtile.svg.reader import read_exemplar
 from svgtile.svg.texture import read_texture
@@ -64,7 +64,7 @@ def test_texture_reads_back_as_written(tmp_path, name):
     a = metrics.score(ex, stats, want, region)
     b = metrics.score(ex, stats, back, back_region)
     for key in ("motifs", "overlaps", "violators", "kind_mix_tv", "density_ratio", "gap_distance", "repetition"):
-        assert b[key] == pytest.approx(a[key], rel=1e-3, abs=1e-3), key
+        assert getattr(b, key) == pytest.approx(getattr(a, key), rel=1e-3, abs=1e-3), key
 
 
 def test_region_is_the_clip_path_with_its_hole(tmp_path):
@@ -100,10 +100,10 @@ def test_score_json_matches_the_library(tmp_path, capsys):
     got = json.loads(out)
     want = metrics.score(ex, stats, arr, Region.rectangle(300, 300))
     assert got["texture"] == "t.svg"
-    assert got["motifs"] == want["motifs"] > 0
+    assert got["motifs"] == want.motifs > 0
     assert got["overlaps"] == got["violators"] == 0
-    assert got["kind_mix_tv"] == pytest.approx(want["kind_mix_tv"], abs=1e-9)
-    assert got["gap_distance"] == pytest.approx(want["gap_distance"], rel=1e-3)
+    assert got["kind_mix_tv"] == pytest.approx(want.kind_mix_tv, abs=1e-9)
+    assert got["gap_distance"] == pytest.approx(want.gap_distance, rel=1e-3)
 
 
 def test_score_table_tells_tile_from_random(tmp_path, capsys):
@@ -152,7 +152,7 @@ def test_compare_library_columns_and_errors():
     table = format_table(results).splitlines()
     assert table[0].split()[-2:] == ["tile", "random"]
     assert len(table) == 1 + len(FIGURES)
-    assert results[0].score["repetition"] > 0.9 > results[1].score["repetition"]
+    assert results[0].score.repetition > 0.9 > results[1].score.repetition
     for bad in (["tile", "nope"], [], ["tile", "tile"]):
         with pytest.raises(ParameterError, match="--engines"):
             compare(ex, stats, Region.rectangle(50, 50), engines=bad)

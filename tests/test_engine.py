@@ -14,16 +14,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from svgtile.analysis.stats import in_arcs
-from svgtile.engines.patch.engine import PatchParams, grid, synthesize
 
-from svgtile import Region, analyze, read_exemplar
+from svgtile import Region, analyze, metrics, read_exemplar
+from svgtile.analysis.stats import in_arcs
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.cellrng import hash64, uniform
 from svgtile.core.conflicts import Conflicts, cull, find_conflicts, slack
 from svgtile.core.footprint import world_footprints
+from svgtile.engines.patch.engine import PatchParams, grid, synthesize
 from svgtile.errors import ParameterError
-from svgtile.metrics import figures as metrics
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
 SIZES = (400, 900)

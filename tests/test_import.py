@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+
 from svgtile.analysis.stats import analyze, distance_matrix, periodic_distance_matrix
 from svgtile.cli.main import main
-
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import Prototype
 from svgtile.errors import ExemplarError
@@ -377,10 +377,9 @@ def test_cli_refused_tile_is_one_line(tmp_path, capsys):
 def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused():
     """Issue 4's done-when: every one of the 116 tiles is either refused with a reason or imports
     and synthesizes (patch engine, 1.5 x 1.5 tiles) with no overlap and no rule violation."""
-    from svgtile.engines.patch.engine import synthesize
-    from svgtile.metrics.figures import conflict_counts
-
     from svgtile.core.region import Region
+    from svgtile.engines.patch.engine import synthesize
+    from svgtile.metrics import conflict_counts
 
     files = sorted(FGDC.glob("*.svg"))
     assert len(files) == 116
@@ -397,8 +396,8 @@ def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused
         region = Region.rectangle(1.5 * w, 1.5 * h, x0, y0)
         arr = synthesize(ex, region, rng=np.random.default_rng(0), stats=stats)
         found = conflict_counts(arr, ex.prototypes, stats, np.ones(len(arr), dtype=bool))
-        if len(arr) == 0 or found["overlaps_total"] or found["violators_total"]:
-            problems.append((path.name, len(arr), found["overlaps_total"], found["violators_total"]))
+        if len(arr) == 0 or found.overlaps_total or found.violators_total:
+            problems.append((path.name, len(arr), found.overlaps_total, found.violators_total))
         accepted += 1
     assert not problems
     assert accepted >= 58  # 61 of 116 at the time of writing; a drop means a regression
