@@ -18,7 +18,7 @@ import pytest
 import shapely
 from conftest import arrange
 
-from svgtile import Region, analyze, read_exemplar
+from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.analysis.stats import in_arcs
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import slack
@@ -27,7 +27,6 @@ from svgtile.engines import ENGINES
 from svgtile.engines import random as random_engine
 from svgtile.engines import tile as tile_engine
 from svgtile.errors import ExemplarError, ParameterError
-from svgtile.metrics import figures as metrics
 from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))

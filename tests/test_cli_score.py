@@ -3,7 +3,9 @@ written from, one-line errors, the table, PNG previews and the contact sheet."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import re
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -15,15 +17,17 @@ from conftest import arrange
 
 import svgtile.cli.compare
 import svgtile.cli.main
+from svgtile import metrics
 from svgtile.analysis.stats import analyze
 from svgtile.apps.compare import FIGURES, compare, format_table
 from svgtile.cli.main import main
+from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
 from svgtile.errors import ExemplarError, ParameterError
-from svgtile.metrics import figures as metrics
-from svgtile.svg.dialect import SVG_NS
-from svgtile.svg.reader import read_exemplar
-from svgtile.svg.texture import read_texture
+from svgtile.metrics import Score
+from svgtile.svg.dialect import SVG_NS, XLINK_NS, parse_matrix
+from svgtile.svg.reader import parse_exemplar, read_exemplar
+from svgtile.svg.texture import kind_key, read_own_texture, read_texture
 from svgtile.svg.writer import svg_document
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
@@ -65,7 +69,7 @@ def test_texture_reads_back_as_written(tmp_path, name):
     a = metrics.score(ex, stats, want, region)
     b = metrics.score(ex, stats, back, back_region)
     for key in ("motifs", "overlaps", "violators", "kind_mix_tv", "density_ratio", "gap_distance", "repetition"):
-        assert b[key] == pytest.approx(a[key], rel=1e-3, abs=1e-3), key
+        assert getattr(b, key) == pytest.approx(getattr(a, key), rel=1e-3, abs=1e-3), key
 
 
 def test_region_is_the_clip_path_with_its_hole(tmp_path):
@@ -101,10 +105,10 @@ def test_score_json_matches_the_library(tmp_path, capsys):
     got = json.loads(out)
     want = metrics.score(ex, stats, arr, Region.rectangle(300, 300))
     assert got["texture"] == "t.svg"
-    assert got["motifs"] == want["motifs"] > 0
+    assert got["motifs"] == want.motifs > 0
     assert got["overlaps"] == got["violators"] == 0
-    assert got["kind_mix_tv"] == pytest.approx(want["kind_mix_tv"], abs=1e-9)
-    assert got["gap_distance"] == pytest.approx(want["gap_distance"], rel=1e-3)
+    assert got["kind_mix_tv"] == pytest.approx(want.kind_mix_tv, abs=1e-9)
+    assert got["gap_distance"] == pytest.approx(want.gap_distance, rel=1e-3)
 
 
 def test_score_table_tells_tile_from_random(tmp_path, capsys):
@@ -153,7 +157,7 @@ def test_compare_library_columns_and_errors():
     table = format_table(results).splitlines()
     assert table[0].split()[-2:] == ["tile", "random"]
     assert len(table) == 1 + len(FIGURES)
-    assert results[0].score["repetition"] > 0.9 > results[1].score["repetition"]
+    assert results[0].score.repetition > 0.9 > results[1].score.repetition
     for bad in (["tile", "nope"], [], ["tile", "tile"]):
         with pytest.raises(ParameterError, match="--engines"):
             compare(ex, stats, Region.rectangle(50, 50), engines=bad)
@@ -241,3 +245,104 @@ def test_clip_region_found_when_the_exemplar_takes_svgtiles_ids(tmp_path):
     assert back_region.area == pytest.approx(120 * 80 - 40 * 40)
     # every motif whose centroid is in the viewBox is read back
     assert sorted(np.bincount(back.kind).tolist()) == sorted(np.bincount(arr.kind[shapely.contains_xy(shapely.box(0, 0, 120, 80), arr.xy[:, 0], arr.xy[:, 1])]).tolist())
+
+
+# ----------------------------------------------------------------------------- the bulk reader
+
+#: An exemplar whose kinds need every part of a <use> svgtile writes: a symbol with a viewBox
+#: (width/height on the <use>), a skewed instance (a matrix() suffix), scaled instances and an
+#: inherited fill (an attribute on the <use>).
+VARIED = f"""<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK_NS}" viewBox="0 0 40 40">
+<defs><symbol id="box" viewBox="0 0 10 10" overflow="visible"><rect width="10" height="10"/></symbol>
+<symbol id="dot" overflow="visible"><circle r="1"/></symbol></defs>
+<use xlink:href="#box" width="2" height="2" transform="translate(5 5) rotate(20)"/>
+<use xlink:href="#box" width="2" height="2" transform="translate(30 8) matrix(1 0 0.5 1 0 0)"/>
+<use xlink:href="#box" width="2" height="2" transform="translate(18 30) matrix(1 0 0.5 1 0 0) rotate(-35)"/>
+<use xlink:href="#dot" transform="translate(20 15) scale(1.5)"/>
+<use xlink:href="#dot" transform="translate(8 25) rotate(70) scale(0.75)"/>
+<g fill="#a00"><use xlink:href="#dot" transform="translate(32 30)"/><use xlink:href="#dot" transform="translate(30 20)"/></g>
+</svg>"""
+
+
+def _general(path: Path):
+    """The texture as the exemplar reader reads it, motif by motif."""
+    texture = read_exemplar(path)
+    return texture.kinds, texture.motifs, texture.region
+
+
+def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
+    return a.dtype == b.dtype and a.shape == b.shape and np.ascontiguousarray(a).tobytes() == np.ascontiguousarray(b).tobytes()
+
+
+@pytest.mark.parametrize(
+    ("name", "engine", "options"),
+    [
+        ("gravel", "patch", {}),
+        ("till", "patch", {"grid": "hex"}),
+        ("breccia-plain", "patch", {"vary_orientation": True}),
+        ("chert-nodules", "tile", {}),
+        ("shale", "random", {}),
+        ("varied", "tile", {}),
+        ("varied", "random", {}),
+    ],
+)
+@pytest.mark.parametrize("boundary", ["clip", "inside", "none"])
+def test_bulk_reader_equals_the_exemplar_reader(tmp_path, name, engine, options, boundary):
+    """On every texture svgtile writes, the bulk read is the exemplar reader's, bit for bit."""
+    ex = parse_exemplar(VARIED) if name == "varied" else read_exemplar(EXEMPLARS / f"{name}.svg")
+    region = Region.rectangle(150, 110, x=-3.5, y=2.25)
+    arr = arrange(engine, ex, region, rng=np.random.default_rng(4), stats=analyze(ex), boundary=boundary, **options)
+    path = tmp_path / "t.svg"
+    path.write_text(svg_document(ex, arr, region, boundary=boundary, params={}))
+    own = read_own_texture(ET.parse(path).getroot(), str(path))
+    assert own is not None, "svgtile's own texture must take the bulk path"
+    kinds, motifs, shape = own
+    want_kinds, want, want_shape = _general(path)
+    assert [kind_key(k) for k in kinds] == [kind_key(k) for k in want_kinds]
+    assert [k.offset.tolist() for k in kinds] == [k.offset.tolist() for k in want_kinds]
+    for field in ("kind", "xy", "angle", "scale"):
+        assert _same_bits(getattr(motifs, field), getattr(want, field)), field
+    assert shape.equals(want_shape)
+    if name == "varied":  # the parts of the <use> the bundled exemplars lack were written
+        text = path.read_text()
+        assert "matrix(" in text and "scale(" in text and 'width="2"' in text and 'fill="#a00"' in text
+
+
+def _edit(text: str, how: str) -> str:
+    """A hand edit of a texture: its first <use> given as a matrix(), or the motifs in a moved group."""
+    if how == "matrix":
+        head, _, rest = text.partition("<use ")
+        use, _, tail = rest.partition("/>")
+        m = re.search(r'transform="([^"]*)"', use)
+        mat = parse_matrix(m.group(1))
+        written = "matrix({})".format(" ".join(repr(float(v)) for v in (mat[0, 0], mat[1, 0], mat[0, 1], mat[1, 1], mat[0, 2], mat[1, 2])))
+        return head + "<use " + use.replace(m.group(0), f'transform="{written}"') + "/>" + tail
+    head, _, rest = text.partition('<g id="svgtile"')
+    body, _, tail = rest.partition("</g>")
+    return head + '<g id="svgtile"><g transform="translate(7 -3)"' + body + "</g></g>" + tail
+
+
+@pytest.mark.parametrize("how", ["matrix", "group"])
+def test_a_hand_edited_texture_is_read_by_the_exemplar_reader(tmp_path, how):
+    region = Region.rectangle(120, 90)
+    ex, _, _ = write_texture(tmp_path / "t.svg", "gravel", region)
+    (tmp_path / "e.svg").write_text(_edit((tmp_path / "t.svg").read_text(), how))
+    assert read_own_texture(ET.parse(tmp_path / "e.svg").getroot(), "e.svg") is None
+    orig, _ = read_texture(tmp_path / "t.svg", ex)
+    back, back_region = read_texture(tmp_path / "e.svg", ex)
+    assert back_region.shape.equals(region.shape)
+    shift = np.array([7.0, -3.0]) if how == "group" else np.zeros(2)
+    moved = Arrangement(orig.kind, orig.xy + shift, orig.angle, orig.scale)
+    box = shapely.box(0, 0, 120, 90)
+    kept = moved.take(shapely.intersects_xy(box, moved.xy[:, 0], moved.xy[:, 1]))
+    # motifs the group moved into the viewBox from outside it are read too; compare the others
+    back = back.take(shapely.intersects_xy(box, back.xy[:, 0] - shift[0], back.xy[:, 1] - shift[1]))
+    assert len(back) == len(kept) > 100
+    assert np.array_equal(back.kind, kept.kind)
+    assert np.allclose(back.xy, kept.xy, atol=1e-9)
+    assert np.allclose(np.cos(np.radians(back.angle - kept.angle)), 1.0, atol=1e-12)
+
+
+def test_every_table_row_is_a_score_field():
+    fields = {f.name for f in dataclasses.fields(Score)}
+    assert [key for key, _, _ in FIGURES if key not in fields] == []

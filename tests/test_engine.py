@@ -16,7 +16,7 @@ import pytest
 import shapely
 from conftest import arrange
 
-from svgtile import Region, analyze, read_exemplar
+from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.analysis.stats import in_arcs
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.cellrng import hash64, uniform
@@ -24,7 +24,6 @@ from svgtile.core.conflicts import Conflicts, cull, find_conflicts, slack
 from svgtile.core.footprint import world_footprints
 from svgtile.engines.patch.engine import PatchParams, grid
 from svgtile.errors import ParameterError
-from svgtile.metrics import figures as metrics
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
 SIZES = (400, 900)

@@ -380,7 +380,7 @@ def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused
     from conftest import arrange
 
     from svgtile.core.region import Region
-    from svgtile.metrics.figures import conflict_counts
+    from svgtile.metrics import conflict_counts
 
     files = sorted(FGDC.glob("*.svg"))
     assert len(files) == 116
@@ -397,8 +397,8 @@ def test_every_fgdc_lithology_tile_imports_and_synthesizes_cleanly_or_is_refused
         region = Region.rectangle(1.5 * w, 1.5 * h, x0, y0)
         arr = arrange("patch", ex, region, rng=np.random.default_rng(0), stats=stats)
         found = conflict_counts(arr, ex.prototypes, stats, np.ones(len(arr), dtype=bool))
-        if len(arr) == 0 or found["overlaps_total"] or found["violators_total"]:
-            problems.append((path.name, len(arr), found["overlaps_total"], found["violators_total"]))
+        if len(arr) == 0 or found.overlaps_total or found.violators_total:
+            problems.append((path.name, len(arr), found.overlaps_total, found.violators_total))
         accepted += 1
     assert not problems
     assert accepted >= 58  # 61 of 116 at the time of writing; a drop means a regression

@@ -3,7 +3,7 @@
 The patch engine at its defaults must have no overlaps and no distance-rule violators, a density
 ratio in [0.9, 1.1], a kind-mix TV of at most 0.05, at most a quarter of the repetition of the
 ``tile`` engine and at most half the structure distance (nearest-gap W1) of the ``random`` engine,
-all measured by :func:`svgtile.metrics.figures.score` on the interior.
+all measured by :func:`svgtile.metrics.score` on the interior.
 
 The bundled exemplars are drawn with a cartographer's structure (tools/make_exemplars.py: offset
 rows, nests, clumps, split fragments, bedding chains), which the ``random`` engine loses.  Patch
@@ -23,6 +23,7 @@ import pytest
 from svgtile import analyze, read_exemplar
 from svgtile.apps.compare import compare
 from svgtile.core.region import Region
+from svgtile.metrics import Score
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 NAMES = sorted(p.stem for p in EXEMPLARS.glob("*.svg"))
@@ -31,7 +32,7 @@ SEED = 1
 
 
 @cache
-def scores(name: str) -> dict[str, dict]:
+def scores(name: str) -> dict[str, Score]:
     """Engine name -> score of its texture of ``name`` on SIZE × SIZE with SEED."""
     ex = read_exemplar(EXEMPLARS / f"{name}.svg")
     results = compare(ex, analyze(ex), Region.rectangle(SIZE, SIZE), seed=SEED)
@@ -45,32 +46,32 @@ def test_every_exemplar_is_listed():
 @pytest.mark.parametrize("name", NAMES)
 def test_patch_has_no_overlaps_or_violators(name):
     s = scores(name)["patch"]
-    assert s["motifs"] > 1000
-    assert s["overlaps"] == s["violators"] == 0
-    assert s["overlaps_total"] == s["violators_total"] == 0
+    assert s.motifs > 1000
+    assert s.overlaps == s.violators == 0
+    assert s.overlaps_total == s.violators_total == 0
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_patch_density_is_within_ten_percent(name):
-    assert 0.9 <= scores(name)["patch"]["density_ratio"] <= 1.1
+    assert 0.9 <= scores(name)["patch"].density_ratio <= 1.1
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_patch_kind_mix_is_close(name):
-    assert scores(name)["patch"]["kind_mix_tv"] <= 0.05
+    assert scores(name)["patch"].kind_mix_tv <= 0.05
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_patch_repeats_a_quarter_of_tile_at_most(name):
     s = scores(name)
-    assert s["tile"]["repetition"] > 0.9  # the baseline repeats, or the comparison says nothing
-    assert s["patch"]["repetition"] <= 0.25 * s["tile"]["repetition"]
+    assert s["tile"].repetition > 0.9  # the baseline repeats, or the comparison says nothing
+    assert s["patch"].repetition <= 0.25 * s["tile"].repetition
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_patch_keeps_twice_the_structure_of_random(name):
     s = scores(name)
-    assert s["patch"]["gap_distance"] <= 0.5 * s["random"]["gap_distance"]
+    assert s["patch"].gap_distance <= 0.5 * s["random"].gap_distance
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -78,4 +79,4 @@ def test_patch_pair_correlation_is_closer_than_random(name):
     # the weaker structure check that holds everywhere: patch's pair correlation is nearer the
     # exemplar's than random's (measured ratios 0.39–0.71)
     s = scores(name)
-    assert s["patch"]["pair_correlation_distance"] < s["random"]["pair_correlation_distance"]
+    assert s["patch"].pair_correlation_distance < s["random"].pair_correlation_distance

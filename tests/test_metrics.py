@@ -1,4 +1,4 @@
-"""The likeness figures of svgtile/metrics.py on constructed textures with known answers.
+"""The likeness figures of svgtile/metrics/ on constructed textures with known answers.
 
 Exemplars are built here as ``<symbol>``/``<use>`` SVG text; textures are built from them by
 stamping the exemplar's motifs on a grid (a perfect tiling, whose answers follow from the
@@ -9,18 +9,21 @@ test.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 import shapely
 
-from svgtile import Region, analyze, read_exemplar
+from svgtile import Region, analyze, metrics, read_exemplar
+from svgtile.analysis.stats import nearest_gaps
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import world_footprints
-from svgtile.metrics import figures as metrics
+from svgtile.metrics import pattern
 from svgtile.svg.reader import parse_exemplar
 
 EXEMPLARS = sorted((Path(__file__).resolve().parents[1] / "exemplars").glob("*.svg"))
@@ -107,50 +110,56 @@ def test_a_perfect_tiling_scores_as_the_exemplar(grid16):
     ex, stats = grid16
     arr, region = stamp(ex, 10, 10)
     s = metrics.score(ex, stats, arr, region)
-    assert s["window"] == "interior"
-    assert s["motifs"] == 8 * 8 * len(ex.motifs)  # interior = the inner 8 × 8 copies
-    assert s["overlaps"] == s["overlaps_total"] == 0  # (seams may break the distance rule)
-    assert s["density_ratio"] == pytest.approx(1.0, rel=1e-9)
-    assert s["density_windows"] == 64
-    assert s["density_cv"] == pytest.approx(0.0, abs=1e-9)
-    assert s["density_min_ratio"] == pytest.approx(1.0, rel=1e-9)
-    assert s["kind_mix_tv"] == pytest.approx(0.0, abs=1e-12)
-    assert s["orientation_outside"] == 0.0
-    assert s["repetition"] > 0.95
+    assert s.window == "interior"
+    assert s.motifs == 8 * 8 * len(ex.motifs)  # interior = the inner 8 × 8 copies
+    assert s.overlaps == s.overlaps_total == 0  # (seams may break the distance rule)
+    assert s.density_ratio == pytest.approx(1.0, rel=1e-9)
+    assert s.density_windows == 64
+    assert s.density_cv == pytest.approx(0.0, abs=1e-9)
+    assert s.density_min_ratio == pytest.approx(1.0, rel=1e-9)
+    assert s.kind_mix_tv == pytest.approx(0.0, abs=1e-12)
+    assert s.orientation_outside == 0.0
+    assert s.repetition > 0.95
 
 
 def test_score_is_plain_json(grid16):
     ex, stats = grid16
     arr, region = stamp(ex, 6, 6)
     s = metrics.score(ex, stats, arr, region)
-    assert json.loads(json.dumps(s, allow_nan=False)) == s
-    documented = metrics.score.__doc__
-    for key in s:
-        assert f"``{key}``" in documented, f"{key} is not documented in score()"
+    plain = s.to_dict()
+    assert json.loads(json.dumps(plain, allow_nan=False)) == plain
+    assert list(plain) == [f.name for f in dataclasses.fields(metrics.Score)]
+    assert plain["kind_pairs"][0] == dataclasses.asdict(s.kind_pairs[0]) | {"kinds": list(s.kind_pairs[0].kinds),
+        "names": list(s.kind_pairs[0].names), "gap_samples": list(s.kind_pairs[0].gap_samples)}  # fmt: skip
+    documented = metrics.Score.__doc__
+    for field in dataclasses.fields(metrics.Score):
+        assert re.search(rf"^    {field.name} : \S", documented, re.M), f"{field.name} is not documented in Score"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.motifs = 0
 
 
 def test_a_region_without_interior_is_measured_whole(grid16):
     ex, stats = grid16
     arr, region = stamp(ex, 2, 2)  # 40 × 40: shrunk by 20 there is nothing left
     s = metrics.score(ex, stats, arr, region)
-    assert s["window"] == "region"
-    assert s["motifs"] == len(arr)
-    assert json.dumps(s, allow_nan=False)
+    assert s.window == "region"
+    assert s.motifs == len(arr)
+    assert json.dumps(s.to_dict(), allow_nan=False)
 
 
 def test_an_empty_texture_scores_without_failing(grid16):
     ex, stats = grid16
     region = Region.rectangle(100, 100)
     s = metrics.score(ex, stats, Arrangement.empty(), region)
-    assert s["motifs"] == 0
-    assert s["density_ratio"] == 0.0
-    assert s["kind_mix_tv"] == 1.0
-    assert s["orientation_outside"] is None
-    assert s["repetition"] is None
-    assert s["gap_distance"] is None
+    assert s.motifs == 0
+    assert s.density_ratio == 0.0
+    assert s.kind_mix_tv == 1.0
+    assert s.orientation_outside is None
+    assert s.repetition is None
+    assert s.gap_distance is None
     # the disc is bounded only by the region: its centre lies in the interior [20, 80]²
-    assert s["empty_disc_radius"] == pytest.approx(50.0, abs=0.1)
-    assert json.dumps(s, allow_nan=False)
+    assert s.empty_disc_radius == pytest.approx(50.0, abs=0.1)
+    assert json.dumps(s.to_dict(), allow_nan=False)
 
 
 def test_bundled_exemplar_smoke():
@@ -158,10 +167,10 @@ def test_bundled_exemplar_smoke():
     stats = analyze(ex)
     arr, region = stamp(ex, 6, 6)
     s = metrics.score(ex, stats, arr, region)
-    assert s["overlaps"] == 0
-    assert s["density_ratio"] == pytest.approx(1.0, rel=1e-6)
-    assert s["repetition"] > 0.95
-    assert json.dumps(s, allow_nan=False)
+    assert s.overlaps == 0
+    assert s.density_ratio == pytest.approx(1.0, rel=1e-6)
+    assert s.repetition > 0.95
+    assert json.dumps(s.to_dict(), allow_nan=False)
 
 
 # ----------------------------------------------------------------------------- conflicts
@@ -194,10 +203,10 @@ def test_two_overlapping_squares_are_one_overlap(squares, centre, gap, overlaps,
     xy = [(x, y), (x + 2 * half + gap, y), (30, 30), (70, 70), (30, 75)]  # three far from all
     arr = Arrangement(np.zeros(len(xy), np.int64), xy, np.zeros(len(xy)), np.ones(len(xy)))
     s = metrics.score(ex, stats, arr, Region.rectangle(100, 100))
-    assert s["overlaps"] == overlaps
-    assert s["violators"] == violators
-    assert s["overlaps_total"] == total
-    assert s["violator_fraction"] == pytest.approx(violators / s["motifs"])
+    assert s.overlaps == overlaps
+    assert s.violators == violators
+    assert s.overlaps_total == total
+    assert s.violator_fraction == pytest.approx(violators / s.motifs)
 
 
 def test_a_motif_with_two_close_neighbours_is_one_violator(squares):
@@ -207,7 +216,7 @@ def test_a_motif_with_two_close_neighbours_is_one_violator(squares):
     xy = [(40 + step * i, 50) for i in range(3)]
     arr = Arrangement(np.zeros(3, np.int64), xy, np.zeros(3), np.ones(3))
     s = metrics.score(ex, stats, arr, Region.rectangle(100, 100))
-    assert (s["overlaps"], s["violators"], s["violator_fraction"]) == (0, 3, 1.0)
+    assert (s.overlaps, s.violators, s.violator_fraction) == (0, 3, 1.0)
 
 
 # ----------------------------------------------------------------------------- density, kind mix, orientation
@@ -222,11 +231,11 @@ def test_a_denser_half_has_a_large_density_cv(grid16):
     arr = Arrangement.concat([base, more.take(left)])
     s = metrics.score(ex, stats, arr, region)
     # every 20 × 20 window holds one copy's worth of motifs, those left of x = 80 two
-    assert s["density_windows"] == 12
-    assert s["density_min_ratio"] == pytest.approx(1.0, rel=1e-9)
-    assert s["density_max_ratio"] == pytest.approx(2.0, rel=1e-9)
-    assert s["density_cv"] == pytest.approx(0.5 / 1.5, rel=1e-9)  # six windows at 1, six at 2
-    assert s["density_ratio"] == pytest.approx(1.5, rel=1e-9)
+    assert s.density_windows == 12
+    assert s.density_min_ratio == pytest.approx(1.0, rel=1e-9)
+    assert s.density_max_ratio == pytest.approx(2.0, rel=1e-9)
+    assert s.density_cv == pytest.approx(0.5 / 1.5, rel=1e-9)  # six windows at 1, six at 2
+    assert s.density_ratio == pytest.approx(1.5, rel=1e-9)
 
 
 def test_window_densities_skip_windows_outside_the_window(grid16):
@@ -244,7 +253,7 @@ def test_kind_mix_counts_a_missing_kind(grid16):
     arr, region = stamp(ex, 6, 6)
     bar = name_index(ex, "bar")
     s = metrics.score(ex, stats, arr.take(arr.kind != bar), region)
-    assert s["kind_mix_tv"] == pytest.approx(5 / 16)  # all of the bars' share is missing
+    assert s.kind_mix_tv == pytest.approx(5 / 16)  # all of the bars' share is missing
 
 
 def test_wrong_orientations_are_counted(grid16):
@@ -260,8 +269,8 @@ def test_wrong_orientations_are_counted(grid16):
     outer = np.flatnonzero(~inner & (arr.kind == bar))
     angle[outer] = -90.0
     s = metrics.score(ex, stats, arr.with_angle(angle), region)
-    assert s["orientation_outside"] == pytest.approx(len(turned) / inner.sum())
-    assert metrics.score(ex, stats, arr, region)["orientation_outside"] == 0.0
+    assert s.orientation_outside == pytest.approx(len(turned) / inner.sum())
+    assert metrics.score(ex, stats, arr, region).orientation_outside == 0.0
 
 
 # ----------------------------------------------------------------------------- structure
@@ -273,11 +282,11 @@ def test_a_translated_copy_has_no_structure_distance(grid36):
     moved = Arrangement(ex.motifs.kind, ex.motifs.xy + shift, ex.motifs.angle, ex.motifs.scale)
     window = shapely.transform(ex.region, lambda c: c + shift)
     found = metrics.structure(ex, stats, moved, window)
-    assert found["gap_distance"] == pytest.approx(0.0, abs=1e-9)
-    assert found["pair_correlation_distance"] == pytest.approx(0.0, abs=1e-9)
-    counted = [p for p in found["kind_pairs"] if p["gap_distance"] is not None]
+    assert found.gap_distance == pytest.approx(0.0, abs=1e-9)
+    assert found.pair_correlation_distance == pytest.approx(0.0, abs=1e-9)
+    counted = [p for p in found.kind_pairs if p.gap_distance is not None]
     assert len(counted) == 4  # every ordered pair of the two kinds has enough samples
-    assert any(p["pair_correlation_distance"] is not None for p in found["kind_pairs"])
+    assert any(p.pair_correlation_distance is not None for p in found.kind_pairs)
 
 
 def test_random_placement_loses_the_structure_a_tiling_keeps(grid36):
@@ -285,8 +294,8 @@ def test_random_placement_loses_the_structure_a_tiling_keeps(grid36):
     tiled, region = stamp(ex, 8, 8)
     tile = metrics.score(ex, stats, tiled, region)
     rand = metrics.score(ex, stats, scatter(stats, region, np.random.default_rng(4)), region)
-    assert tile["gap_distance"] < 0.5 * rand["gap_distance"]
-    assert tile["pair_correlation_distance"] < 0.5 * rand["pair_correlation_distance"]
+    assert tile.gap_distance < 0.5 * rand.gap_distance
+    assert tile.pair_correlation_distance < 0.5 * rand.pair_correlation_distance
 
 
 def test_tiled_pairs_keep_their_gaps_exactly():
@@ -296,9 +305,9 @@ def test_tiled_pairs_keep_their_gaps_exactly():
     ex = make_exemplar(uses)
     stats = analyze(ex)
     arr, region = stamp(ex, 8, 8)
-    assert metrics.score(ex, stats, arr, region)["gap_distance"] == pytest.approx(0.0, abs=1e-9)
+    assert metrics.score(ex, stats, arr, region).gap_distance == pytest.approx(0.0, abs=1e-9)
     rand = metrics.score(ex, stats, scatter(stats, region, np.random.default_rng(2)), region)
-    assert rand["gap_distance"] > 0.5
+    assert rand.gap_distance > 0.5
 
 
 @pytest.mark.parametrize(
@@ -329,10 +338,10 @@ def test_gap_noise_separates_a_tiling_from_a_sample(grid36):
     tiled, region = stamp(ex, 8, 8)
     tile = metrics.score(ex, stats, tiled, region)
     rand = metrics.score(ex, stats, scatter(stats, region, np.random.default_rng(4)), region)
-    assert tile["gap_noise"] > 0 and rand["gap_noise"] > 0
-    assert tile["gap_distance"] < tile["gap_noise"]
-    assert rand["gap_distance"] > 2 * rand["gap_noise"]
-    noise = [p["gap_noise"] for p in tile["kind_pairs"] if p["gap_distance"] is not None]
+    assert tile.gap_noise > 0 and rand.gap_noise > 0
+    assert tile.gap_distance < tile.gap_noise
+    assert rand.gap_distance > 2 * rand.gap_noise
+    noise = [p.gap_noise for p in tile.kind_pairs if p.gap_distance is not None]
     assert len(noise) == 4 and all(v is not None and v >= 0 for v in noise)
 
 
@@ -349,9 +358,9 @@ def test_nearest_gaps_match_brute_force(grid16):
     sources = np.arange(n)
     for k in range(3):
         expected = np.where(kind[None, :] == k, dist, np.inf).min(axis=1)
-        got = metrics.nearest_gaps(arr, ex.prototypes, sources, k)
+        got = nearest_gaps(arr, ex.prototypes, sources, k)
         assert got == pytest.approx(expected, abs=1e-9)
-    assert metrics.nearest_gaps(arr, ex.prototypes, np.array([0]), 2)[0] == np.inf
+    assert nearest_gaps(arr, ex.prototypes, np.array([0]), 2)[0] == np.inf
 
 
 def test_wasserstein_of_a_shift_is_the_shift():
@@ -392,9 +401,9 @@ def test_a_perfect_tiling_repeats(grid16):
     ex, stats = grid16
     arr, region = stamp(ex, 10, 10)
     rep = metrics.repetition(arr, ex, stats, metrics.interior(ex, region))
-    assert rep["repetition_raw"] == 1.0
-    assert rep["repetition"] == pytest.approx(1.0)
-    cells = np.array(rep["repetition_vector"]) / 20.0  # a period of the tiling
+    assert rep.repetition_raw == 1.0
+    assert rep.repetition == pytest.approx(1.0)
+    cells = np.array(rep.repetition_vector) / 20.0  # a period of the tiling
     assert np.abs(cells - np.round(cells)).max() < 1e-6
     assert np.abs(np.round(cells)).max() >= 1
 
@@ -404,7 +413,7 @@ def test_random_placement_does_not_repeat(grid16, seed):
     ex, stats = grid16
     region = Region.rectangle(200, 200)
     arr = scatter(stats, region, np.random.default_rng(seed))
-    assert metrics.repetition(arr, ex, stats, metrics.interior(ex, region))["repetition"] < 0.1
+    assert metrics.repetition(arr, ex, stats, metrics.interior(ex, region)).repetition < 0.1
 
 
 def test_repetition_at_random_is_chance_and_corrected_away():
@@ -416,11 +425,11 @@ def test_repetition_at_random_is_chance_and_corrected_away():
     arr = scatter(stats, region, np.random.default_rng(12))
     window = metrics.interior(ex, region)
     lam = shapely.contains_xy(window, arr.xy[:, 0], arr.xy[:, 1]).sum() / window.area
-    q = metrics.REPEAT_BIN / math.sqrt(stats.count_density)
+    q = pattern.REPEAT_BIN / math.sqrt(stats.count_density)
     chance = 1 - math.exp(-lam * 9 * q * q)
     rep = metrics.repetition(arr, ex, stats, window)
-    assert rep["repetition_raw"] == pytest.approx(chance, abs=0.025)
-    assert rep["repetition"] < 0.03
+    assert rep.repetition_raw == pytest.approx(chance, abs=0.025)
+    assert rep.repetition < 0.03
 
 
 def test_repetition_is_graded(grid16):
@@ -434,22 +443,22 @@ def test_repetition_is_graded(grid16):
     xy = arr.xy.copy()
     xy[moved] += rng.uniform(5, 15, moved.sum())[:, None] * np.stack([np.cos(turn), np.sin(turn)], axis=1)
     rep = metrics.repetition(Arrangement(arr.kind, xy, arr.angle, arr.scale), ex, stats, metrics.interior(ex, region))
-    assert rep["repetition"] == pytest.approx(0.49, abs=0.06)
+    assert rep.repetition == pytest.approx(0.49, abs=0.06)
 
 
 def test_figures_do_not_depend_on_motif_order(grid36, monkeypatch):
     ex, stats = grid36
     for name in ("GAP_SAMPLES", "PAIR_SAMPLES", "REPEAT_SAMPLES"):
-        monkeypatch.setattr(metrics, name, 200)  # so that the texture is sampled
+        monkeypatch.setattr(pattern, name, 200)  # so that the texture is sampled
     arr, region = stamp(ex, 6, 6)
     rng = np.random.default_rng(9)
     arr = Arrangement(arr.kind, arr.xy + rng.normal(0, 0.3, arr.xy.shape), arr.angle, arr.scale)
     a = metrics.score(ex, stats, arr, region)
     b = metrics.score(ex, stats, arr.take(rng.permutation(len(arr))), region)
     for key in ("gap_distance", "repetition", "repetition_raw", "overlaps", "density_cv", "coverage"):
-        assert a[key] == pytest.approx(b[key], rel=1e-9, abs=1e-12), key
-    assert a["pair_correlation_distance"] is not None
-    assert a["pair_correlation_distance"] == pytest.approx(b["pair_correlation_distance"], rel=1e-6)
+        assert getattr(a, key) == pytest.approx(getattr(b, key), rel=1e-9, abs=1e-12), key
+    assert a.pair_correlation_distance is not None
+    assert a.pair_correlation_distance == pytest.approx(b.pair_correlation_distance, rel=1e-6)
 
 
 # ----------------------------------------------------------------------------- coverage
@@ -463,10 +472,10 @@ def test_a_big_hole_has_coverage_far_above_one(grid16):
     keep = np.hypot(*(arr.xy - centre).T) > hole + reach  # no footprint reaches into the disc
     full = metrics.score(ex, stats, arr, region)
     holed = metrics.score(ex, stats, arr.take(keep), region)
-    assert hole * 0.99 <= holed["empty_disc_radius"] <= hole + reach + 5.0
-    assert holed["coverage"] > 5
-    assert holed["coverage"] > 5 * full["coverage"]
-    assert full["coverage"] < 2
+    assert hole * 0.99 <= holed.empty_disc_radius <= hole + reach + 5.0
+    assert holed.coverage > 5
+    assert holed.coverage > 5 * full.coverage
+    assert full.coverage < 2
 
 
 @pytest.mark.parametrize(

@@ -13,11 +13,13 @@ Usage:  python tools/likeness_table.py [NAME ...] [--size 1000] [--seed 1] [--di
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
 
 from svgtile import analyze, read_exemplar
 from svgtile.apps.compare import compare
 from svgtile.core.region import Region
+from svgtile.metrics import Score
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAD = (
@@ -36,15 +38,16 @@ def row(name: str, size: float, seed: int, folder: Path = ROOT / "exemplars") ->
     }
     p, t, r = s["patch"], s["tile"], s["random"]
 
-    def three(key: str, spec: str) -> str:
-        return " · ".join(format(e[key], spec) for e in (p, t, r))
+    def three(figure: Callable[[Score], float], spec: str) -> str:
+        return " · ".join(format(figure(e), spec) for e in (p, t, r))
 
-    ratio = p["gap_distance"] / r["gap_distance"]
+    ratio = p.gap_distance / r.gap_distance
     mark = "" if ratio <= 0.5 else " ✗"
     return (
-        f"| {name} | {p['overlaps']} / {p['violators']} | {p['density_ratio']:.3f} | {p['kind_mix_tv']:.3f} "
-        f"| {three('repetition', '.2f')} | {three('gap_distance', '.3f')} | {p['gap_noise']:.3f} "
-        f"| {ratio:.2f}{mark} | {three('pair_correlation_distance', '.3f')} | {three('coverage', '.2f')} |"
+        f"| {name} | {p.overlaps} / {p.violators} | {p.density_ratio:.3f} | {p.kind_mix_tv:.3f} "
+        f"| {three(lambda e: e.repetition, '.2f')} | {three(lambda e: e.gap_distance, '.3f')} | {p.gap_noise:.3f} "
+        f"| {ratio:.2f}{mark} | {three(lambda e: e.pair_correlation_distance, '.3f')} "
+        f"| {three(lambda e: e.coverage, '.2f')} |"
     )
 
 

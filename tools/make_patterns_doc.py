@@ -2,7 +2,7 @@
 
 For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), then a texture of
 3 × 3 tile sizes synthesized with the patch engine (seed 1) and its figures from
-:func:`svgtile.metrics.figures.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+:func:`svgtile.metrics.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
 (the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
 
 Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
@@ -16,10 +16,11 @@ import io
 from pathlib import Path
 
 from svgtile import Region, analyze
-from svgtile.apps.swatches import collect, read_names, render_png, swatch_sheet
+from svgtile.apps.preview import render_png
+from svgtile.apps.swatches import collect, read_names, swatch_sheet
 from svgtile.engines import synthesize
 from svgtile.errors import SvgtileError
-from svgtile.metrics.figures import score
+from svgtile.metrics import score
 from svgtile.svg.reader import parse_exemplar
 from svgtile.tiles.importer import import_tile
 
@@ -51,8 +52,8 @@ def row(path: Path, names: dict[str, str]) -> dict:
     figures = score(ex, stats, arr, region)
     out.update(
         motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
-        overlaps=figures["overlaps_total"], violators=figures["violators_total"],
-        density=figures["density_ratio"], kind_mix=figures["kind_mix_tv"], coverage=figures["coverage"],
+        overlaps=figures.overlaps_total, violators=figures.violators_total,
+        density=figures.density_ratio, kind_mix=figures.kind_mix_tv, coverage=figures.coverage,
         exemplar_overlaps=stats.overlaps,
     )  # fmt: skip
     return out

@@ -1,7 +1,7 @@
 """Engines side by side: synthesize with each, score each, one table (issue 3, ``svgtile compare``).
 
 :func:`compare` runs the engines on one region with one seed and scores every texture with
-:func:`svgtile.metrics.figures.score`; :func:`format_table` prints engines as columns and figures as
+:func:`svgtile.metrics.score`; :func:`format_table` prints engines as columns and figures as
 rows; :func:`format_score` prints one texture's figures (``svgtile score``).
 """
 
@@ -17,9 +17,9 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
 from svgtile.engines import ENGINES, synthesize
 from svgtile.errors import ParameterError
-from svgtile.metrics import figures as metrics
+from svgtile.metrics import Score, score
 
-#: The rows of the tables: (key in the score, label, number format).
+#: The rows of the tables: (field of :class:`~svgtile.metrics.Score`, label, number format).
 FIGURES: tuple[tuple[str, str, str], ...] = (
     ("motifs", "motifs in the interior", "d"),
     ("overlaps", "overlapping pairs", "d"),
@@ -44,7 +44,7 @@ class Result:
 
     engine: str
     arrangement: Arrangement
-    score: dict
+    score: Score
 
 
 def compare(
@@ -80,7 +80,7 @@ def compare(
         own = {p.name for p in ENGINES[name].Params.public()}
         arr = synthesize(exemplar, region, name, seed=seed, stats=stats, boundary=boundary,
                          params={k: v for k, v in params.items() if k in own}).arrangement  # fmt: skip
-        out.append(Result(name, arr, metrics.score(exemplar, stats, arr, region)))
+        out.append(Result(name, arr, score(exemplar, stats, arr, region)))
     return out
 
 
@@ -96,7 +96,7 @@ def format_table(results: Sequence[Result]) -> str:
     width = max(9, *(len(r.engine) for r in results))
     lines = [f"{'figure':<{label}}  " + "  ".join(f"{r.engine:>{width}}" for r in results)]
     for key, lab, spec in FIGURES:
-        lines.append(f"{lab:<{label}}  " + "  ".join(f"{_cell(r.score.get(key), spec):>{width}}" for r in results))
+        lines.append(f"{lab:<{label}}  " + "  ".join(f"{_cell(getattr(r.score, key), spec):>{width}}" for r in results))
     return "\n".join(lines)
 
 
@@ -104,21 +104,21 @@ def format_markdown(results: Sequence[Result]) -> str:
     """:func:`format_table` as a Markdown table."""
     lines = ["| figure | " + " | ".join(r.engine for r in results) + " |", "|---" * (len(results) + 1) + "|"]
     for key, lab, spec in FIGURES:
-        lines.append(f"| {lab} | " + " | ".join(_cell(r.score.get(key), spec) for r in results) + " |")
+        lines.append(f"| {lab} | " + " | ".join(_cell(getattr(r.score, key), spec) for r in results) + " |")
     return "\n".join(lines)
 
 
-def format_score(score: dict) -> str:
+def format_score(score: Score) -> str:
     """One texture's figures, then its structure per kind pair, as plain text."""
     label = max(len(lab) for _, lab, _ in FIGURES)
-    lines = [f"measured on the {score['window']} ({score['window_area']:.6g} square units, "
-             f"mean spacing s = {_cell(score['spacing'], '.4g')})"]  # fmt: skip
-    lines += [f"{lab:<{label}}  {_cell(score.get(key), spec):>9}" for key, lab, spec in FIGURES]
-    pairs = [p for p in score.get("kind_pairs", []) if p["gap_distance"] is not None or p["pair_correlation_distance"] is not None]
+    lines = [f"measured on the {score.window} ({score.window_area:.6g} square units, "
+             f"mean spacing s = {_cell(score.spacing, '.4g')})"]  # fmt: skip
+    lines += [f"{lab:<{label}}  {_cell(getattr(score, key), spec):>9}" for key, lab, spec in FIGURES]
+    pairs = [p for p in score.kind_pairs if p.gap_distance is not None or p.pair_correlation_distance is not None]
     if pairs:
         lines += ["", "structure per kind pair (gap W1, its sampling noise, pair correlation):"]
         for p in pairs:
-            names = " → ".join(p["names"])
-            gap, pc = _cell(p["gap_distance"], ".3f"), _cell(p["pair_correlation_distance"], ".3f")
-            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {_cell(p.get('gap_noise'), '.3f'):>9}  {pc:>9}")
+            names = " → ".join(p.names)
+            gap, pc = _cell(p.gap_distance, ".3f"), _cell(p.pair_correlation_distance, ".3f")
+            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {_cell(p.gap_noise, '.3f'):>9}  {pc:>9}")
     return "\n".join(lines)

@@ -47,7 +47,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}", "seed": seed,
-               "engines": {r.engine: r.score for r in results}}  # fmt: skip
+               "engines": {r.engine: r.score.to_dict() for r in results}}  # fmt: skip
         click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(exemplar).name} on {fmt(width)} x {fmt(height)}, seed {seed}")

@@ -1,4 +1,4 @@
-"""``svgtile score``: how well a texture reproduces its exemplar (figures of :mod:`svgtile.metrics.figures`)."""
+"""``svgtile score``: how well a texture reproduces its exemplar (figures of :mod:`svgtile.metrics`)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import click
 
 from svgtile.apps.compare import format_score
 from svgtile.cli.common import json_safe, load
-from svgtile.metrics import figures as metrics
+from svgtile.metrics import score as measure
 from svgtile.svg.texture import read_texture
 
 
@@ -26,10 +26,10 @@ def score(exemplar, texture, as_json):
     """
     ex, stats = load(exemplar)
     arr, region = read_texture(texture, ex)
-    result = metrics.score(ex, stats, arr, region)
-    result = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result}
+    result = measure(ex, stats, arr, region)
     if as_json:
-        click.echo(json.dumps(json_safe(result), indent=2, allow_nan=False))
+        out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
+        click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs")
         click.echo(format_score(result))

@@ -1,1 +1,55 @@
-"""Likeness figures of a texture against its exemplar."""
+"""Likeness figures: how well a texture reproduces its exemplar.
+
+:func:`score` measures them all and returns a :class:`Score`, one typed field per figure (its
+unit and which way is good in the class docstring; :meth:`Score.to_dict` is the JSON of
+``svgtile score --json``).  The figures, by what they measure:
+
+* :mod:`~svgtile.metrics.window` — where and at what scale: the interior, the mean spacing,
+  the sample of a large texture;
+* :mod:`~svgtile.metrics.rules` — overlaps, distance-rule violators, orientation arcs;
+* :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
+* :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation, repetition;
+* :mod:`~svgtile.metrics.coverage` — the largest empty disc;
+* :mod:`~svgtile.metrics.scoring` — :class:`Score` and :func:`score`.
+"""
+
+from __future__ import annotations
+
+from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
+from svgtile.metrics.coverage import largest_empty_disc
+from svgtile.metrics.pattern import (
+    KindPair,
+    Repetition,
+    Structure,
+    pair_correlation,
+    repetition,
+    sampling_noise,
+    structure,
+    wasserstein,
+)
+from svgtile.metrics.rules import Conflicts, conflict_counts, orientation_outside
+from svgtile.metrics.scoring import Score, score
+from svgtile.metrics.window import interior, motif_sample, spacing
+
+__all__ = [
+    "Conflicts",
+    "KindPair",
+    "Repetition",
+    "Score",
+    "Structure",
+    "conflict_counts",
+    "density",
+    "interior",
+    "kind_mix_tv",
+    "largest_empty_disc",
+    "motif_sample",
+    "orientation_outside",
+    "pair_correlation",
+    "repetition",
+    "sampling_noise",
+    "score",
+    "spacing",
+    "structure",
+    "wasserstein",
+    "window_densities",
+]

@@ -8,10 +8,19 @@ the texture's and the exemplar's differ in general; :func:`read_texture` renumbe
 
 The output region is the clip path the texture's motif group is clipped to (``--boundary
 clip``, map regions with holes included), else the texture's viewBox.
+
+A texture in svgtile's own form (:func:`svgtile.svg.writer.svg_document`: one ``<g id="svgtile…">``
+of ``<use>`` elements whose ``transform`` is ``translate(x y) [rotate(a)] [scale(s)] [kind
+suffix]``) is read in bulk (:func:`read_own_texture`): the exemplar reader sees one ``<use>`` per
+distinct ``href``, attributes and suffix, and the transforms of all motifs are composed and split
+with numpy exactly as the reader would compose and split each one, so the Arrangement is the
+same bit for bit.  Anything else (a hand-edited file: a ``matrix()`` transform, a nested group, a
+moved element) is read by the exemplar reader, motif by motif.
 """
 
 from __future__ import annotations
 
+import math
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -23,8 +32,8 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.errors import ExemplarError, RegionError
-from svgtile.svg.dialect import SVG_NS
-from svgtile.svg.reader import read_exemplar
+from svgtile.svg.dialect import SVG_NS, XLINK_NS, drawable_children
+from svgtile.svg.reader import DocumentReader, read_exemplar
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
@@ -55,30 +64,216 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
     RegionError
         The clip path has no area.
     """
-    texture = read_exemplar(path)
+    root = None
+    try:
+        root = ET.fromstring(Path(path).read_bytes())
+    except (ET.ParseError, ValueError, LookupError, OSError):
+        pass  # the exemplar reader reports it
+    own = read_own_texture(root, str(path)) if root is not None else None
+    if own is not None:
+        kinds, motifs, region = own
+    else:
+        texture = read_exemplar(path)
+        kinds, motifs, region = texture.kinds, texture.motifs, texture.region
+    mapping = _kind_mapping(kinds, exemplar, str(path))
+    arr = Arrangement(mapping[motifs.kind], motifs.xy, motifs.angle, motifs.scale)
+    clip = _clip_region(root, str(path)) if root is not None else None
+    return arr, clip if clip is not None else Region(region)
+
+
+def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> np.ndarray:
+    """(t,) int array: the exemplar's index of each of the texture's kinds."""
     index = {kind_key(k): i for i, k in enumerate(exemplar.kinds)}
-    mapping = np.empty(len(texture.kinds), dtype=np.int64)
-    for t, kind in enumerate(texture.kinds):
+    mapping = np.empty(len(kinds), dtype=np.int64)
+    for t, kind in enumerate(kinds):
         found = index.get(kind_key(kind))
         if found is None:
             raise ExemplarError(
                 f"motif kind {kind.name!r} is not in the exemplar {exemplar.source} "
                 "(was the texture made from another exemplar?)",
-                source=str(path),
+                source=source,
             )
         mapping[t] = found
-    m = texture.motifs
-    arr = Arrangement(mapping[m.kind], m.xy, m.angle, m.scale)
-    clip = _clip_region(Path(path), texture.source)
-    return arr, clip if clip is not None else Region(texture.region)
+    return mapping
 
 
-def _clip_region(path: Path, source: str) -> Region | None:
-    """The region of the clip path on svgtile's motif group, or None if it is not clipped."""
-    try:
-        root = ET.parse(path).getroot()
-    except (ET.ParseError, OSError):  # read_exemplar has already read it: not reached in practice
+# ----------------------------------------------------------------------------- svgtile's own form
+
+_USE = f"{{{SVG_NS}}}use"
+_HREF = f"{{{XLINK_NS}}}href"
+#: A number as :func:`svgtile.svg.writer.fmt_array` writes it (no exponent, no leading ``+``).
+_FIXED = r"-?\d+(?:\.\d+)?"
+#: One motif's transform per line: x, y, angle, scale, the kind's suffix (with its leading space).
+_OWN_TRANSFORM = re.compile(
+    rf"^translate\(({_FIXED}) ({_FIXED})\)(?: rotate\(({_FIXED})\))?(?: scale\(({_FIXED})\))?"
+    rf"((?: translate\({_FIXED} {_FIXED}\))?(?: matrix\({_FIXED} {_FIXED} {_FIXED} {_FIXED} 0 0\))?)$",
+    re.M,
+)
+_SUFFIX_PART = re.compile(rf"(translate|matrix)\(((?:{_FIXED} ?)+)\)")
+
+
+def read_own_texture(root: ET.Element, source: str) -> tuple[tuple[Kind, ...], Arrangement, shapely.Geometry] | None:
+    """Kinds, motifs and input region of a texture in svgtile's own form, read in bulk.
+
+    What :func:`svgtile.svg.reader.parse_exemplar` gives for the same document — the same kinds,
+    and motifs equal bit for bit in the same order — or None if the document is not in the form
+    :func:`svgtile.svg.writer.svg_document` writes (then read it with the exemplar reader).
+
+    The exemplar reader composes each ``<use>``'s transform with svgelements (one ``Matrix`` per
+    operation) and splits it into position, rotation and scale (``DocumentReader._use_kind``).
+    Here every operation is applied to all motifs at once with the same floating-point operations
+    in the same order (:func:`_pre_cat`), the determinant and the matrix products are numpy's
+    batched versions of the reader's, and ``cos``/``sin``/``atan2`` are the C library's, as
+    svgelements and the reader call them (numpy's own may differ in the last bit on some CPUs).
+    Kinds are found by the exemplar reader itself, on a copy of the document holding only the
+    first ``<use>`` of each distinct ``href``, attributes and suffix.
+
+    Parameters
+    ----------
+    root : the parsed document
+    source : its name, for messages
+
+    Returns
+    -------
+    kinds : the texture's kinds, in order of first appearance
+    motifs : Arrangement of the n motifs whose centroid lies in the input region, ``kind``
+        indexing ``kinds``; ``xy`` (n, 2) user units, ``angle`` (n,) degrees, ``scale`` (n,)
+    region : the input region (the root viewBox), user units
+    """
+    if root.tag != f"{{{SVG_NS}}}svg" or not set(root.attrib) <= {"width", "height", "viewBox"}:
         return None
+    if "viewBox" not in root.attrib or root.find(".//*[@id='region']") is not None:
+        return None
+    drawn = drawable_children(root)
+    if len(drawn) != 1:
+        return None
+    group = drawn[0]
+    if group.tag != f"{{{SVG_NS}}}g" or not (group.get("id") or "").startswith("svgtile"):
+        return None
+    if not set(group.attrib) <= {"id", "clip-path"} or len(group) == 0:
+        return None
+    uses = list(group)
+    rows = [(u.tag, len(u), *u.attrib.items()) for u in uses]
+    if any(r[0] != _USE or r[1] or len(r) < 4 or r[-1][0] != "transform" or r[2][0] != _HREF for r in rows):
+        return None
+    transforms = [r[-1][1] for r in rows]
+    text = "\n".join(transforms)
+    parsed = _OWN_TRANSFORM.findall(text)
+    if len(parsed) != len(uses) or text.count("\n") != len(uses) - 1:
+        return None
+    heads: dict[tuple, int] = {}
+    head = np.array([heads.setdefault(r[2:-1], len(heads)) for r in rows], dtype=np.int64)
+    if any(k in ("x", "y", "transform") for h in heads for k, _ in h):
+        return None
+    xs, ys, angles, scales, suffix_text = zip(*parsed, strict=True)
+    suffixes: dict[str, int] = {}
+    suffix = np.array([suffixes.setdefault(t, len(suffixes)) for t in suffix_text], dtype=np.int64)
+    groups, first, member = np.unique(head * len(suffixes) + suffix, return_index=True, return_inverse=True)
+    order = np.argsort(first, kind="stable")
+    first = first[order]
+    kind_of_group = np.empty(len(groups), dtype=np.int64)
+    kind_of_group[order] = np.arange(len(groups))
+    motif_kind = kind_of_group[member.ravel()]
+
+    # the kinds, from the exemplar reader on one <use> per group (in order of first appearance),
+    # without the viewBox: those first motifs may all lie outside it (clip keeps cut motifs)
+    mini = ET.Element(root.tag)
+    mini.extend(c for c in root if c is not group)
+    mini_group = ET.SubElement(mini, group.tag, group.attrib)
+    mini_group.extend(uses[i] for i in first.tolist())
+    try:
+        sample = DocumentReader(mini, source).read()
+        # the input region as the reader finds it in the root alone (its viewBox)
+        region = DocumentReader(ET.Element(root.tag, root.attrib), source)._region(Arrangement.empty(), [])
+    except (ExemplarError, RecursionError):
+        return None  # the exemplar reader will say what is wrong with the whole file
+    if len(sample.kinds) != len(groups) or len(sample.motifs) != len(groups):
+        return None  # two groups are one kind, or one draws nothing: leave it to the reader
+
+    m = _compose(np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64), angles, scales)
+    for text_, s in suffixes.items():
+        at = np.flatnonzero(suffix == s)
+        for op, values in _SUFFIX_PART.findall(text_):
+            v = [float(t) for t in values.split()]
+            part = m[:, at]
+            m[:, at] = _pre_cat(part, (1.0, 0.0, 0.0, 1.0, v[0], v[1]) if op == "translate" else tuple(v))
+    return _split(m, motif_kind, sample.kinds, region)
+
+
+def _pre_cat(s: np.ndarray, m: tuple) -> np.ndarray:
+    """``Matrix.pre_cat`` of svgelements for many matrices: ``s · m`` as its six sums compute it.
+
+    ``s`` : (6, n) float array, the matrices ``(a, b, c, d, e, f)``; ``m`` : six floats or (n,)
+    arrays.  The ``· 0`` and ``· 1`` terms are kept, as they can change the sign of a zero.
+    """
+    sa, sb, sc, sd, se, sf = s
+    ma, mb, mc, md, me, mf = m
+    return np.stack([
+        sa * ma + sc * mb + se * 0.0,
+        sb * ma + sd * mb + sf * 0.0,
+        sa * mc + sc * md + se * 0.0,
+        sb * mc + sd * md + sf * 0.0,
+        sa * me + sc * mf + se,
+        sb * me + sd * mf + sf,
+    ])  # fmt: skip
+
+
+def _compose(x: np.ndarray, y: np.ndarray, angles: tuple[str, ...], scales: tuple[str, ...]) -> np.ndarray:
+    """(6, n) matrices of ``translate(x y) [rotate(a)] [scale(s)]``, as svgelements parses them."""
+    n = len(x)
+    one, zero = np.ones(n), np.zeros(n)
+    m = _pre_cat(np.stack([one, zero, zero, one, zero, zero]), (1.0, 0.0, 0.0, 1.0, x, y))
+    turned = np.flatnonzero(np.array([a != "" for a in angles]))
+    if len(turned):
+        a = np.array([angles[i] for i in turned.tolist()], dtype=np.float64)
+        theta = math.tau * a / 360.0  # svgelements Angle.degrees
+        ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
+        st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
+        m[:, turned] = _pre_cat(m[:, turned], (ct, st, -st, ct, 0.0, 0.0))
+    scaled = np.flatnonzero(np.array([s != "" for s in scales]))
+    if len(scaled):
+        s = np.array([scales[i] for i in scaled.tolist()], dtype=np.float64)
+        m[:, scaled] = _pre_cat(m[:, scaled], (s, 0.0, 0.0, s, 0.0, 0.0))
+    return m
+
+
+def _split(
+    m6: np.ndarray, kind: np.ndarray, kinds: tuple[Kind, ...], region: shapely.Geometry
+) -> tuple[tuple[Kind, ...], Arrangement, shapely.Geometry] | None:
+    """Position, rotation and scale of each motif, as ``DocumentReader._use_kind`` splits them.
+
+    ``m6`` : (6, n) svgelements matrices; ``kind`` : (n,) index into ``kinds``; ``region`` : the
+    input region, which keeps the motifs whose centroid it holds (boundary included).
+    """
+    n = m6.shape[1]
+    a, b, c, d, e, f = m6
+    mat = np.zeros((n, 3, 3))
+    mat[:, 0], mat[:, 1], mat[:, 2, 2] = np.stack([a, c, e], 1), np.stack([b, d, f], 1), 1.0
+    # the reader's walk: identity (root, group) @ transform @ translation(x = 0, y = 0)
+    mat = np.eye(3) @ mat @ np.eye(3)
+    lin = mat[:, :2, :2]
+    det = np.linalg.det(lin)
+    keep = ~(np.abs(det) < 1e-12)  # the reader drops a <use> scaled to nothing
+    if not keep.all():
+        mat, lin, det, kind = mat[keep], lin[keep], det[keep], kind[keep]
+    scale = np.sqrt(np.abs(det))
+    angle = np.fromiter(map(math.degrees, map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist())),
+                        np.float64, len(det))  # fmt: skip
+    turn = np.fromiter(map(math.radians, angle.tolist()), np.float64, len(angle))
+    cos = np.fromiter(map(math.cos, turn.tolist()), np.float64, len(turn))
+    sin = np.fromiter(map(math.sin, turn.tolist()), np.float64, len(turn))
+    rot = np.stack([np.stack([cos, -sin], 1), np.stack([sin, cos], 1)], 1)
+    offset = np.array([k.offset for k in kinds]).reshape(-1, 2)[kind]
+    xy = mat[:, :2, 2] + ((scale[:, None, None] * rot) @ (-offset)[:, :, None])[:, :, 0]
+    inside = shapely.intersects_xy(region, xy[:, 0], xy[:, 1])
+    if not inside.any():
+        return None  # the reader's error
+    arr = Arrangement(kind, xy, angle, scale)
+    return kinds, arr if inside.all() else arr.take(inside), region
+
+
+def _clip_region(root: ET.Element, source: str) -> Region | None:
+    """The region of the clip path on svgtile's motif group, or None if it is not clipped."""
     ids = {el.get("id"): el for el in root.iter() if el.get("id")}
     # the motif group is the root's last <g>, "svgtile" or, should the exemplar's defs use that
     # id, "svgtile-2" …

@@ -13,7 +13,7 @@ Start from a Tiling of the exemplar and remove the order that betrays it:
 
 The structure of the texture is the exemplar's inside each copy and is made where copies meet
 and where discs are pasted.  Three choices keep those junctions like the exemplar (issue 3,
-measured by the nearest-gap distance of :func:`svgtile.metrics.figures.structure`; README, "Likeness"):
+measured by the nearest-gap distance of :func:`svgtile.metrics.structure`; README, "Likeness"):
 
 * the *junction rule* (:func:`svgtile.analysis.stats.junction_distance`): motifs of different copies,
   and pasted motifs and the texture, keep the q-quantile of the exemplar's nearest gaps rather

@@ -1,0 +1,172 @@
+"""Coverage: the largest hole of a texture, against the exemplar's.
+
+A texture may keep the density ρ on average and still leave holes (almeraj2013 §3.4 fills them
+window by window); the largest disc that meets no footprint finds the worst one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.ndimage import distance_transform_edt
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import nearest_distances
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.footprint import Prototype, motif_radius, world_footprints
+
+#: Largest empty disc: the first grid of candidate centres has this many mean spacings …
+COVER_STEP = 0.25
+#: … and is refined this many times, 4× finer each time …
+COVER_LEVELS = 2
+#: … around at most this many of the best centres.
+COVER_KEEP = 2048
+#: At most this many centres of the first grid are measured exactly (see largest_empty_disc).
+COVER_EXACT = 16_384
+
+
+def largest_empty_disc(
+    arr: Arrangement, protos: list[Prototype], centres: shapely.Geometry, within: shapely.Geometry,
+    *, step: float | None = None, geoms: np.ndarray | None = None,
+) -> tuple[float, np.ndarray]:  # fmt: skip
+    """The largest disc centred in ``centres``, inside ``within``, that meets no footprint.
+
+    The clearance of a point p is ``c(p) = min(dist(p, footprints), dist(p, ∂within))``; the
+    radius returned is ``max c`` over a grid of candidate centres in ``centres`` of ``step``,
+    refined :data:`COVER_LEVELS` times by a grid 4× finer (``±step/2`` about a point) around the
+    :data:`COVER_KEEP` best points within ``step/√2`` of the best.  ``c`` is 1-Lipschitz, so the
+    radius is a lower bound within ``step / 4**COVER_LEVELS / √2`` of the true one, unless more
+    than :data:`COVER_KEEP` points compete for the best.
+
+    Exact GEOS distances (:func:`~svgtile.analysis.stats.nearest_distances`) are taken on few points of
+    the first grid: a distance transform of a raster of pixel ``step`` (pixels holding a point of
+    a footprint's outline, or outside ``within``, are features;
+    :func:`scipy.ndimage.distance_transform_edt`) gives each grid point an estimate
+    ``e ≥ c − step/√2``; points are measured exactly in decreasing order of
+    ``e`` until no point left can be within ``step/√2`` of the best clearance found, or
+    :data:`COVER_EXACT` points were measured (a texture as regular as a tiling has as many
+    holes as large as the largest: one of them is enough).
+
+    Parameters
+    ----------
+    arr : the motifs
+    protos : kind prototypes
+    centres : shapely geometry where a centre may lie
+    within : shapely geometry the disc must lie in (contains ``centres``)
+    step : first grid step, user units (default: a 40th of the larger side of ``centres``)
+    geoms : world footprints of ``arr``, if built
+
+    Returns
+    -------
+    radius : float, user units (0 if ``centres`` is empty)
+    centre : (2,) float array
+    """
+    if centres.is_empty:
+        return 0.0, np.full(2, np.nan)
+    x0, y0, x1, y1 = centres.bounds
+    size = max(x1 - x0, y1 - y0)
+    if step is None or not (step > 0 and math.isfinite(step)):
+        step = size / 40
+    step = max(step, size / 2000)  # at most ~4M pixels
+    edge = within.boundary
+    if len(arr):
+        if geoms is None:
+            geoms = world_footprints(arr, protos)
+        tree = cKDTree(arr.xy)
+        radius = motif_radius(arr, protos)
+
+    def clearance(p: np.ndarray) -> np.ndarray:
+        pts = shapely.points(p)
+        c = shapely.distance(edge, pts)
+        if len(arr):
+            c = np.minimum(c, nearest_distances(p, np.zeros(len(p)), pts, tree, radius, geoms))
+        return c
+
+    p, e = _raster_clearance(arr, protos, centres, within, step)
+    if len(p) == 0:
+        p = np.array(shapely.get_coordinates(shapely.point_on_surface(centres)))
+        e = np.full(1, np.inf)
+    order = np.argsort(-e, kind="stable")
+    p, e = p[order], e[order]
+    c = np.full(len(p), -np.inf)
+    done, batch = 0, 256
+    while done < min(len(p), COVER_EXACT) and (done == 0 or e[done] >= c[:done].max() - math.sqrt(2) * step):
+        end = min(done + batch, len(p), COVER_EXACT)
+        c[done:end] = clearance(p[done:end])
+        done, batch = end, 2 * batch
+    p, c = p[:done], c[:done]
+    fine = np.arange(-2, 3) / 4
+    for _ in range(COVER_LEVELS):
+        good = np.flatnonzero(c >= c.max() - step / math.sqrt(2))
+        good = good[np.argsort(-c[good], kind="stable")[:COVER_KEEP]]
+        ox, oy = np.meshgrid(fine * step, fine * step)
+        q = (p[good, None, :] + np.stack([ox.ravel(), oy.ravel()], axis=1)[None]).reshape(-1, 2)
+        q = q[shapely.contains_xy(centres, q[:, 0], q[:, 1])]
+        p, c = np.concatenate([p[good], q]), np.concatenate([c[good], clearance(q)])
+        step /= 4
+    best = int(np.argmax(c))
+    return float(max(c[best], 0.0)), p[best].copy()
+
+
+#: Most outline points :func:`_raster_clearance` holds in memory at once.
+_OUTLINE_CHUNK = 1 << 22
+
+
+def _raster_clearance(
+    arr: Arrangement, protos: list[Prototype], centres: shapely.Geometry, within: shapely.Geometry, step: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Pixel centres in ``centres`` of a raster of pixel ``step``, and a clearance estimate of each.
+
+    Features are the pixels holding a point of a footprint outline (outlines sampled at most
+    ``step`` apart) and the pixels whose centre is outside ``within``; the estimate is the
+    distance to the nearest feature pixel's centre.  Every footprint and the outside of
+    ``within`` have a feature pixel centre within ``step/√2`` of them, so the estimate is at
+    least the clearance minus ``step/√2`` (inside a footprint it may be much more: only the
+    exact clearance says 0).
+
+    Returns
+    -------
+    xy : (m, 2) float array, pixel centres in ``centres``
+    estimate : (m,) float array, user units
+    """
+    x0, y0, x1, y1 = centres.bounds
+    pad = 2 * step
+    ox, oy = x0 - pad, y0 - pad
+    nx, ny = math.ceil((x1 - x0 + 2 * pad) / step), math.ceil((y1 - y0 + 2 * pad) / step)
+    gx, gy = np.meshgrid(ox + (np.arange(nx) + 0.5) * step, oy + (np.arange(ny) + 0.5) * step)
+    feature = ~shapely.contains_xy(within, gx, gy)
+    if len(arr):
+        reach = float(motif_radius(arr, protos).max())
+        near = (
+            (arr.xy[:, 0] > ox - reach) & (arr.xy[:, 0] < ox + nx * step + reach)
+            & (arr.xy[:, 1] > oy - reach) & (arr.xy[:, 1] < oy + ny * step + reach)
+        )  # fmt: skip
+        scale = float(arr.scale.max())
+        for k, proto in enumerate(protos):
+            idx = np.flatnonzero(near & (arr.kind == k))
+            if len(idx) == 0:
+                continue
+            rings = [shapely.segmentize(shapely.linearrings(r), step / max(scale, 1e-12)) for r in proto.rings]
+            local = np.concatenate([shapely.get_coordinates(r) for r in rings])
+            turn = np.radians(arr.angle[idx])
+            cos, sin = np.cos(turn) * arr.scale[idx], np.sin(turn) * arr.scale[idx]
+            rows = max(1, _OUTLINE_CHUNK // len(local))
+            for a in range(0, len(idx), rows):
+                sl = slice(a, a + rows)
+                wx = cos[sl, None] * local[:, 0] - sin[sl, None] * local[:, 1] + arr.xy[idx[sl], 0, None]
+                wy = sin[sl, None] * local[:, 0] + cos[sl, None] * local[:, 1] + arr.xy[idx[sl], 1, None]
+                ix = np.floor((wx.ravel() - ox) / step).astype(np.int64)
+                iy = np.floor((wy.ravel() - oy) / step).astype(np.int64)
+                ok = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+                feature[iy[ok], ix[ok]] = True
+    if feature.all():
+        estimate = np.zeros(feature.shape)
+    elif feature.any():
+        estimate = distance_transform_edt(~feature) * step
+    else:
+        estimate = np.full(feature.shape, np.inf)
+    keep = shapely.contains_xy(centres, gx, gy)
+    return np.stack([gx[keep], gy[keep]], axis=1), estimate[keep]
+
