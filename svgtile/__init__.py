@@ -1,6 +1,8 @@
 """svgtile — geometric texture synthesis from a small SVG exemplar.
 
-Pipeline: :func:`read_exemplar` → :func:`analyze` → an engine's ``synthesize`` → :func:`write_svg`.
+Pipeline: :func:`read_exemplar` (:mod:`svgtile.svg`) → :func:`analyze` (:mod:`svgtile.analysis`) →
+:func:`svgtile.engines.synthesize` (one engine protocol) → a :class:`~svgtile.engines.Result` →
+:func:`svgtile.svg.writer.result_document` or :mod:`svgtile.gis`; :mod:`svgtile.metrics` scores it.
 """
 
 from __future__ import annotations

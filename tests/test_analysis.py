@@ -1,4 +1,4 @@
-"""Exemplar statistics (svgtile/analysis.py) against brute force.
+"""Exemplar statistics (svgtile/analysis/) against brute force.
 
 ``d_ij`` is checked against every pair of motifs measured with shapely, on random arrangements
 built here (own rotation and translation, exact prototypes) and on a random exemplar read from

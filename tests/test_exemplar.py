@@ -1,4 +1,4 @@
-"""Reading exemplars (svgtile/exemplar.py): kinds, instances, footprints, regions, errors.
+"""Reading exemplars (svgtile/svg/): kinds, instances, footprints, regions, errors.
 
 Expectations are computed here, independently of the reader: transforms are composed with
 hand-written numpy matrices, footprints are built with shapely from the analytic shape, areas are

@@ -9,12 +9,12 @@ A *region spec* names where an output region comes from:
 
 An *avoid spec* ``MAP.svg#ID`` names the labels, lines or shapes the texture must keep clear of:
 texts as estimated boxes, shapes as their footprints, lines as their stroke, each grown by a
-margin (:meth:`svgtile.exemplar.SvgShapes.keep_clear`); a GeoJSON avoid spec takes its polygons
+margin (:meth:`svgtile.svg.mapdoc.SvgShapes.keep_clear`); a GeoJSON avoid spec takes its polygons
 as they are and grows lines and points by the margin.
 
 Map units in a map SVG carry a *class* (:func:`class_of`), which the styles file of
 ``svgtile map`` maps to an exemplar.  The SVG geometry itself is read by
-:class:`svgtile.exemplar.SvgShapes` (the one module that uses svgelements).
+:class:`svgtile.svg.mapdoc.SvgShapes` (the svg package is the one that uses svgelements).
 """
 
 from __future__ import annotations

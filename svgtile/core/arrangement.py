@@ -1,7 +1,7 @@
 """The arrangement: where each motif is, as a struct of arrays.
 
 A motif instance maps its kind's local frame (origin at the footprint centroid, see
-:class:`svgtile.exemplar.Kind`) to the world by ``p_world = xy + scale · R(angle) · p_local``.
+:class:`svgtile.core.exemplar.Kind`) to the world by ``p_world = xy + scale · R(angle) · p_local``.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Reading back a texture svgtile wrote, in the terms of its exemplar (for ``svgtile score``).
 
 A texture reuses its exemplar's symbols (:func:`svgtile.svg.writer.svg_document`), so it is read with
-the exemplar reader (:func:`svgtile.exemplar.read_exemplar`) and each of its kinds is matched to
+the exemplar reader (:func:`svgtile.svg.reader.read_exemplar`) and each of its kinds is matched to
 the exemplar's kind that draws the same element the same way: same ``href``, same residual
 linear part and same ``<use>`` attributes.  Kind indices follow the order of first appearance, so
 the texture's and the exemplar's differ in general; :func:`read_texture` renumbers the texture's.

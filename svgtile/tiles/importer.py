@@ -4,7 +4,7 @@ Map symbol sets (FGDC lithology patterns, OSM area fills, well-log tiles) are dr
 plain paths that repeats seamlessly; one element may hold many motifs, one motif may be several
 elements, and motifs crossing the tile's edge are cut there.  The pipeline, stage by stage:
 
-1. **pieces** — :func:`svgtile.exemplar.read_tile` flattens the tile into drawn subpaths with
+1. **pieces** — :func:`svgtile.svg.tilepieces.read_tile` flattens the tile into drawn subpaths with
    their footprints (stroke bands; zero-length round-capped lines are dots of the stroke's
    diameter) and drops frame/background rectangles equal to the tile;
 2. **wrap** — every piece is moved by whole periods so that its centre lies in the tile, and
@@ -20,12 +20,12 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
    motif though they do not touch (a tuft of blades, a diatom's two valves, FGDC 710's three
    strokes), unless that offset is a lattice step (:func:`svgtile.tiles.repeat.repeat_groups`);
 5. **classify** — motifs identical up to rotation and translation share a kind
-   (:func:`svgtile.exemplar.match_kinds`, the rule of plain exemplars);
+   (:func:`svgtile.svg.kinds.match_kinds`, the rule of plain exemplars);
 6. **write** — one ``<symbol>`` per kind (the first motif, redrawn as polylines around its
    centroid), one ``<use>`` per motif, and the tile as ``<rect id="region">`` with
    ``svgtile:period``, so that analysis measures distances across the tile's edges.
 
-The result is an exemplar SVG text that :func:`svgtile.exemplar.parse_exemplar` reads back to
+The result is an exemplar SVG text that :func:`svgtile.svg.reader.parse_exemplar` reads back to
 the same motifs.  Grouping follows the perceptual rule of AlMeraj et al. 2013 §3.1 that an
 element is what the eye sees as one motif; the footprint is the one of :mod:`svgtile.core.footprint`.
 """
@@ -55,7 +55,7 @@ PARALLEL = 10.0
 SIMILAR_LENGTH = 0.6
 #: … and each is straight: no point farther from its chord than this share of its length.
 STRAIGHTNESS = 0.05
-#: Shape tolerance for kinds (see :func:`svgtile.exemplar.match_kinds`): hand-digitised symbol
+#: Shape tolerance for kinds (see :func:`svgtile.svg.kinds.match_kinds`): hand-digitised symbol
 #: sets repeat a motif with a few percent of variation (FGDC 730 has 3 of 43 rectangles 7 % larger).
 KIND_TOLERANCE = 0.08
 #: Gaps below this share of the tile's size count as touching (coordinates are rounded in files).
@@ -64,7 +64,7 @@ TOUCH = 2e-4
 #: tile size, 1e-5 of it).
 DUPLICATE_DECIMALS = 5
 #: Centred footprints whose outline points agree on a grid of this share of their radius are taken
-#: as copies without the rotation search of :func:`svgtile.exemplar.match_kinds` (a speed-up only).
+#: as copies without the rotation search of :func:`svgtile.svg.kinds.match_kinds` (a speed-up only).
 COPY_GRID = 0.02
 #: The 3 × 3 block of tiles, central tile (0, 0) at index 4.
 OFFSETS = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64)
@@ -255,7 +255,7 @@ def _components(geoms: np.ndarray, lines: _Lines, *, scale: float) -> np.ndarray
 
 
 def _kinds(centred: np.ndarray, paints: list[tuple]) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`svgtile.exemplar.match_kinds` of centred footprints, run once per set of plain copies.
+    """:func:`svgtile.svg.kinds.match_kinds` of centred footprints, run once per set of plain copies.
 
     Footprints with the same paint whose outline points coincide on a grid of :data:`COPY_GRID`
     × their radius (far inside :data:`KIND_TOLERANCE`) are copies: only the first of each set is
