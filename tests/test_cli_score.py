@@ -346,3 +346,19 @@ def test_a_hand_edited_texture_is_read_by_the_exemplar_reader(tmp_path, how):
 def test_every_table_row_is_a_score_field():
     fields = {f.name for f in dataclasses.fields(Score)}
     assert [key for key, _, _ in FIGURES if key not in fields] == []
+
+
+def test_figures_from_few_motifs_are_flagged(capsys):
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "gravel.svg", "--size", "160x160")
+    assert rc == 0 and "measured on only" in err and "fewer than 200" in err
+    rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "300x300", "--engines", "tile")
+    assert rc == 0 and "measured on only" not in err
+
+
+def test_contact_sheet_shows_at_least_two_pixels_per_unit(capsys, tmp_path):
+    pytest.importorskip("resvg_py")
+    rc, _, _ = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "400x300", "--engines", "tile",
+                   "--png", tmp_path / "p")  # fmt: skip
+    assert rc == 0
+    png = (tmp_path / "p" / "tile.png").read_bytes()
+    assert int.from_bytes(png[16:20], "big") >= 800  # 400 units at 2 px

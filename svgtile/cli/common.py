@@ -123,6 +123,17 @@ def png_width(width: float) -> int:
     return int(min(PNG_MAX, max(PNG_MIN, round(width * PNG_SCALE))))
 
 
+#: Below this many motifs in the interior, likeness figures are mostly sampling noise.
+FEW_MOTIFS = 200
+
+
+def warn_if_few(motifs: int, where: str) -> None:
+    """Say on stderr that the figures of ``where`` rest on too few motifs to mean much."""
+    if motifs < FEW_MOTIFS:
+        warn(f"{where}: the figures are measured on only {motifs} motif(s) in the interior (fewer than "
+             f"{FEW_MOTIFS}), so they are mostly noise; measure a larger area")
+
+
 # ----------------------------------------------------------------------------- engine options
 
 

@@ -11,7 +11,7 @@ from svgtile.apps.compare import compare as run_compare
 from svgtile.apps.compare import format_table
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.preview import contact_sheet, render_png
-from svgtile.cli.common import Stderr, json_safe, load, parse_size
+from svgtile.cli.common import Stderr, json_safe, load, parse_size, warn_if_few
 from svgtile.core.region import Region
 from svgtile.errors import OutputError
 from svgtile.files import write_file
@@ -19,6 +19,8 @@ from svgtile.svg.writer import fmt, svg_document
 
 #: Pixels per user unit of the contact sheet are chosen so a texture panel is this wide.
 SHEET_PANEL = 320
+#: … and at least this many, so that motifs can be seen on a large region.
+MIN_SCALE = 2.0
 
 
 @click.command(name="compare")
@@ -43,6 +45,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
     check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them, and the scoring
     results = run_compare(ex, stats, region, engines=names, seed=seed)
     Stderr.clear()
+    warn_if_few(min(r.score.motifs for r in results), f"--size {size}")
     if png_dir is not None:
         _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed)
     if as_json:
@@ -61,14 +64,14 @@ def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) ->
     except OSError as exc:
         raise OutputError(f"cannot create the folder ({exc.strerror or exc})", source=str(folder)) from None
     x0, y0, x1, y1 = region.bounds
-    scale = SHEET_PANEL / max(x1 - x0, y1 - y0)
+    scale = max(MIN_SCALE, SHEET_PANEL / max(x1 - x0, y1 - y0))
     ex_text = path.read_text(encoding="utf-8")
     panels = [(f"exemplar {path.stem}", ex_text)]
     for r in results:
         meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement)}
         text = svg_document(ex, r.arrangement, region, boundary="clip", params=meta)
         write_file(text, folder / f"{r.engine}.svg", protect=(path,))
-        png = render_png(text, round(SHEET_PANEL * (x1 - x0) / max(x1 - x0, y1 - y0)))
+        png = render_png(text, round(scale * (x1 - x0)))
         write_file(png, folder / f"{r.engine}.png", protect=(path,))
         panels.append((r.engine, text))
     sheet, width = contact_sheet(panels, scale)

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps.compare import format_score
-from svgtile.cli.common import json_safe, load
+from svgtile.cli.common import json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
 from svgtile.svg.texture import read_texture
 
@@ -27,6 +27,7 @@ def score(exemplar, texture, as_json):
     ex, stats = load(exemplar)
     arr, region = read_texture(texture, ex)
     result = measure(ex, stats, arr, region)
+    warn_if_few(result.motifs, texture)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
         click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
