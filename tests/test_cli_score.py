@@ -362,3 +362,12 @@ def test_contact_sheet_shows_at_least_two_pixels_per_unit(capsys, tmp_path):
     assert rc == 0
     png = (tmp_path / "p" / "tile.png").read_bytes()
     assert int.from_bytes(png[16:20], "big") >= 800  # 400 units at 2 px
+
+
+def test_score_help_says_what_each_figure_means(capsys):
+    rc, out, _ = run(capsys, "score", "--help")
+    assert rc == 0
+    labels = {lab.strip().split(" (")[0] for _, lab, _ in FIGURES} - {"motifs in the interior", "its sampling noise"}
+    labels = {lab.replace(" over windows", ", min, max") for lab in labels if not lab.startswith("window density")}
+    missing = [lab for lab in labels if lab not in out]
+    assert not missing, missing

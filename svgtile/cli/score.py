@@ -20,9 +20,23 @@ from svgtile.svg.texture import read_texture
 def score(exemplar, texture, as_json):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
-    Figures are measured on the texture's interior (the region shrunk by one exemplar width):
-    overlaps, distance-rule violators, density, kind mix, orientation, structure, repetition,
-    coverage.  See the README for their definitions.
+    Figures are measured on the texture's interior (the region shrunk by one exemplar width);
+    lengths are in the exemplar's mean spacing. What each means, and the ideal:
+
+    \b
+      overlapping pairs            motifs whose footprints share area           0
+      distance-rule violators      motifs closer than the exemplar allows       0
+      density / ρ                  ink over the exemplar's                      1
+      density CV, min, max         the same in exemplar-sized windows           0; 1; 1
+      kind mix TV                  kind frequencies against the exemplar's      0
+      orientation outside arcs     motifs turned as the exemplar never does     0
+      structure: nearest-gap W1    gaps to the nearest neighbour of each kind   0 (below its noise:
+                                   against the exemplar's                       as good as can be told)
+      structure: pair correlation  neighbour distances up to 3 spacings         0
+      repetition                   motifs repeating at one displacement         0 (tile: 1)
+      coverage                     largest empty disc over the exemplar's       1
+
+    Read them against svgtile compare's tile and random columns; the README defines each.
     """
     ex, stats = load(exemplar)
     arr, region = read_texture(texture, ex)
