@@ -371,3 +371,12 @@ def test_score_help_says_what_each_figure_means(capsys):
     labels = {lab.replace(" over windows", ", min, max") for lab in labels if not lab.startswith("window density")}
     missing = [lab for lab in labels if lab not in out]
     assert not missing, missing
+
+
+def test_kind_pair_rows_keep_their_columns_with_long_names(capsys, tmp_path):
+    texture = tmp_path / "t.svg"
+    assert main(["synth", str(EXEMPLARS / "gravel.svg"), "-o", str(texture), "--size", "400x300", "--seed", "1"]) == 0
+    rc, out, _ = run(capsys, "score", EXEMPLARS / "gravel.svg", texture)
+    assert rc == 0 and "motifs centred in its region" in out
+    rows = out[out.index("structure per kind pair"):].splitlines()[1:]
+    assert len(rows) == 4 and len({len(r) for r in rows}) == 1  # every row as wide: the columns line up

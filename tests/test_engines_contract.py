@@ -180,3 +180,13 @@ def test_an_engine_plug_in_registers_through_the_entry_point_group(monkeypatch):
     assert found["mirror"] is plug and found["patch"] is ENGINES["patch"] and "broken" not in found
     ex, stats = load()
     assert len(synthesize(ex, Region.rectangle(60, 60), found["mirror"], seed=1, stats=stats)) > 0
+
+
+def test_synth_help_says_what_the_baselines_are_for(capsys):
+    from svgtile.cli.main import main
+
+    assert main(["synth", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    for name in ("tile", "random"):
+        assert f"{name} = " in text
+    assert text.count("a baseline for svgtile score and compare") == 2 and "leaves holes" in text

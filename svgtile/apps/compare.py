@@ -117,8 +117,9 @@ def format_score(score: Score) -> str:
     pairs = [p for p in score.kind_pairs if p.gap_distance is not None or p.pair_correlation_distance is not None]
     if pairs:
         lines += ["", "structure per kind pair (gap W1, its sampling noise, pair correlation):"]
+        width = max(label - 2, *(len(" → ".join(p.names)) for p in pairs))  # long names keep the columns
         for p in pairs:
             names = " → ".join(p.names)
             gap, pc = _cell(p.gap_distance, ".3f"), _cell(p.pair_correlation_distance, ".3f")
-            lines.append(f"  {names:<{label - 2}}  {gap:>9}  {_cell(p.gap_noise, '.3f'):>9}  {pc:>9}")
+            lines.append(f"  {names:<{width}}  {gap:>9}  {_cell(p.gap_noise, '.3f'):>9}  {pc:>9}")
     return "\n".join(lines)

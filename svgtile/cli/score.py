@@ -46,5 +46,6 @@ def score(exemplar, texture, as_json):
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
         click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
-        click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs")
+        click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs centred in its region "
+                   "(motifs the region's edge cuts, centred outside it, are not counted)")
         click.echo(format_score(result))

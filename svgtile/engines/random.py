@@ -110,8 +110,8 @@ class RandomEngine:
     """The Random strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "random"
-    summary = ("motifs scattered by dart throwing to the exemplar's statistics, a baseline: no repetition and "
-               "only the structure the distance rule imposes")
+    summary = ("motifs scattered by dart throwing to the exemplar's statistics, a baseline for svgtile score "
+               "and compare: no repetition and only the structure the distance rule imposes")
     Params = RandomParams
 
     def place(self, ctx: Context, p: RandomParams) -> Arrangement:

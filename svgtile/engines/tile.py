@@ -61,8 +61,9 @@ class TileEngine:
     """The Tiling strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "tile"
-    summary = ("plain repeated copies of the exemplar, a baseline: the most faithful structure and "
-               "obvious repetition (svgtile score and compare measure against it)")
+    summary = ("plain repeated copies of the exemplar's bounding box, a baseline for svgtile score and "
+               "compare: the most faithful structure and obvious repetition (a round exemplar leaves holes "
+               "between its copies)")
     Params = TileParams
 
     def place(self, ctx: Context, p: TileParams) -> Arrangement:
