@@ -274,3 +274,26 @@ def test_map_help_lists_every_styles_key(capsys):
     text = capsys.readouterr().out
     missing = [k for k in (*CLASS_KEYS, *RUN_KEYS) if k != "classes" and k not in text]
     assert not missing, missing
+
+
+def test_map_metadata_names_the_run_seed_beside_a_class_seed(folder, capsys):
+    styles = STYLES.replace("seed = 3\n", "").replace('boundary = "inside"', 'boundary = "inside"\nseed = 7')
+    (folder / "styles.toml").write_text(styles)
+    out = folder / "filled.svg"
+    assert main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out), "--seed", "5"]) == 0
+    assert _run_seed(out) == "dots=7 plain=5 rings=5"
+
+
+def test_an_unused_map_seed_is_said(folder, capsys):
+    out = folder / "filled.svg"  # STYLES has a top-level seed: every class's
+    assert main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out), "--seed", "5"]) == 0
+    assert "--seed 5 is not used" in capsys.readouterr().err
+
+
+def test_a_top_level_engine_parameter_no_class_takes_is_refused():
+    from svgtile.apps.mapfill import parse_styles
+
+    with pytest.raises(ParameterError, match="junction at the top level is a parameter of no class's engine"):
+        parse_styles({"junction": 0.3, "classes": {"a": {"exemplar": "x.svg", "engine": "random"}}})
+    with pytest.raises(ParameterError, match="engine must be one of"):
+        parse_styles({"classes": {"a": {"exemplar": "x.svg", "engine": ["patch"]}}})

@@ -1,16 +1,16 @@
 """Every command of the README runs as written, from a checkout (issue 17 item 1).
 
-The commands of the ``sh`` blocks after the set-up section are run with ``bash`` in the
-repository's root, with ``out/`` moved to a temporary folder and the Inkscape installer pointed
-at a temporary user folder; each must exit 0.  (The two set-up commands are what ``.ci/run``
-runs.)
+The ``svgtile`` lines of the ``sh`` blocks after the set-up section, and the ``python`` blocks,
+are run in the repository's root with this interpreter (``svgtile`` is ``python -m svgtile``),
+``out/`` moved to a temporary folder and the Inkscape installer pointed at a temporary user
+folder; each must exit 0.  (The two set-up commands are what ``.ci/run`` runs.)
 """
 
 from __future__ import annotations
 
 import os
 import re
-import shutil
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -19,41 +19,62 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 DATA = REPO.parent / "shared" / "data"
+TOUR = (REPO / "README.md").read_text().split("## A short tour", 1)[1]
 
 
 def readme_commands() -> list[str]:
-    text = (REPO / "README.md").read_text()
-    tour = text[text.index("## A short tour"):]
-    blocks = re.findall(r"```sh\n(.*?)```", tour, re.S)
     commands = []
-    for block in blocks:
-        for line in block.splitlines():
+    for block in re.findall(r"```sh\n(.*?)```", TOUR, re.S):
+        for line in block.replace("\\\n", " ").splitlines():
             line = re.sub(r"\s+#\s.*$", "", line).strip()
             if line.startswith("svgtile "):
                 commands.append(line)
     return commands
 
 
+def python_blocks() -> list[str]:
+    return re.findall(r"```python\n(.*?)```", TOUR, re.S)
+
+
 def test_the_readme_has_commands_to_run():
     commands = readme_commands()
-    assert len(commands) >= 15
+    assert len(commands) >= 15 and python_blocks()
     assert any(c.startswith("svgtile map ") for c in commands)
-    assert all(" out/" in c or "-o" not in c or "-o -" in c for c in commands), "outputs go to out/"
+    assert all(" out/" in c or " -o " not in c or "-o -" in c for c in commands), "outputs go to out/"
+
+
+def _run(command: str) -> subprocess.CompletedProcess:
+    return subprocess.run(["bash", "-c", command], cwd=REPO, capture_output=True, text=True, timeout=600,
+                          env={**os.environ, "PYTHONWARNINGS": "ignore"})  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory) -> Path:
+    """The README's ``out/``, shared by its commands in order (a later one reads what an earlier
+    one wrote)."""
+    return tmp_path_factory.mktemp("out")
 
 
 @pytest.mark.parametrize("command", readme_commands())
-def test_readme_command_runs_as_written(command, tmp_path):
+def test_readme_command_runs_as_written(command, out):
+    tmp_path = out
     if "../shared/data" in command and not DATA.is_dir():
         pytest.skip("the shared data sets are not beside this checkout")
-    svgtile = shutil.which("svgtile")
-    if svgtile is None or Path(svgtile).parent != Path(sys.executable).parent:
-        pytest.skip("the svgtile command of this environment is not on PATH")
     run = command.replace(" out/", f" {tmp_path}/")
     if run.startswith("svgtile inkscape "):
         run += f" --user-dir {tmp_path / 'inkscape'}"
-    if "gravel-texture.svg" in run and "synth" not in run:  # made by the README's first command
-        subprocess.run(["svgtile", "synth", "exemplars/gravel.svg", "-o", str(tmp_path / "gravel-texture.svg"),
-                        "--size", "300x200", "--seed", "1"], cwd=REPO, check=True)  # fmt: skip
-    done = subprocess.run(["bash", "-c", run], cwd=REPO, capture_output=True, text=True,
-                          env={**os.environ, "PYTHONWARNINGS": "ignore"}, timeout=600)  # fmt: skip
+    if "gravel-texture.svg" in run and " synth " not in f" {run}":  # made by the README's first command
+        done = _run(f"svgtile synth exemplars/gravel.svg -o {tmp_path}/gravel-texture.svg --size 300x200 --seed 1"
+                    .replace("svgtile", f"{shlex.quote(sys.executable)} -m svgtile", 1))  # fmt: skip
+        assert done.returncode == 0, done.stderr
+    run = re.sub(r"^svgtile\b", f"{shlex.quote(sys.executable)} -m svgtile", run)
+    done = _run(run)
     assert done.returncode == 0, f"{command}\n{done.stderr}"
+
+
+@pytest.mark.parametrize("n", range(len(python_blocks())))
+def test_readme_python_runs_as_written(n, out):
+    tmp_path = out
+    code = python_blocks()[n].replace('"out/', f'"{tmp_path}/')
+    done = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr

@@ -15,7 +15,7 @@ from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
-from svgtile.engines import ENGINES, synthesize
+from svgtile.engines import ENGINES, engines_with, synthesize
 from svgtile.errors import ParameterError
 from svgtile.metrics import Score, score
 
@@ -58,7 +58,7 @@ def compare(
     exemplar, stats : the exemplar and its analysis
     region : the output region
     engines : names in :data:`svgtile.engines.ENGINES`, in the order of the table's columns
-    seed : each engine gets ``numpy.random.default_rng(seed)``
+    seed : every engine runs with this seed
     progress : called as ``progress(engine, fraction of the engines done)``
     boundary : how motifs meet the region's edge, for every engine
     **params : engine parameters (``grid``, ``overlap`` …); each engine takes those it has
@@ -73,11 +73,14 @@ def compare(
     if unknown or not engines or len(set(engines)) != len(engines):
         what = f"unknown engine {unknown[0]!r}" if unknown else "each engine at most once, at least one"
         raise ParameterError(f"--engines: {what} (choose from {', '.join(sorted(ENGINES))})")
+    stray = [k for k in params if not engines_with(k)]
+    if stray:
+        raise ParameterError(f"no engine has a parameter {stray[0]!r}")
     out = []
     for n, name in enumerate(engines):
         if progress:
             progress(name, n / len(engines))
-        own = {p.name for p in ENGINES[name].Params.public()}
+        own = {p.name for p in ENGINES[name].Params.public()}  # a dialog of all engines' parameters
         arr = synthesize(exemplar, region, name, seed=seed, stats=stats, boundary=boundary,
                          params={k: v for k, v in params.items() if k in own}).arrangement  # fmt: skip
         out.append(Result(name, arr, score(exemplar, stats, arr, region)))

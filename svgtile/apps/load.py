@@ -4,6 +4,7 @@ motif-count guard every command runs before synthesis."""
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable
 from functools import lru_cache
 
@@ -22,7 +23,7 @@ HARD_MAX_MOTIFS = 1e9
 
 
 @lru_cache(maxsize=32)
-def _read(path: str, as_tile: bool) -> tuple[Exemplar, Stats, tuple[str, ...]]:
+def _read(path: str, as_tile: bool, stamp: tuple[int, int] | None) -> tuple[Exemplar, Stats, tuple[str, ...]]:
     if as_tile:
         from svgtile.tiles.importer import import_tile
 
@@ -38,6 +39,16 @@ def _read(path: str, as_tile: bool) -> tuple[Exemplar, Stats, tuple[str, ...]]:
     return exemplar, stats, notes
 
 
+def _stamp(path: str) -> tuple[int, int] | None:
+    """What keys the cache besides the path: an edited file is read again (None if unreadable:
+    the reader then says why)."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return st.st_mtime_ns, st.st_size
+
+
 def load_exemplar(path: str, *, as_tile: bool = False,
                   warn: Callable[[str], None] | None = None) -> tuple[Exemplar, Stats]:  # fmt: skip
     """An exemplar and its analysis, read once per process (a map fills many units of a class).
@@ -49,7 +60,7 @@ def load_exemplar(path: str, *, as_tile: bool = False,
     warn : called with each non-fatal problem, ``"PATH: message"`` (the reader's warnings, the
         import's notes, overlapping motifs), on every call
     """
-    exemplar, stats, notes = _read(str(path), as_tile)
+    exemplar, stats, notes = _read(str(path), as_tile, _stamp(path))
     if warn is not None:
         for note in notes:
             warn(f"{path}: {note}")

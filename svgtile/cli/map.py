@@ -36,7 +36,7 @@ def _with_params(f):
 @click.option("--avoid", multiple=True, metavar="ID|MAP.svg#ID",
               help="More labels, lines or shapes every texture keeps clear of (an id in MAP, or a spec). Repeatable.")
 @click.option("--seed", type=click.IntRange(min=0), default=None,
-              help="Random seed shared by every region (a class's own seed wins). Without it one is chosen and printed.")
+              help="Random seed shared by every region (a class's own seed wins, and a top-level seed in the styles file is every class's). Without it one is chosen and printed.")
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="Regions filled at once, in separate processes [default: the usable cores].")
 @_with_params
@@ -55,13 +55,15 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
       seed = 7                this class's seed (else the run's)
       unit = 1.0              map units per exemplar user unit
       boundary = "clip"       inside, centroid, clip or none
-    and any parameter of its engine, as in svgtile synth with _ for - (%(params)s).
+    and any parameter of its engine, as in svgtile synth with _ for -.
     Keys at the top level are defaults for every class (an engine parameter only for the
-    classes whose engine has it), plus:
+    classes whose engine has it; a seed there is every class's), plus:
       avoid = ["labels"]      ids in the map (or MAP.svg#ID specs) every texture keeps clear of
       avoid_margin = 2        clear space around them, map units
       class_attribute = "data-unit"   SVG maps: the attribute naming a unit's class
       class_property = "unit"         GeoJSON maps: the property naming a feature's class
+
+    Engine parameters: %(params)s.
     """
     kind = output_format(output, ("svg", "geojson"))
     styles = read_styles(styles_file)
@@ -70,16 +72,14 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)
     own = {s.seed for s in styles.classes.values()}
+    if seed is not None and None not in own:
+        warn(f"--seed {seed} is not used: every class has a seed in {styles_file} (a top-level seed is every class's)")
     if seed is None and None in own:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
-    # the metadata records the seeds used: the run's, or (every class having its own) theirs
-    if None in own:
-        used = str(seed)
-    elif len(own) == 1:
-        used = str(own.pop())
-    else:
-        used = " ".join(f"{c}={s.seed}" for c, s in sorted(styles.classes.items()))
+    # the metadata records the seeds used: one, or each class's where they differ
+    used = {c: s.seed if s.seed is not None else seed for c, s in sorted(styles.classes.items())}
+    used_text = str(next(iter(used.values()))) if len(set(used.values())) == 1 else " ".join(f"{c}={v}" for c, v in used.items())
     if seed is None:
         seed = 0  # every class has its own seed: the run's is never used
     result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress(),
@@ -92,7 +92,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
     if kind == "geojson":
         text = placements_document(result)
     else:
-        params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used,
+        params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
         text = svg_map(result, params)
     write_file(text, output, protect=inputs)

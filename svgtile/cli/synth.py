@@ -31,7 +31,7 @@ from svgtile.svg.writer import fmt, result_document
 
 @click.command(name="synth")
 @click.argument("exemplar", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, help="Output file, its format by its suffix: .svg (or - for standard output), .geojson (one point per motif: kind, angle, scale, for GIS) or .png (a picture, 2 pixels per user unit; needs the 'png' extra).")
+@click.option("-o", "--output", required=True, help="Output file, its format by its suffix: .svg (or - for standard output), .geojson (one point per motif: kind, angle, scale, for GIS) or .png (a picture, 2 pixels per user unit, 64 to 8192 pixels wide; needs the 'png' extra).")
 @click.option("--size", default=None,
               help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600 (one number: a square).")
 @click.option("--region", "region_spec", default=None, metavar="MAP.svg#ID|FILE.geojson",
@@ -51,7 +51,7 @@ from svgtile.svg.writer import fmt, result_document
 @click.pass_context
 def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, seed, force, as_tile,
           **values):  # fmt: skip
-    """Synthesize a texture like EXEMPLAR and write it as SVG.
+    """Synthesize a texture like EXEMPLAR and write it (SVG, GeoJSON points or PNG, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
     with id="region" (else the viewBox) is the area the motifs were drawn in.

@@ -34,26 +34,43 @@ from svgtile.engines.base import (
     Result,
     reading_order,
 )
-from svgtile.engines.patch.engine import PATCH
-from svgtile.engines.random import RANDOM
-from svgtile.engines.tile import TILE
+from svgtile.engines.patch.engine import PATCH, PatchParams
+from svgtile.engines.random import RANDOM, RandomParams
+from svgtile.engines.tile import TILE, TileParams
 from svgtile.errors import ParameterError
 
 #: The entry-point group plug-in engines register under.
 ENTRY_POINT_GROUP = "svgtile.engines"
 
 
+#: Names a plug-in parameter may not take: they are options of every command or styles keys.
+RESERVED = frozenset({"seed", "boundary", "size", "region", "engine", "unit", "exemplar", "output", "avoid",
+                      "avoid_margin", "force", "jobs", "styles"})
+#: Plug-ins found but not registered, name -> why (``svgtile.engines.get_engine`` names them).
+REFUSED: dict[str, str] = {}
+
+
 def _registry() -> dict[str, Engine]:
     engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM)}
+    shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines:
+            REFUSED[ep.name] = "a built-in engine has that name"
             continue
-        try:
+        try:  # a broken plug-in must not break svgtile: it is refused, with the reason kept
             engine = ep.load()
-        except Exception:  # a broken plug-in must not break svgtile
+            if not isinstance(engine, Engine) or engine.name != ep.name:
+                raise TypeError("not an engine of that name (svgtile.engines.base.Engine)")
+            for p in engine.Params.public():
+                if p.name in RESERVED:
+                    raise TypeError(f"its parameter {p.name!r} is a name svgtile reserves")
+                if p.name in shared and (shared[p.name].type, shared[p.name].option) != (p.type, p.option):
+                    raise TypeError(f"its parameter {p.name!r} differs from another engine's")
+        except Exception as exc:
+            REFUSED[ep.name] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"
             continue
-        if isinstance(engine, Engine) and engine.name == ep.name:
-            engines[ep.name] = engine
+        shared.update({p.name: p for p in engine.Params.public()})
+        engines[ep.name] = engine
     return engines
 
 
@@ -66,7 +83,8 @@ def get_engine(name: str) -> Engine:
     try:
         return ENGINES[name]
     except (KeyError, TypeError):
-        raise ParameterError(f"unknown engine {name!r} (choose from {', '.join(sorted(ENGINES))})") from None
+        why = f"; the plug-in of that name was refused: {REFUSED[name]}" if isinstance(name, str) and name in REFUSED else ""
+        raise ParameterError(f"unknown engine {name!r} (choose from {', '.join(sorted(ENGINES))}){why}") from None
 
 
 def public_params() -> dict[str, PublicParam]:
@@ -109,11 +127,12 @@ def make_params(engine: Engine | str, params: Mapping[str, object] | EngineParam
             raise ParameterError(f"engine {engine.name!r} takes {engine.Params.__name__}, not {type(params).__name__}")
         return params
     params = dict(params or {})
-    fields = set(engine.Params.__dataclass_fields__)
+    fields = set(engine.Params.__dataclass_fields__)  # public ones, and the library's tuning fields
     unknown = [k for k in params if k not in fields]
     if unknown:
         own = ", ".join(spell(p.name) for p in engine.Params.public()) or "none"
         raise ParameterError(f"engine {engine.name!r} has no parameter {spell(unknown[0])} (its parameters: {own})")
+    engine.Params.check_types(params)
     return engine.Params(**params)
 
 
@@ -155,7 +174,7 @@ def synthesize(
         raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}")
     if (seed is None) == (rng is None):
         raise TypeError("synthesize takes exactly one of seed and rng")
-    stats = stats or analyze(exemplar)
+    stats = analyze(exemplar) if stats is None else stats
     report = progress or (lambda stage, fraction: None)
     key = cellrng.root_key(np.random.default_rng(seed) if rng is None else rng)
     ctx = Context(exemplar, stats, region, boundary, key, report)
@@ -165,5 +184,5 @@ def synthesize(
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
 
 
-__all__ = ["ENGINES", "Context", "Engine", "EngineParams", "Result", "engines_with", "get_engine", "make_params",
-           "public_params", "synthesize"]  # fmt: skip
+__all__ = ["ENGINES", "Context", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
+           "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

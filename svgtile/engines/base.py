@@ -31,6 +31,7 @@ boundary mode drops, and any order.
 from __future__ import annotations
 
 import dataclasses
+import typing
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol, runtime_checkable
@@ -41,6 +42,7 @@ from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
+from svgtile.errors import ParameterError
 
 Progress = Callable[[str, float], None]
 
@@ -77,6 +79,9 @@ class PublicParam:
     metavar: str | None
 
 
+_TYPE_WORDS = {float: "number", int: "whole number", bool: "true or false", str: "text"}
+
+
 @dataclass(frozen=True)
 class EngineParams:
     """Base of every engine's parameter class (frozen; ranges checked in ``__post_init__``)."""
@@ -85,15 +90,30 @@ class EngineParams:
     def public(cls) -> tuple[PublicParam, ...]:
         """The parameters declared with :func:`param`, in field order."""
         out = []
-        types = {"float": float, "int": int, "bool": bool, "str": str}
+        hints = typing.get_type_hints(cls)
         for f in dataclasses.fields(cls):
             if "help" not in f.metadata:
                 continue
             m = f.metadata
+            kind = hints[f.name]
+            if kind not in (float, int, bool, str):
+                raise TypeError(f"{cls.__name__}.{f.name}: a public parameter is a float, int, bool or str")
             option = m["option"] or "--" + f.name.replace("_", "-")
-            out.append(PublicParam(f.name, types[str(f.type)], f.default, m["help"], option, m["choices"], m["interval"],
-                                   m["metavar"]))
+            out.append(PublicParam(f.name, kind, f.default, m["help"], option, m["choices"], m["interval"], m["metavar"]))
         return tuple(out)
+
+    @classmethod
+    def check_types(cls, values: dict[str, Any]) -> None:
+        """Refuse a value of the wrong type (a number for a float, which may be written as an int;
+        ``true``/``false`` only for a bool), naming the parameter; before any range check."""
+        hints = typing.get_type_hints(cls)
+        for name, value in values.items():
+            want = hints.get(name)
+            ok = {float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+                  int: lambda v: isinstance(v, int) and not isinstance(v, bool),
+                  bool: lambda v: isinstance(v, bool), str: lambda v: isinstance(v, str)}.get(want, lambda v: True)
+            if not ok(value):
+                raise ParameterError(f"{name} has the wrong type ({value!r}; it takes a {_TYPE_WORDS[want]})")
 
     def public_values(self) -> dict[str, Any]:
         """``{name: value}`` of the public parameters (what a texture's metadata records)."""
@@ -148,7 +168,8 @@ class Result:
     boundary : how motifs met the region's edge
     engine : the engine's name
     params : the engine's parameters, all resolved
-    seed : the seed the run was made with (None when the caller passed a generator)
+    seed : the seed the run was made with (None when the caller passed a generator; the metadata
+        then records none)
     """
 
     arrangement: Arrangement
@@ -166,8 +187,12 @@ class Result:
     def metadata(self, **where: object) -> dict[str, object]:
         """What a texture records of its run: engine, seed, ``where`` (exemplar, region …), the
         public parameters, the boundary mode and the motif count."""
-        return {"engine": self.engine, "seed": self.seed, **where, **self.params.public_values(),
-                "boundary": self.boundary, "motifs": len(self.arrangement)}  # fmt: skip
+        run = {"engine": self.engine, **({} if self.seed is None else {"seed": self.seed})}
+        own = {**self.params.public_values(), "boundary": self.boundary, "motifs": len(self.arrangement)}
+        clash = (set(where) & set(own)) | (set(where) & set(run))
+        if clash:
+            raise ValueError(f"metadata keys {sorted(clash)} are the run's own")
+        return {**run, **where, **own}
 
 
 def reading_order(arr: Arrangement) -> Arrangement:

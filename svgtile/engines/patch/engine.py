@@ -58,7 +58,7 @@ from svgtile.core.conflicts import resolve
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
-from svgtile.engines.base import Context, EngineParams, param, reading_order
+from svgtile.engines.base import Context, EngineParams, param
 from svgtile.engines.patch.density import _ORIENT, _PRIORITY, _ROTATE, adjust_density, uniform_at
 from svgtile.engines.patch.orientation import turn, vary_orientations
 from svgtile.errors import ParameterError
@@ -129,6 +129,8 @@ class PatchParams(EngineParams):
             raise ParameterError(f"--junction must be at least 0 and below 1, not {self.junction:g}")
         if not 0.0 < self.density_tolerance < 1.0:
             raise ParameterError("density tolerance must be between 0 and 1")
+        if not (self.density_rounds >= 0 and self.disc_tries >= 1):
+            raise ParameterError("density_rounds must be at least 0 and disc_tries at least 1")
 
 
 class PatchEngine:
@@ -143,8 +145,8 @@ class PatchEngine:
 
         Returns
         -------
-        Arrangement with no overlaps and no distance-rule violations, filtered by the boundary
-        mode, in reading order.
+        Arrangement with no overlaps and no distance-rule violations, already filtered by the
+        boundary mode (copies and pasted discs are filtered as they are made).
         """
         exemplar, stats, region, key, report = ctx.exemplar, ctx.stats, ctx.region, ctx.key, ctx.progress
         protos = exemplar.prototypes
@@ -168,8 +170,7 @@ class PatchEngine:
         keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy, junction=rules[0])
         arr = arr.take(keep)
 
-        arr = adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
-        return reading_order(arr)
+        return adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
 
     def reach(self, exemplar: Exemplar, params: PatchParams) -> float:
         """Not tile-exact: density repair decides window by window from what earlier rounds left,
@@ -236,7 +237,7 @@ def grid(
     return arr.take(touch), cell[touch]
 
 
-# ----------------------------------------------------------------------------- final check
+# ----------------------------------------------------------------------------- helpers
 
 
 def _from_centre(exemplar: Exemplar) -> np.ndarray:
