@@ -349,9 +349,9 @@ def test_every_table_row_is_a_score_field():
 
 
 def test_figures_from_few_motifs_are_flagged(capsys):
-    rc, out, err = run(capsys, "compare", EXEMPLARS / "gravel.svg", "--size", "160x160")
+    rc, _, err = run(capsys, "compare", EXEMPLARS / "gravel.svg", "--size", "160x160")
     assert rc == 0 and "measured on only" in err and "fewer than 200" in err
-    rc, out, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "300x300", "--engines", "tile")
+    rc, _, err = run(capsys, "compare", EXEMPLARS / "sand.svg", "--size", "300x300", "--engines", "tile")
     assert rc == 0 and "measured on only" not in err
 
 
