@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import gc
 import json
+from contextlib import contextmanager
 from pathlib import Path
 
 import click
@@ -25,11 +27,26 @@ def score(exemplar, texture, as_json):
     coverage.  See the README for their definitions.
     """
     ex, stats = load(exemplar)
-    arr, region = read_texture(texture, ex)
-    result = measure(ex, stats, arr, region)
+    with _no_cycle_collection():
+        arr, region = read_texture(texture, ex)
+        result = measure(ex, stats, arr, region)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
         click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs")
         click.echo(format_score(result))
+
+
+@contextmanager
+def _no_cycle_collection():
+    """CPython's cyclic collector paused: reading and measuring a large texture makes hundreds
+    of thousands of objects that hold no reference cycles (the strings of the ``<use>`` scan,
+    one shapely footprint per motif), and the collector would walk them all again and again."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()

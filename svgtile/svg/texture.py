@@ -132,9 +132,10 @@ _SUFFIX = rf"((?: translate\({_FIXED} {_FIXED}\))?(?: matrix\({_FIXED} {_FIXED} 
 #: The opening tag of svgtile's motif group, as :func:`svgtile.svg.writer.svg_document` writes it.
 _OWN_GROUP = re.compile(rb'<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>')
 #: One ``<use>`` line as :func:`svgtile.svg.writer.use_elements` writes it: its ``href`` and other
-#: attributes as written, then its transform as :data:`_OWN_TRANSFORM` splits it.
+#: attributes as written, then its transform as :data:`_OWN_TRANSFORM` splits it (the lookahead
+#: spares the scan of each transform as one more attribute).
 _OWN_USE = re.compile(
-    rf'^[ \t]*<use (xlink:href="#[^"<>\n]*"(?: [A-Za-z_][-\w.:]*="[^"<>\n]*")*) '
+    rf'^[ \t]*<use (xlink:href="#[^"<>\n]*"(?: (?!transform=)[A-Za-z_][-\w.:]*="[^"<>\n]*")*) '
     rf'transform="translate\(({_FIXED}) ({_FIXED})\)(?: rotate\(({_FIXED})\))?(?: scale\(({_FIXED})\))?{_SUFFIX}"/>$',
     re.M,
 )
