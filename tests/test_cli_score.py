@@ -27,7 +27,7 @@ from svgtile.errors import ExemplarError, ParameterError
 from svgtile.metrics import Score
 from svgtile.svg.dialect import SVG_NS, XLINK_NS, parse_matrix
 from svgtile.svg.reader import parse_exemplar, read_exemplar
-from svgtile.svg.texture import kind_key, read_own_texture, read_texture
+from svgtile.svg.texture import _own_use_block, kind_key, read_own_texture, read_texture
 from svgtile.svg.writer import svg_document
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
@@ -303,6 +303,17 @@ def test_bulk_reader_equals_the_exemplar_reader(tmp_path, name, engine, options,
     for field in ("kind", "xy", "angle", "scale"):
         assert _same_bits(getattr(motifs, field), getattr(want, field)), field
     assert shape.equals(want_shape)
+    # the same from the text scan of the <use> lines and the document cut to one <use> per kind
+    cut = _own_use_block(path.read_bytes())
+    assert cut is not None, "svgtile's own texture must take the text scan"
+    skeleton, lines = cut
+    assert skeleton.count(b"<use ") == len(lines.first) == len(want_kinds) < skeleton.count(b"\n")
+    scanned = read_own_texture(ET.fromstring(skeleton), str(path), lines=lines)
+    assert scanned is not None
+    assert [kind_key(k) for k in scanned[0]] == [kind_key(k) for k in want_kinds]
+    for field in ("kind", "xy", "angle", "scale"):
+        assert _same_bits(getattr(scanned[1], field), getattr(want, field)), field
+    assert scanned[2].equals(want_shape)
     if name == "varied":  # the parts of the <use> the bundled exemplars lack were written
         text = path.read_text()
         assert "matrix(" in text and "scale(" in text and 'width="2"' in text and 'fill="#a00"' in text
@@ -341,6 +352,52 @@ def test_a_hand_edited_texture_is_read_by_the_exemplar_reader(tmp_path, how):
     assert np.array_equal(back.kind, kept.kind)
     assert np.allclose(back.xy, kept.xy, atol=1e-9)
     assert np.allclose(np.cos(np.radians(back.angle - kept.angle)), 1.0, atol=1e-12)
+
+
+def _second_use(text: str, old: str, new: str) -> str:
+    first = text.index("<use ")
+    second = text.index("<use ", first + 1)
+    end = text.index("/>", second)
+    return text[:second] + text[second:end].replace(old, new, 1) + text[end:]
+
+
+@pytest.mark.parametrize(
+    "how",
+    [
+        "comment",  # a comment before the motifs could hide what the scan sees
+        "blank line",  # not one <use> per line
+        "crlf",  # other line ends
+        "attribute order",  # transform before href
+        "escaped href",  # a dropped line that would be a <use> of the same kind as written otherwise
+    ],
+)
+def test_the_text_scan_leaves_other_forms_to_the_parser(tmp_path, how):
+    """What the scan does not take is parsed whole, with the same motifs, bit for bit."""
+    ex, _, _ = write_texture(tmp_path / "t.svg", "gravel", Region.rectangle(60, 50))
+    text = (tmp_path / "t.svg").read_text()
+    if how == "comment":
+        text = text.replace("<metadata>", "<!-- a note --><metadata>", 1)
+    elif how == "blank line":
+        text = text.replace("/>\n    <use ", "/>\n\n    <use ", 1)
+    elif how == "crlf":
+        text = text.replace("\n", "\r\n")
+    elif how == "attribute order":
+        text = re.sub(r'<use (xlink:href="[^"]*") (transform="[^"]*")', r"<use \2 \1", text, count=1)
+    else:
+        text = _second_use(text, 'xlink:href="#p', 'xlink:href="#&#112;')
+    path = tmp_path / "e.svg"
+    path.write_bytes(text.encode())
+    cut = _own_use_block(path.read_bytes())
+    if how == "escaped href":  # the scan takes it, the cut document's check refuses it
+        assert cut is not None and read_own_texture(ET.fromstring(cut[0]), "e.svg", lines=cut[1]) is None
+    else:
+        assert cut is None
+    arr, _ = read_texture(path, ex)
+    own = read_own_texture(ET.parse(path).getroot(), "e.svg")
+    want = _general(path)[1] if own is None else own[1]
+    assert len(arr) > 50
+    for field in ("xy", "angle", "scale"):
+        assert _same_bits(getattr(arr, field), getattr(want, field)), field
 
 
 def test_every_table_row_is_a_score_field():

@@ -223,6 +223,27 @@ def test_find_conflicts_matches_brute_force_and_bands(monkeypatch):
     assert all(got[k][1] == flags[k][1] for k in got if not flags[k][0])
 
 
+@pytest.mark.parametrize("name", ["gravel", "till", "breccia", "scrub"])
+def test_pairs_said_apart_by_their_extents_are_farther_than_the_reach(name):
+    """The footprint-free filter of find_conflicts never drops a pair GEOS finds within reach."""
+    from svgtile.core.conflicts import _surely_apart
+
+    ex = read_exemplar(Path(__file__).parent.parent / "exemplars" / f"{name}.svg")
+    rng = np.random.default_rng(5)
+    n = 4000
+    r = max(p.radius for p in ex.prototypes)
+    arr = Arrangement(rng.integers(0, len(ex.kinds), n), rng.uniform(0, 4 * r, (n, 2)) + 1000.0,
+                      rng.uniform(-180, 180, n), rng.uniform(0.5, 1.5, n))  # fmt: skip
+    i, j = np.arange(0, n, 2), np.arange(1, n, 2)
+    reach = rng.uniform(0, 0.3 * r, len(i))
+    apart = _surely_apart(arr, ex.prototypes, i, j, reach)
+    geoms = world_footprints(arr, ex.prototypes)
+    dist = shapely.distance(geoms[i], geoms[j])
+    assert (dist[apart] > reach[apart]).all()
+    far = dist > reach * 1.01 + 1e-6
+    assert 0.3 < apart.sum() / far.sum() <= 1.0  # the bound is not idle either
+
+
 def test_counter_based_randomness_is_local_and_uniform():
     a = uniform(11, 0, np.arange(-5000, 5000), 3)
     assert 0.45 < a.mean() < 0.55 and a.min() >= 0 and a.max() < 1

@@ -309,8 +309,9 @@ def _kind_pairs(kind: np.ndarray, ids: np.ndarray):
 
 
 def nearest_gaps(
-    arr: Arrangement, protos: list[Prototype], sources: np.ndarray, kind: int, *, geoms: np.ndarray | None = None
-) -> np.ndarray:
+    arr: Arrangement, protos: list[Prototype], sources: np.ndarray, kind: int, *, geoms: np.ndarray | None = None,
+    tree: cKDTree | None = None,
+) -> np.ndarray:  # fmt: skip
     """Footprint distance from each source motif to the nearest other motif of ``kind``.
 
     Parameters
@@ -320,6 +321,7 @@ def nearest_gaps(
     sources : (m,) int array, indices into ``arr``
     kind : the kind of the neighbours
     geoms : (n,) world footprints, if built
+    tree : k-d tree of the centroids of the motifs of ``kind`` (in index order), if built
 
     Returns
     -------
@@ -333,7 +335,8 @@ def nearest_gaps(
         need = np.unique(np.concatenate([sources, targets]))
         geoms = np.empty(len(arr), dtype=object)
         geoms[need] = world_footprints(arr.take(need), protos)
-    tree = cKDTree(arr.xy[targets])
+    if tree is None:
+        tree = cKDTree(arr.xy[targets])
     return nearest_distances(
         arr.xy[sources], radius[sources], geoms[sources], tree, radius[targets], geoms[targets],
         ids=(sources, targets),

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import gc
 import json
+from contextlib import contextmanager
 from pathlib import Path
 
 import click
@@ -39,8 +41,9 @@ def score(exemplar, texture, as_json):
     Read them against svgtile compare's tile and random columns; the README defines each.
     """
     ex, stats = load(exemplar)
-    arr, region = read_texture(texture, ex)
-    result = measure(ex, stats, arr, region)
+    with _no_cycle_collection():
+        arr, region = read_texture(texture, ex)
+        result = measure(ex, stats, arr, region)
     warn_if_few(result.motifs, texture)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
@@ -49,3 +52,17 @@ def score(exemplar, texture, as_json):
         click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs centred in its region "
                    "(motifs the region's edge cuts, centred outside it, are not counted)")
         click.echo(format_score(result))
+
+
+@contextmanager
+def _no_cycle_collection():
+    """CPython's cyclic collector paused: reading and measuring a large texture makes hundreds
+    of thousands of objects that hold no reference cycles (the strings of the ``<use>`` scan,
+    one shapely footprint per motif), and the collector would walk them all again and again."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()

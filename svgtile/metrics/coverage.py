@@ -88,7 +88,7 @@ def largest_empty_disc(
     if len(p) == 0:
         p = np.array(shapely.get_coordinates(shapely.point_on_surface(centres)))
         e = np.full(1, np.inf)
-    order = np.argsort(-e, kind="stable")
+    order = _best_first(e, min(len(e), COVER_EXACT))
     p, e = p[order], e[order]
     c = np.full(len(p), -np.inf)
     done, batch = 0, 256
@@ -136,7 +136,7 @@ def _raster_clearance(
     ox, oy = x0 - pad, y0 - pad
     nx, ny = math.ceil((x1 - x0 + 2 * pad) / step), math.ceil((y1 - y0 + 2 * pad) / step)
     gx, gy = np.meshgrid(ox + (np.arange(nx) + 0.5) * step, oy + (np.arange(ny) + 0.5) * step)
-    feature = ~shapely.contains_xy(within, gx, gy)
+    feature = ~_contains_xy(within, gx, gy)
     if len(arr):
         reach = float(motif_radius(arr, protos).max())
         near = (
@@ -167,6 +167,38 @@ def _raster_clearance(
         estimate = distance_transform_edt(~feature) * step
     else:
         estimate = np.full(feature.shape, np.inf)
-    keep = shapely.contains_xy(centres, gx, gy)
+    keep = _contains_xy(centres, gx, gy)
     return np.stack([gx[keep], gy[keep]], axis=1), estimate[keep]
 
+
+def _best_first(e: np.ndarray, k: int) -> np.ndarray:
+    """The first ``k`` of ``np.argsort(-e, kind="stable")``, without sorting all of ``e``.
+
+    The ``k`` largest values are found by partition; of those equal to the smallest of them,
+    the first in index order are kept, so the order is that of the stable sort exactly.
+    """
+    if k >= len(e):
+        return np.argsort(-e, kind="stable")
+    if k == 0:
+        return np.zeros(0, np.int64)
+    cut = -np.partition(-e, k - 1)[k - 1]  # the k-th largest value
+    above = np.flatnonzero(e > cut)
+    tied = np.flatnonzero(e == cut)[: k - len(above)]
+    chosen = np.concatenate([above, tied])
+    chosen.sort()
+    return chosen[np.argsort(-e[chosen], kind="stable")]
+
+
+def _contains_xy(geom: shapely.Geometry, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """``shapely.contains_xy(geom, x, y)``, by four comparisons when ``geom`` is an axis-aligned
+    rectangle (a rectangular region or its interior): the same answer — the boundary is not
+    inside — without a point-in-polygon test for each of millions of raster pixels."""
+    if shapely.get_type_id(geom) == 3 and shapely.get_num_interior_rings(geom) == 0:
+        ring = shapely.get_coordinates(shapely.get_exterior_ring(geom))
+        x0, y0, x1, y1 = geom.bounds
+        if len(ring) == 5 and x0 < x1 and y0 < y1:
+            corner = np.isin(ring[:, 0], (x0, x1)) & np.isin(ring[:, 1], (y0, y1))
+            step = np.diff(ring, axis=0) != 0
+            if corner.all() and (step[:, 0] != step[:, 1]).all():
+                return (x > x0) & (x < x1) & (y > y0) & (y < y1)
+    return shapely.contains_xy(geom, x, y)

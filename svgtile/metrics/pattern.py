@@ -126,9 +126,18 @@ class Repetition:
     repetition_vector: tuple[float, float] | None
 
 
+def kind_trees(arr: Arrangement, k: int) -> list[cKDTree]:
+    """One k-d tree per kind of the centroids of that kind's motifs, in index order.
+
+    :func:`structure` and :func:`repetition` both search a kind's motifs; building the trees
+    once serves both (a tree of the same points answers the same).
+    """
+    return [cKDTree(arr.xy[arr.kind == c]) for c in range(k)]
+
+
 def structure(
     exemplar: Exemplar, stats: Stats, arr: Arrangement, window: shapely.Geometry, *,
-    geoms: np.ndarray | None = None, inside: np.ndarray | None = None,
+    geoms: np.ndarray | None = None, inside: np.ndarray | None = None, trees: list[cKDTree] | None = None,
 ) -> Structure:  # fmt: skip
     """Distances between the exemplar's and the texture's structure, per ordered kind pair.
 
@@ -180,6 +189,7 @@ def structure(
     window : where the texture is measured (shapely geometry)
     geoms : (n,) world footprints of ``arr``, if built
     inside : (n,) bool, the motifs of ``arr`` in ``window``, if known
+    trees : :func:`kind_trees` of ``arr``, if built
 
     Returns
     -------
@@ -210,7 +220,7 @@ def structure(
         for j in range(k):
             ge = nearest_gaps(ex, protos, src_ex, j, geoms=ex_geoms)
             ge = ge[np.isfinite(ge)]
-            gt = nearest_gaps(arr, protos, src_tex, j, geoms=geoms)
+            gt = nearest_gaps(arr, protos, src_tex, j, geoms=geoms, tree=trees[j] if trees else None)
             gt = gt[np.isfinite(gt)]
             d_gap = noise = None
             if len(ge) >= GAP_MIN_SAMPLES and ge.mean() > 0 and len(gt):
@@ -367,8 +377,9 @@ def _set_covariance(window: shapely.Geometry, d: np.ndarray) -> np.ndarray:
 
 
 def repetition(
-    arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None
-) -> Repetition:
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None,
+    trees: list[cKDTree] | None = None,
+) -> Repetition:  # fmt: skip
     """How strongly the arrangement repeats itself: ≈ 1 for a tiling, ≈ 0 for random placement.
 
     With ``s`` the mean spacing and ``L`` the exemplar's size (larger side of the input region's
@@ -397,7 +408,8 @@ def repetition(
     and ``repetition`` ≈ 0.  An exemplar that is itself a lattice scores high whatever the
     engine: the figure measures repetition, not its cause.
 
-    ``inside`` : (n,) bool, the motifs in ``window``, if known.
+    ``inside`` : (n,) bool, the motifs in ``window``, if known; ``trees`` : :func:`kind_trees`
+    of ``arr``, if built.
 
     Returns
     -------
@@ -421,7 +433,8 @@ def repetition(
     for c in np.unique(arr.kind[ref]):
         mine = ref[arr.kind[ref] == c]
         peers = np.flatnonzero(arr.kind == c)
-        found = cKDTree(arr.xy[mine]).sparse_distance_matrix(cKDTree(arr.xy[peers]), reach, output_type="ndarray")
+        tree = trees[c] if trees else cKDTree(arr.xy[peers])
+        found = cKDTree(arr.xy[mine]).sparse_distance_matrix(tree, reach, output_type="ndarray")
         keep = (found["v"] >= r0) & (found["v"] < reach)
         a, b = mine[found["i"][keep]], peers[found["j"][keep]]
         who.append(a)

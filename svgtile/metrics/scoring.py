@@ -32,7 +32,7 @@ from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_STEP, largest_empty_disc
-from svgtile.metrics.pattern import KindPair, repetition, structure
+from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import conflict_counts, orientation_outside
 from svgtile.metrics.window import finite_or_none, in_window, interior, spacing
 
@@ -180,8 +180,9 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     windows = window_densities(arr, exemplar, window)
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
-    found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside)
-    rep = repetition(arr, exemplar, stats, window, inside=inside)
+    trees = kind_trees(arr, len(protos))
+    found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
+    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
 
     step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
     r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 import re
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -64,12 +65,27 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
     RegionError
         The clip path has no area.
     """
-    root = None
+    root = own = None
     try:
-        root = ET.fromstring(Path(path).read_bytes())
-    except (ET.ParseError, ValueError, LookupError, OSError):
-        pass  # the exemplar reader reports it
-    own = read_own_texture(root, str(path)) if root is not None else None
+        data = Path(path).read_bytes()
+    except OSError:
+        data = None  # the exemplar reader reports it
+    cut = _own_use_block(data) if data is not None else None
+    if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines
+        skeleton, lines = cut
+        try:
+            root = ET.fromstring(skeleton)
+        except (ET.ParseError, ValueError, LookupError):
+            root = None
+        own = read_own_texture(root, str(path), lines=lines) if root is not None else None
+        if own is None:
+            root = None
+    if root is None and data is not None:
+        try:
+            root = ET.fromstring(data)
+        except (ET.ParseError, ValueError, LookupError):
+            pass  # the exemplar reader reports it
+        own = read_own_texture(root, str(path)) if root is not None else None
     if own is not None:
         kinds, motifs, region = own
     else:
@@ -112,7 +128,85 @@ _OWN_TRANSFORM = re.compile(
 _SUFFIX_PART = re.compile(rf"(translate|matrix)\(((?:{_FIXED} ?)+)\)")
 
 
-def read_own_texture(root: ET.Element, source: str) -> tuple[tuple[Kind, ...], Arrangement, shapely.Geometry] | None:
+_SUFFIX = rf"((?: translate\({_FIXED} {_FIXED}\))?(?: matrix\({_FIXED} {_FIXED} {_FIXED} {_FIXED} 0 0\))?)"
+#: The opening tag of svgtile's motif group, as :func:`svgtile.svg.writer.svg_document` writes it.
+_OWN_GROUP = re.compile(rb'<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>')
+#: One ``<use>`` line as :func:`svgtile.svg.writer.use_elements` writes it: its ``href`` and other
+#: attributes as written, then its transform as :data:`_OWN_TRANSFORM` splits it (the lookahead
+#: spares the scan of each transform as one more attribute).
+_OWN_USE = re.compile(
+    rf'^[ \t]*<use (xlink:href="#[^"<>\n]*"(?: (?!transform=)[A-Za-z_][-\w.:]*="[^"<>\n]*")*) '
+    rf'transform="translate\(({_FIXED}) ({_FIXED})\)(?: rotate\(({_FIXED})\))?(?: scale\(({_FIXED})\))?{_SUFFIX}"/>$',
+    re.M,
+)
+
+
+@dataclass(frozen=True, eq=False)
+class OwnLines:
+    """The ``<use>`` lines of svgtile's motif group, scanned as text (:func:`_own_use_block`).
+
+    Attributes
+    ----------
+    columns : five tuples of n strings, ``x``, ``y``, ``angle``, ``scale`` and ``suffix`` of
+        each motif as :data:`_OWN_TRANSFORM` finds them in its transform (``""`` if missing)
+    group : (n,) int array, each motif's group — lines with the same ``href`` and attributes
+        text and the same suffix — numbered in order of first appearance
+    first : (g,) int array, the first motif of each group (increasing)
+    """
+
+    columns: tuple[tuple[str, ...], ...]
+    group: np.ndarray
+    first: np.ndarray
+
+
+def _own_use_block(data: bytes) -> tuple[bytes, OwnLines] | None:
+    """Cut the ``<use>`` lines out of a texture in svgtile's own form, without parsing XML.
+
+    svgtile writes its motif group last, one ``<use>`` per line (:func:`svgtile.svg.writer.svg_document`).
+    If ``data`` ends with such a group, every line of which matches :data:`_OWN_USE`, this
+    returns the document with only the first line of each group of lines kept (for
+    ElementTree: its parse of 177k ``<use>`` takes a second) and the lines scanned.  Any other
+    document gives None: then it is parsed whole.
+
+    A dropped line repeats the ``href`` and attributes text of a kept one and has a transform of
+    plain numbers, so the cut document is well-formed and means the same exactly when the whole
+    one does.  Before the group there may be no comment, CDATA section, document type or
+    processing instruction (which could hide or redefine what the scan sees).
+    """
+    start = data.rfind(b'<g id="svgtile')
+    if start < 0:
+        return None
+    before = data[:start]
+    if any(t in before for t in (b"<!--", b"<![CDATA[", b"<!DOCTYPE", b"<!ENTITY")):
+        return None
+    if before.count(b"<?") != (1 if before.startswith(b"<?xml ") else 0):
+        return None
+    opening = _OWN_GROUP.match(data, start)
+    end = data.find(b"</g>", opening.end()) if opening else -1
+    if end < 0 or re.fullmatch(rb"</g>[ \n]*</svg>[ \n]*", data[end:]) is None:
+        return None
+    try:
+        block = data[opening.end() : end].decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    inner = block.rstrip(" ")  # "\n" + one line per <use> + "\n" + the indent of </g>
+    if len(inner) < 3 or inner[0] != "\n" or inner[-1] != "\n":
+        return None
+    body = inner[1:-1]
+    found = _OWN_USE.findall(body)
+    if len(found) != body.count("\n") + 1:
+        return None  # a line that is not a <use> as svgtile writes it
+    heads, *columns = zip(*found, strict=True)
+    group = _numbered(list(zip(heads, columns[4], strict=True)))
+    first = np.unique(group, return_index=True)[1]
+    lines = body.split("\n")
+    kept = "\n".join(lines[i] for i in first.tolist()).encode("utf-8")
+    return data[: opening.end()] + b"\n" + kept + b"\n" + data[end:], OwnLines(tuple(columns), group, first)
+
+
+def read_own_texture(
+    root: ET.Element, source: str, *, lines: OwnLines | None = None
+) -> tuple[tuple[Kind, ...], Arrangement, shapely.Geometry] | None:
     """Kinds, motifs and input region of a texture in svgtile's own form, read in bulk.
 
     What :func:`svgtile.svg.reader.parse_exemplar` gives for the same document — the same kinds,
@@ -130,8 +224,10 @@ def read_own_texture(root: ET.Element, source: str) -> tuple[tuple[Kind, ...], A
 
     Parameters
     ----------
-    root : the parsed document
+    root : the parsed document; with ``lines``, the document :func:`_own_use_block` cut, whose
+        motif group holds only the first ``<use>`` of each of ``lines``' groups
     source : its name, for messages
+    lines : the ``<use>`` lines :func:`_own_use_block` scanned, if the document was cut
 
     Returns
     -------
@@ -165,29 +261,36 @@ def read_own_texture(root: ET.Element, source: str) -> tuple[tuple[Kind, ...], A
     head = np.array([heads.setdefault(r[2:-1], len(heads)) for r in rows], dtype=np.int64)
     if any(k in ("x", "y", "transform") for h in heads for k, _ in h):
         return None
-    xs, ys, angles, scales, suffix_text = zip(*parsed, strict=True)
-    suffixes: dict[str, int] = {}
-    suffix = np.array([suffixes.setdefault(t, len(suffixes)) for t in suffix_text], dtype=np.int64)
-    groups, first, member = np.unique(head * len(suffixes) + suffix, return_index=True, return_inverse=True)
-    order = np.argsort(first, kind="stable")
-    first = first[order]
-    kind_of_group = np.empty(len(groups), dtype=np.int64)
-    kind_of_group[order] = np.arange(len(groups))
-    motif_kind = kind_of_group[member.ravel()]
+    if lines is not None:
+        # the cut group holds one <use> per group of lines: they must be distinct elements too
+        distinct = {(h, p[4]) for h, p in zip(head.tolist(), parsed, strict=True)}
+        if len(uses) != len(lines.first) or len(distinct) != len(uses):
+            return None
+        if parsed != [tuple(c[i] for c in lines.columns) for i in lines.first.tolist()]:
+            return None
+        columns, first, motif_kind = lines.columns, lines.first, lines.group
+    else:
+        columns = tuple(zip(*parsed, strict=True))
+        suffix = _numbered(columns[4])
+        first, motif_kind = _first_groups(head * (int(suffix.max()) + 1) + suffix)
+        uses = [uses[i] for i in first.tolist()]
+    xs, ys, angles, scales, suffix_text = columns
+    suffix = _numbered(suffix_text)
+    suffixes = dict(zip(suffix_text, suffix.tolist(), strict=True))
 
     # the kinds, from the exemplar reader on one <use> per group (in order of first appearance),
     # without the viewBox: those first motifs may all lie outside it (clip keeps cut motifs)
     mini = ET.Element(root.tag)
     mini.extend(c for c in root if c is not group)
     mini_group = ET.SubElement(mini, group.tag, group.attrib)
-    mini_group.extend(uses[i] for i in first.tolist())
+    mini_group.extend(uses)
     try:
         sample = DocumentReader(mini, source).read()
         # the input region as the reader finds it in the root alone (its viewBox)
         region = DocumentReader(ET.Element(root.tag, root.attrib), source)._region(Arrangement.empty(), [])
     except (ExemplarError, RecursionError):
         return None  # the exemplar reader will say what is wrong with the whole file
-    if len(sample.kinds) != len(groups) or len(sample.motifs) != len(groups):
+    if len(sample.kinds) != len(first) or len(sample.motifs) != len(first):
         return None  # two groups are one kind, or one draws nothing: leave it to the reader
 
     m = _compose(np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64), angles, scales)
@@ -198,6 +301,22 @@ def read_own_texture(root: ET.Element, source: str) -> tuple[tuple[Kind, ...], A
             part = m[:, at]
             m[:, at] = _pre_cat(part, (1.0, 0.0, 0.0, 1.0, v[0], v[1]) if op == "translate" else tuple(v))
     return _split(m, motif_kind, sample.kinds, region)
+
+
+def _numbered(keys: list | tuple) -> np.ndarray:
+    """(n,) int array: each of the n hashable ``keys`` numbered in order of first appearance."""
+    index = {k: i for i, k in enumerate(dict.fromkeys(keys))}
+    return np.fromiter(map(index.__getitem__, keys), np.int64, len(keys))
+
+
+def _first_groups(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The first element of each distinct value of ``key`` (n,), increasing, and each element's
+    group, groups numbered in order of first appearance."""
+    groups, first, member = np.unique(key, return_index=True, return_inverse=True)
+    order = np.argsort(first, kind="stable")
+    kind_of_group = np.empty(len(groups), dtype=np.int64)
+    kind_of_group[order] = np.arange(len(groups))
+    return first[order], kind_of_group[member.ravel()]
 
 
 def _pre_cat(s: np.ndarray, m: tuple) -> np.ndarray:
@@ -223,16 +342,16 @@ def _compose(x: np.ndarray, y: np.ndarray, angles: tuple[str, ...], scales: tupl
     n = len(x)
     one, zero = np.ones(n), np.zeros(n)
     m = _pre_cat(np.stack([one, zero, zero, one, zero, zero]), (1.0, 0.0, 0.0, 1.0, x, y))
-    turned = np.flatnonzero(np.array([a != "" for a in angles]))
+    turned = np.flatnonzero(np.fromiter(map(bool, angles), bool, n))
     if len(turned):
-        a = np.array([angles[i] for i in turned.tolist()], dtype=np.float64)
+        a = np.array(list(filter(None, angles)), dtype=np.float64)
         theta = math.tau * a / 360.0  # svgelements Angle.degrees
         ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
         st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
         m[:, turned] = _pre_cat(m[:, turned], (ct, st, -st, ct, 0.0, 0.0))
-    scaled = np.flatnonzero(np.array([s != "" for s in scales]))
+    scaled = np.flatnonzero(np.fromiter(map(bool, scales), bool, n))
     if len(scaled):
-        s = np.array([scales[i] for i in scaled.tolist()], dtype=np.float64)
+        s = np.array(list(filter(None, scales)), dtype=np.float64)
         m[:, scaled] = _pre_cat(m[:, scaled], (s, 0.0, 0.0, s, 0.0, 0.0))
     return m
 
