@@ -39,7 +39,7 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
 
 
 @dataclass(frozen=True, eq=False)
-class Result:
+class EngineScore:
     """One engine's texture and its figures."""
 
     engine: str
@@ -50,7 +50,7 @@ class Result:
 def compare(
     exemplar: Exemplar, stats: Stats, region: Region, *, engines: Sequence[str] = ("patch", "tile", "random"),
     seed: int = 1, progress: Callable[[str, float], None] | None = None, boundary: str = "clip", **params,
-) -> list[Result]:  # fmt: skip
+) -> list[EngineScore]:  # fmt: skip
     """Synthesize ``region`` with each engine (one seed for all) and score each texture.
 
     Parameters
@@ -83,7 +83,7 @@ def compare(
         own = {p.name for p in ENGINES[name].Params.public()}  # a dialog of all engines' parameters
         arr = synthesize(exemplar, region, name, seed=seed, stats=stats, boundary=boundary,
                          params={k: v for k, v in params.items() if k in own}).arrangement  # fmt: skip
-        out.append(Result(name, arr, score(exemplar, stats, arr, region)))
+        out.append(EngineScore(name, arr, score(exemplar, stats, arr, region)))
     return out
 
 
@@ -93,7 +93,7 @@ def _cell(value, spec: str) -> str:
     return format(value, spec)
 
 
-def format_table(results: Sequence[Result]) -> str:
+def format_table(results: Sequence[EngineScore]) -> str:
     """Engines as columns, figures (:data:`FIGURES`) as rows, as plain text."""
     label = max(len(lab) for _, lab, _ in FIGURES)
     width = max(9, *(len(r.engine) for r in results))
@@ -103,7 +103,7 @@ def format_table(results: Sequence[Result]) -> str:
     return "\n".join(lines)
 
 
-def format_markdown(results: Sequence[Result]) -> str:
+def format_markdown(results: Sequence[EngineScore]) -> str:
     """:func:`format_table` as a Markdown table."""
     lines = ["| figure | " + " | ".join(r.engine for r in results) + " |", "|---" * (len(results) + 1) + "|"]
     for key, lab, spec in FIGURES:
