@@ -10,6 +10,8 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 * :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
 * :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation, repetition;
 * :mod:`~svgtile.metrics.coverage` — the largest empty disc;
+* :mod:`~svgtile.metrics.neighbourhood` — the neighbourhood distance of Ma, Wei & Tong 2011
+  and :func:`likeness` between two baselines (not yet part of :func:`score`);
 * :mod:`~svgtile.metrics.scoring` — :class:`Score` and :func:`score`.
 """
 
@@ -17,6 +19,7 @@ from __future__ import annotations
 
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import largest_empty_disc
+from svgtile.metrics.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.pattern import (
     KindPair,
     Repetition,
@@ -42,7 +45,10 @@ __all__ = [
     "interior",
     "kind_mix_tv",
     "largest_empty_disc",
+    "likeness",
     "motif_sample",
+    "neighbourhood_distance",
+    "neighbourhoods",
     "orientation_outside",
     "pair_correlation",
     "repetition",

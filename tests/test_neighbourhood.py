@@ -1,0 +1,113 @@
+"""Known answers of the neighbourhood distance (Ma, Wei & Tong 2011, §3.2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from svgtile.metrics.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
+
+A = 10.0  # lattice step, user units (= the lattice's mean spacing)
+TILE = 8  # lattice exemplar: TILE × TILE motifs, periodic with period TILE·A
+
+
+def lattice(nx: int, ny: int, step: float = A) -> np.ndarray:
+    gx, gy = np.meshgrid(np.arange(nx) * step, np.arange(ny) * step, indexing="ij")
+    return np.column_stack([gx.ravel(), gy.ravel()])
+
+
+def interior(xy: np.ndarray, margin: float) -> np.ndarray:
+    lo, hi = xy.min(axis=0) + margin, xy.max(axis=0) - margin
+    return np.flatnonzero(((xy >= lo) & (xy <= hi)).all(axis=1))
+
+
+EX_XY = lattice(TILE, TILE)
+EX_KIND = np.zeros(len(EX_XY), dtype=int)
+PERIOD = (TILE * A, TILE * A)
+TEX_XY = lattice(30, 30) + np.array([3.7, -1.3])
+TEX_KIND = np.zeros(len(TEX_XY), dtype=int)
+CENTRES = interior(TEX_XY, 3 * A)
+
+
+def dist(xy, kind=None, centres=None, **kw):
+    kind = np.zeros(len(xy), dtype=int) if kind is None else kind
+    kw.setdefault("period", PERIOD)
+    kw.setdefault("sample", None)
+    return neighbourhood_distance(xy, kind, EX_XY, EX_KIND, spacing=A, centres=centres, **kw)
+
+
+def test_neighbourhoods_shapes_and_wrap():
+    rel, kinds = neighbourhoods(EX_XY, EX_KIND, 4, period=PERIOD)
+    assert rel.shape == (len(EX_XY), 4, 2) and kinds.shape == (len(EX_XY), 4)
+    # With the wrap, the corner motif has its 4 axis neighbours at distance A, like any other.
+    np.testing.assert_allclose(np.hypot(rel[..., 0], rel[..., 1]), A)
+    rel, _ = neighbourhoods(EX_XY, EX_KIND, 4)
+    assert np.hypot(*rel[0].T).max() > A  # without it, the corner sees only 2 at distance A
+    rel, kinds = neighbourhoods(np.zeros((2, 2)), np.zeros(2, int), 3)
+    assert np.isnan(rel[:, 1:]).all() and (kinds[:, 1:] == -1).all()
+
+
+def test_translated_lattice_scores_zero():
+    assert dist(TEX_XY, centres=CENTRES) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_jittered_between_lattice_and_random_and_random_high():
+    rng = np.random.default_rng(1)
+    jitter = TEX_XY + rng.normal(scale=0.15 * A, size=TEX_XY.shape)
+    lo, hi = TEX_XY.min(axis=0), TEX_XY.max(axis=0)
+    scatter = rng.uniform(lo, hi, size=TEX_XY.shape)  # same count, same box: same density
+    e_jit = dist(jitter, centres=interior(jitter, 3 * A))
+    e_rnd = dist(scatter, centres=interior(scatter, 3 * A))
+    assert 0.0 < e_jit < e_rnd
+    assert e_rnd > 3 * e_jit
+
+
+def test_periodic_wrap_of_a_random_tile():
+    rng = np.random.default_rng(2)
+    w = h = 60.0
+    tile = rng.uniform(0, w, size=(40, 2))
+    kind = rng.integers(0, 2, size=40)
+    shifts = np.array([(i, j) for i in range(3) for j in range(3)], float) * (w, h)
+    tex = (tile[None] + shifts[:, None]).reshape(-1, 2)
+    tex_kind = np.tile(kind, 9)
+    middle = np.arange(4 * 40, 5 * 40)  # shift (1, 1): the copy surrounded by the others
+    s = w / np.sqrt(40)
+    args = (tex, tex_kind, tile, kind)
+    e_wrap = neighbourhood_distance(*args, spacing=s, period=(w, h), centres=middle)
+    e_flat = neighbourhood_distance(*args, spacing=s, centres=middle)
+    assert e_wrap == pytest.approx(0.0, abs=1e-9)
+    assert e_flat > 0.05
+
+
+def test_rotate_finds_a_rotated_lattice():
+    turn = np.deg2rad(27.0)
+    rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    xy = TEX_XY @ rot.T
+    centres = interior(TEX_XY, 3 * A)  # rotation keeps the indices
+    assert dist(xy, centres=centres, rotate=True) == pytest.approx(0.0, abs=1e-9)
+    assert dist(xy, centres=centres, rotate=False) > 0.1
+
+
+def test_kind_mismatch_costs_alpha():
+    kind = np.ones(len(TEX_XY), dtype=int)  # every motif and neighbour of the wrong kind
+    e = dist(TEX_XY, kind, centres=CENTRES, k=6, alpha=0.5)
+    assert e == pytest.approx(0.5 * (6 + 1))
+
+
+def test_likeness_ends():
+    assert likeness(0.2, 0.2, 3.0) == 1.0
+    assert likeness(3.0, 0.2, 3.0) == 0.0
+    assert likeness(1.6, 0.2, 3.0) == pytest.approx(0.5)
+    assert np.isnan(likeness(1.0, 2.0, 2.0))
+
+
+def test_sample_needs_rng_and_is_reproducible():
+    rng = np.random.default_rng(3)
+    xy = TEX_XY + rng.normal(scale=0.2 * A, size=TEX_XY.shape)
+    with pytest.raises(ValueError, match="rng"):
+        dist(xy, sample=50)
+    a = dist(xy, sample=50, rng=np.random.default_rng(7))
+    b = dist(xy, sample=50, rng=np.random.default_rng(7))
+    c = dist(xy, sample=50, rng=np.random.default_rng(8))
+    assert a == b
+    assert a != c
