@@ -80,7 +80,7 @@ def compare(
     for n, name in enumerate(engines):
         if progress:
             progress(name, n / len(engines))
-        own = {p.name for p in ENGINES[name].Params.public()}  # a dialog of all engines' parameters
+        own = ENGINES[name].Params.public_names()  # each engine takes the parameters it has
         arr = synthesize(exemplar, region, name, seed=seed, stats=stats, boundary=boundary,
                          params={k: v for k, v in params.items() if k in own}).arrangement  # fmt: skip
         out.append(EngineScore(name, arr, score(exemplar, stats, arr, region)))

@@ -138,7 +138,7 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
         if bad:
             raise ParameterError(f"classes.{name}: unknown key {bad[0]!r} (expected {', '.join(CLASS_KEYS)})", source=source)
         engine = table.get("engine", defaults.get("engine", "patch"))
-        own = {p.name for p in ENGINES[engine].Params.public()} if isinstance(engine, str) and engine in ENGINES else set()
+        own = ENGINES[engine].Params.public_names() if isinstance(engine, str) and engine in ENGINES else set()
         used |= own
         # a top-level engine parameter is a default for the classes whose engine has it
         merged = {**{k: v for k, v in defaults.items() if k not in PARAM_KEYS or k in own}, **table}

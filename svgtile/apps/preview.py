@@ -27,6 +27,11 @@ class RendererMissing(OutputError):
     """The optional PNG renderer is not installed (so no PNG can be written)."""
 
 
+def require_renderer() -> None:
+    """Fail at once, before any work, when the renderer is missing (:class:`RendererMissing`)."""
+    render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)
+
+
 def render_png(svg: str, width: int, *, sans_serif: str | None = "DejaVu Sans") -> bytes:
     """PNG bytes of the SVG text ``svg``, ``width`` pixels wide, on white: every PNG svgtile writes.
 

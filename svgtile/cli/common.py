@@ -112,9 +112,9 @@ def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "pn
         names = ", ".join(s for s, f in FORMATS.items() if f in allowed)
         raise ParameterError(f"{output}: svgtile writes {names} (by the file's suffix), not {suffix}")
     if fmt == "png":
-        from svgtile.apps.preview import render_png
+        from svgtile.apps.preview import require_renderer
 
-        render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
+        require_renderer()
     return fmt
 
 

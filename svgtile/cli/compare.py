@@ -10,7 +10,7 @@ import click
 from svgtile.apps.compare import compare as run_compare
 from svgtile.apps.compare import format_table
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
-from svgtile.apps.preview import contact_sheet, render_png
+from svgtile.apps.preview import contact_sheet, render_png, require_renderer
 from svgtile.cli.common import Stderr, json_safe, load, parse_size, warn_if_few
 from svgtile.core.region import Region
 from svgtile.errors import OutputError
@@ -39,7 +39,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         folder = Path(png_dir)
         if folder.exists() and not folder.is_dir():
             raise OutputError("is a file, not a folder", source=png_dir)
-        render_png('<svg xmlns="http://www.w3.org/2000/svg" width="1" height="1"/>', 1)  # renderer there?
+        require_renderer()
     ex, stats = load(exemplar)
     region = Region.rectangle(width, height)
     check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them, and the scoring

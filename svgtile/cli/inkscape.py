@@ -57,7 +57,7 @@ def fill(exemplar, containers, out_dir, engine, boundary, seed, **values):
     every engine's parameters and the extension passes them all: those the chosen engine does not
     have are left out here (the dialog's help says which engine each is for).
     """
-    own = {p.name for p in get_engine(engine).Params.public()}
+    own = get_engine(engine).Params.public_names()
     params = make_params(engine, {k: v for k, v in values.items() if k in own and v is not None})
     ink.fill(Path(exemplar), Path(containers), Path(out_dir), engine=engine, seed=seed, boundary=boundary,
              max_motifs=MAX_MOTIFS, params=params, load=load)  # fmt: skip

@@ -103,7 +103,7 @@ def public_params() -> dict[str, PublicParam]:
 
 def engines_with(name: str) -> list[str]:
     """Names of the engines that have the public parameter ``name``."""
-    return [e.name for e in ENGINES.values() if any(p.name == name for p in e.Params.public())]
+    return [e.name for e in ENGINES.values() if name in e.Params.public_names()]
 
 
 def make_params(engine: Engine | str, params: Mapping[str, object] | EngineParams | None = None, *,

@@ -103,6 +103,11 @@ class EngineParams:
         return tuple(out)
 
     @classmethod
+    def public_names(cls) -> frozenset[str]:
+        """The names of the public parameters."""
+        return frozenset(p.name for p in cls.public())
+
+    @classmethod
     def check_types(cls, values: dict[str, Any]) -> None:
         """Refuse a value of the wrong type (a number for a float, which may be written as an int;
         ``true``/``false`` only for a bool), naming the parameter; before any range check."""
