@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from svgtile.metrics.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
+from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 
 A = 10.0  # lattice step, user units (= the lattice's mean spacing)
 TILE = 8  # lattice exemplar: TILE × TILE motifs, periodic with period TILE·A

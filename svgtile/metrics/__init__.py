@@ -10,7 +10,7 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 * :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
 * :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation, repetition;
 * :mod:`~svgtile.metrics.coverage` — the largest empty disc;
-* :mod:`~svgtile.metrics.neighbourhood` — the neighbourhood distance of Ma, Wei & Tong 2011
+* :mod:`~svgtile.analysis.neighbourhood` — the neighbourhood distance of Ma, Wei & Tong 2011
   and :func:`likeness` between two baselines (not yet part of :func:`score`);
 * :mod:`~svgtile.metrics.scoring` — :class:`Score` and :func:`score`.
 """
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import largest_empty_disc
-from svgtile.metrics.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
+from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.pattern import (
     KindPair,
     Repetition,

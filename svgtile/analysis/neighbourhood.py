@@ -6,7 +6,8 @@ greedy pairing of §3.2), the closest exemplar neighbourhood is kept, and the co
 over the texture's motifs.  Positions are measured in the exemplar's mean spacing, so the figure
 is dimensionless: 0 when every texture neighbourhood occurs in the exemplar exactly.
 
-Standalone for now: :func:`svgtile.metrics.score` does not call it yet.
+In the analysis stage so that engines (the optimize engine, ma2011) and the metrics share one
+implementation.  Standalone for now: :func:`svgtile.metrics.score` does not call it yet.
 
 References
 ----------
