@@ -26,12 +26,15 @@ from svgtile.core import cellrng
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import BOUNDARY_MODES, Region
 from svgtile.engines.base import (
+    CONTROL_OPTIONS,
     Context,
+    Controls,
     Engine,
     EngineParams,
     Progress,
     PublicParam,
     Result,
+    honoured,
     reading_order,
 )
 from svgtile.engines.patch.engine import PATCH, PatchParams
@@ -147,6 +150,7 @@ def synthesize(
     boundary: str = "clip",
     progress: Progress | None = None,
     params: Mapping[str, object] | EngineParams | None = None,
+    controls: Controls | None = None,
 ) -> Result:
     """Fill ``region`` with a texture like ``exemplar``, with one engine.
 
@@ -162,6 +166,8 @@ def synthesize(
     boundary : one of :data:`svgtile.core.region.BOUNDARY_MODES`
     progress : called as ``progress(stage, fraction)``; ``("done", 1.0)`` last
     params : the engine's parameters (see :func:`make_params`)
+    controls : flow field, barriers, growth area (:class:`~svgtile.engines.base.Controls`); each
+        must be one the engine honours
 
     Returns
     -------
@@ -174,15 +180,21 @@ def synthesize(
         raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}")
     if (seed is None) == (rng is None):
         raise TypeError("synthesize takes exactly one of seed and rng")
+    controls = Controls() if controls is None else controls
+    foreign = sorted(controls.given() - honoured(engine))
+    if foreign:
+        takers = [e.name for e in ENGINES.values() if foreign[0] in honoured(e)]
+        which = f" (engines that do: {', '.join(takers)})" if takers else ""
+        raise ParameterError(f"engine {engine.name!r} cannot honour {CONTROL_OPTIONS[foreign[0]]}{which}")
     stats = analyze(exemplar) if stats is None else stats
     report = progress or (lambda stage, fraction: None)
     key = cellrng.root_key(np.random.default_rng(seed) if rng is None else rng)
-    ctx = Context(exemplar, stats, region, boundary, key, report)
+    ctx = Context(exemplar, stats, region, boundary, key, report, controls)
     arr = engine.place(ctx, p)
     arr = reading_order(arr.take(region.keep(arr, exemplar.prototypes, boundary)))
     report("done", 1.0)
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
 
 
-__all__ = ["ENGINES", "Context", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
+__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
            "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

@@ -10,6 +10,9 @@ An engine is an object with
   ``svgtile map`` and the Inkscape dialog are made (tests check the ``.inx`` against them);
   ``__post_init__`` checks ranges and raises :class:`~svgtile.errors.ParameterError`;
 * ``place(ctx, params) -> Arrangement`` — the synthesis itself, given a :class:`Context`;
+* ``controls`` (optional) — the map controls it honours, a frozenset of :class:`Controls` field
+  names (``"flow"``, ``"barriers"``, ``"grow_within"``); a control given to an engine that does
+  not honour it is an error, never silently ignored;
 * ``reach(exemplar, params) -> float`` — how far, in user units, what happens outside a tile can
   change the motifs inside it; a tiled run (one tile synthesized with a halo this wide, keeping
   only the motifs anchored in the tile) equals the whole run exactly when the reach is finite.
@@ -37,10 +40,12 @@ from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
+import shapely
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
+from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
 from svgtile.errors import ParameterError
 
@@ -126,6 +131,32 @@ class EngineParams:
 
 
 @dataclass(frozen=True, eq=False)
+class Controls:
+    """What a map maker draws to steer a texture besides its region (Ijiri et al. 2008 §6's tools).
+
+    Attributes
+    ----------
+    flow : the direction motifs, copies, frames or courses follow (``--flow``), or None
+    barriers : shapely (Multi)LineString or polygonal geometry, user units, or None — lines no
+        motif footprint crosses and growth does not cross (``--barrier``: a fault, a river)
+    grow_within : shapely polygonal geometry, user units, or None — the only area motifs are
+        placed in (``--grow-within``, the spray tool; a stroke is buffered by half its width)
+    """
+
+    flow: FlowField | None = None
+    barriers: shapely.Geometry | None = None
+    grow_within: shapely.Geometry | None = None
+
+    def given(self) -> frozenset[str]:
+        """Names of the controls that are set."""
+        return frozenset(f.name for f in dataclasses.fields(self) if getattr(self, f.name) is not None)
+
+
+#: Option spelling of each control, for messages.
+CONTROL_OPTIONS = {"flow": "--flow", "barriers": "--barrier", "grow_within": "--grow-within"}
+
+
+@dataclass(frozen=True, eq=False)
 class Context:
     """What an engine's ``place`` is handed.
 
@@ -138,6 +169,7 @@ class Context:
     key : the run's 63-bit key (:func:`svgtile.core.cellrng.root_key`): every random choice is a
         hash of it and world-anchored integers
     progress : called as ``progress(stage, fraction)``; never None
+    controls : the map controls given (only those the engine honours)
     """
 
     exemplar: Exemplar
@@ -146,6 +178,7 @@ class Context:
     boundary: str
     key: int
     progress: Progress
+    controls: Controls = dataclasses.field(default_factory=Controls)
 
 
 @runtime_checkable
@@ -159,6 +192,11 @@ class Engine(Protocol):
     def place(self, ctx: Context, params: EngineParams) -> Arrangement: ...
 
     def reach(self, exemplar: Exemplar, params: EngineParams) -> float: ...
+
+
+def honoured(engine: Engine) -> frozenset[str]:
+    """The :class:`Controls` an engine honours (none unless it declares ``controls``)."""
+    return frozenset(getattr(engine, "controls", frozenset()))
 
 
 @dataclass(frozen=True, eq=False)

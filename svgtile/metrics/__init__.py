@@ -17,9 +17,9 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 
 from __future__ import annotations
 
+from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import largest_empty_disc
-from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.pattern import (
     KindPair,
     Repetition,
