@@ -16,15 +16,20 @@ default style) and the folder ``OUT-symbols/`` of per-kind SVGs (a sub-folder pe
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from svgtile.apps.load import load_exemplar
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.errors import OutputError
 from svgtile.files import write_file
 from svgtile.gis import geojson, layers
 from svgtile.gis.symbols import file_stem, qml_style, symbol_documents
+
+if TYPE_CHECKING:
+    from svgtile.apps.mapfill import MapFill
 
 
 def style_paths(out: str | Path) -> tuple[Path, Path]:
@@ -73,6 +78,19 @@ def exemplar_collection(exemplar: Exemplar, arr: Arrangement, *, unit: float = 1
     """The placements FeatureCollection of a texture synthesized from ``exemplar`` (``synth``)."""
     radius = np.array([k.prototype.radius for k in exemplar.kinds])
     return geojson.placements(arr, [k.name for k in exemplar.kinds], radius, unit=unit)
+
+
+def placements_collection(result: MapFill) -> dict:
+    """Every region's motifs as a GeoJSON FeatureCollection of points, with ``region`` and ``class``."""
+    features = []
+    for r, arr in zip(result.regions, result.results, strict=True):
+        if arr is None:
+            continue
+        ex, _ = load_exemplar(str(result.styles.classes[r.cls].exemplar))
+        for f in exemplar_collection(ex, arr)["features"]:
+            f["properties"] = {"region": r.ident, "class": r.cls, **f["properties"]}
+            features.append(f)
+    return {"type": "FeatureCollection", "features": features}
 
 
 def write_placements(collection: dict, out: str | Path, *, crs: str | None, protect: tuple = ()) -> None:

@@ -8,16 +8,14 @@ import sys
 from pathlib import Path
 
 import click
-import numpy as np
 
-from svgtile.apps.gisout import write_placements, write_style
+from svgtile.apps.gisout import placements_collection, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
-from svgtile.gis import geojson
 from svgtile.gis.layers import crs_of
 from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
 
@@ -140,18 +138,3 @@ def svg_map(result: MapFill, params: dict) -> str:
     doc = result.doc
     return map_document(None if doc is None else doc.root, defs, layers, params=params,
                         namespaces=() if doc is None else doc.namespaces)  # fmt: skip
-
-
-def placements_collection(result: MapFill) -> dict:
-    """Every region's motifs as a GeoJSON FeatureCollection of points, with ``region`` and ``class``."""
-    features = []
-    for r, arr in zip(result.regions, result.results, strict=True):
-        if arr is None:
-            continue
-        ex, _ = load_exemplar(str(result.styles.classes[r.cls].exemplar))
-        names = [k.name for k in ex.kinds]
-        radius = np.array([k.prototype.radius for k in ex.kinds])
-        for f in geojson.placements(arr, names, radius)["features"]:
-            f["properties"] = {"region": r.ident, "class": r.cls, **f["properties"]}
-            features.append(f)
-    return {"type": "FeatureCollection", "features": features}

@@ -285,7 +285,8 @@ def write_points(points: Points, out: str | Path, *, crs: str | None) -> None:
         raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
     try:
         target = tmp / out.name
-        options = {"layer": POINTS_LAYER} if driver == "GPKG" else {}
+        # GeoPackage 1.2: what the GDAL of QGIS 3.22 (Debian 12) reads without a warning
+        options = {"layer": POINTS_LAYER, "dataset_options": {"VERSION": "1.2"}} if driver == "GPKG" else {}
         if driver == "GeoJSON":
             options["layer_options"] = {"COORDINATE_PRECISION": str(COORD_DECIMALS)}
         raw.write(target, wkb, data, fields, driver=driver, geometry_type="Point", crs=crs, encoding="UTF-8"
