@@ -28,6 +28,7 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -289,8 +290,10 @@ def write_points(points: Points, out: str | Path, *, crs: str | None) -> None:
         options = {"layer": POINTS_LAYER, "dataset_options": {"VERSION": "1.2"}} if driver == "GPKG" else {}
         if driver == "GeoJSON":
             options["layer_options"] = {"COORDINATE_PRECISION": str(COORD_DECIMALS)}
-        raw.write(target, wkb, data, fields, driver=driver, geometry_type="Point", crs=crs, encoding="UTF-8"
-                  if driver == "ESRI Shapefile" else None, **options)  # fmt: skip
+        with warnings.catch_warnings():  # no CRS is what the input had: no warning about it
+            warnings.filterwarnings("ignore", message=".*crs.*not provided", category=UserWarning)
+            raw.write(target, wkb, data, fields, driver=driver, geometry_type="Point", crs=crs, encoding="UTF-8"
+                      if driver == "ESRI Shapefile" else None, **options)  # fmt: skip
         if driver == "ESRI Shapefile":
             for part in sorted(tmp.iterdir()):
                 os.replace(part, out.with_name(out.stem + part.name[len(target.stem):]))
