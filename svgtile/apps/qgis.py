@@ -24,6 +24,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
+from svgtile.apps.load import load_exemplar
 from svgtile.apps.mapfill import MapFill, Style, Styles, _task, read_styles
 from svgtile.apps.mapread import AVOID_MARGIN, MapRegion, read_avoid_shape
 from svgtile.core.region import BOUNDARY_MODES
@@ -199,6 +200,8 @@ def fill(
         style = Style("", Path(exemplar), engine, dict(params), None, unit, boundary)
         regions = [MapRegion(f.ident, f.cls or "", f.shape) for f in feats]
         styles = Styles({r.cls: replace(style, cls=r.cls) for r in regions}, source=str(exemplar))
+    for path in sorted({str(st.exemplar) for st in styles.classes.values()}):
+        load_exemplar(path)  # a bad exemplar is one error before any work, not one per polygon
     zone = None
     if avoid:
         import shapely

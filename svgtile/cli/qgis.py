@@ -85,6 +85,8 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
                           max_motifs=MAX_MOTIFS)  # fmt: skip
     for ident, message in result.errors.items():
         warn(f"polygon {ident} not filled: {message}")
+    if result.errors and len(result.errors) == len(result.regions):
+        raise SvgtileError(f"no polygon was filled ({next(iter(result.errors.values()))}); nothing written", source=layer)
     write_placements(placements_collection(result), output, crs=crs, protect=inputs)
     if with_style:
         used = sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None})
