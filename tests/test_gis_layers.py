@@ -5,6 +5,7 @@ and the QGIS style, the QGIS plugin's install and its fill command."""
 from __future__ import annotations
 
 import json
+import warnings
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -30,9 +31,11 @@ NEIGHBOUR = shapely.box(80, 0, 140, 60)
 def write_units(path, crs=CRS, driver=None):
     """A polygon layer ``units`` (fields unit, name) with a holed unit (fid 1 in a GeoPackage)."""
     kw = {"layer": "units"} if str(path).endswith(".gpkg") else {}
-    raw.write(path, shapely.to_wkb(np.array([HOLED, NEIGHBOUR])),
-              [np.array(["Ksh", "Qal"], dtype=object), np.array(["holed", "plain"], dtype=object)],
-              ["unit", "name"], geometry_type="Polygon", crs=crs, driver=driver, **kw)  # fmt: skip
+    with warnings.catch_warnings():  # pyogrio warns that a layer without a CRS has none
+        warnings.simplefilter("ignore", UserWarning)
+        raw.write(path, shapely.to_wkb(np.array([HOLED, NEIGHBOUR])),
+                  [np.array(["Ksh", "Qal"], dtype=object), np.array(["holed", "plain"], dtype=object)],
+                  ["unit", "name"], geometry_type="Polygon", crs=crs, driver=driver, **kw)  # fmt: skip
     return path
 
 
