@@ -155,6 +155,28 @@ def test_bad_layer_input_is_one_line_and_no_output(tmp_path, tiny, capsys, selec
     assert not out.exists()
 
 
+def test_an_avoid_layer_in_another_crs_is_refused(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    other = write_units(tmp_path / "other.gpkg", crs="EPSG:4326")
+    out = tmp_path / "t.svg"
+    rc = main(["synth", str(tiny), "--region", f"{units}#units:1", "--avoid", f"{other}#units:2", "-o", str(out), "--seed", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and "its CRS (EPSG:4326) is not the layer's (EPSG:32633); reproject it first" in err and not out.exists()
+
+
+def test_map_points_default_to_inside_unless_the_styles_say(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    base = 'class_property = "unit"\nseed = 4\n[classes.Ksh]\nexemplar = "tiny.svg"\n'
+    found = {}
+    for name, extra in (("default", ""), ("inside", 'boundary = "inside"\n'), ("clip", 'boundary = "clip"\n')):
+        (tmp_path / f"{name}.toml").write_text(base + extra)
+        out = tmp_path / f"{name}.fgb"
+        assert main(["map", str(units), "--styles", str(tmp_path / f"{name}.toml"), "-o", str(out), "--jobs", "1"]) == 0
+        _, points, fields = read_points(out)
+        found[name] = (shapely.get_coordinates(points).tolist(), fields["kind"].tolist())
+    assert found["default"] == found["inside"] != found["clip"]
+
+
 def test_with_style_needs_a_gis_output(tmp_path, tiny, capsys):
     assert main(["synth", str(tiny), "--size", "20", "-o", str(tmp_path / "t.svg"), "--with-style"]) == 1
     assert "--with-style goes with a GIS output" in capsys.readouterr().err

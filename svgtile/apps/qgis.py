@@ -18,7 +18,6 @@ import concurrent.futures
 import json
 import math
 import os
-import re
 import shutil
 import sys
 from dataclasses import replace
@@ -186,11 +185,8 @@ def fill(
         raise ParameterError("give either --exemplar FILE.svg or --styles FILE.toml")
     if styles_file is not None and class_field is None:
         raise ParameterError("an exemplar table (--styles) needs --class-field naming the field of its classes")
+    layers.common_crs(spec, avoid)
     feats, crs = layers.read_regions(spec, class_property=class_field)
-    for a in avoid:
-        other = layers.crs_of(a)
-        if crs is not None and other is not None and other != crs:
-            raise RegionError(f"its CRS ({_short(other)}) is not the layer's ({_short(crs)}); reproject it first", source=a)
     if styles_file is not None:
         styles = replace(read_styles(styles_file, boundary=boundary), class_property=class_field)
         regions = [MapRegion(f.ident, f.cls, f.shape) for f in feats if f.cls in styles.classes]
@@ -216,8 +212,3 @@ def fill(
     errors = {ident: err for ident, _, err in done if err is not None}
     return MapFill(regions, [arr for _, arr, _ in done], errors, None, [], styles), crs
 
-
-def _short(crs: str) -> str:
-    """A CRS for a message: ``EPSG:…`` as it is, WKT by its name."""
-    match = re.match(r'\s*\w+\["([^"]+)"', crs)
-    return match.group(1) if match else crs

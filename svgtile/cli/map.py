@@ -16,7 +16,7 @@ from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_f
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
-from svgtile.gis.layers import crs_of
+from svgtile.gis.layers import common_crs, is_gis
 from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
 
 
@@ -43,10 +43,10 @@ def _with_params(f):
               help="Regions filled at once, in separate processes [default: the usable cores].")
 @_with_params
 def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
-    """Fill every unit of MAP (SVG or GeoJSON) whose class the styles file knows.
+    """Fill every unit of MAP (SVG, or a GIS layer: .gpkg, .shp, .fgb, .geojson) whose class the styles file knows.
 
     A unit's class is its class attribute (or the attribute the styles file names) or its
-    Inkscape label; in GeoJSON, the property the styles file names (default "class"). The output
+    Inkscape label; in a GIS layer, the field the styles file names (default "class"). The output
     keeps the map and adds one texture group per unit, above the unit and below what follows it.
     A unit that fails is reported; the others are written, and the exit code is 1.
 
@@ -63,7 +63,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
       avoid = ["labels"]      ids in the map (or MAP.svg#ID specs) every texture keeps clear of
       avoid_margin = 2        clear space around them, map units
       class_attribute = "data-unit"   SVG maps: the attribute naming a unit's class
-      class_property = "unit"         GeoJSON maps: the property naming a feature's class
+      class_property = "unit"         GIS maps: the field naming a feature's class
 
     Engine parameters: %(params)s.
     """
@@ -71,7 +71,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
     if with_style and (kind not in POINT_FORMATS or output == "-"):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
     styles = read_styles(styles_file, boundary=default_boundary(kind, None))
-    crs = crs_of(map_file) if kind in POINT_FORMATS else None
+    crs = common_crs(map_file, [a for a in (*styles.avoid, *avoid) if is_gis(a)])
     inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")

@@ -28,7 +28,7 @@ from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import synthesize
 from svgtile.errors import ParameterError
 from svgtile.files import check_output, same_file, write_file
-from svgtile.gis.layers import crs_of
+from svgtile.gis.layers import common_crs, is_gis
 from svgtile.svg.writer import fmt, result_document
 
 
@@ -68,7 +68,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     boundary = default_boundary(kind, boundary)
     if with_style and (kind not in POINT_FORMATS or output == "-"):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
-    crs = crs_of(region_spec) if kind in POINT_FORMATS else None
+    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     check_output(output, protect=(exemplar,))  # fail before the work, not after

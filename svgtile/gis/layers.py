@@ -26,6 +26,7 @@ reprojects.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import tempfile
 import warnings
@@ -145,6 +146,29 @@ def crs_of(spec: str | Path | None) -> str | None:
         return pyogrio.read_info(s.path, layer=s.layer).get("crs")
     except Exception as exc:
         raise RegionError(f"cannot read ({' '.join(str(exc).split())})", source=str(spec)) from None
+
+
+def common_crs(region: str | Path | None, others: tuple[str, ...] | list[str] = ()) -> str | None:
+    """The CRS of the layer ``region`` names, after checking that every other layer spec in
+    ``others`` (avoid layers) has the same one or none.  svgtile does not reproject.
+
+    Raises
+    ------
+    RegionError
+        An avoid layer in another CRS than the region's.
+    """
+    crs = crs_of(region)
+    for spec in others:
+        other = crs_of(spec)
+        if crs is not None and other is not None and other != crs:
+            raise RegionError(f"its CRS ({short_crs(other)}) is not the layer's ({short_crs(crs)}); reproject it first", source=str(spec))
+    return crs
+
+
+def short_crs(crs: str) -> str:
+    """A CRS for a message: ``EPSG:…`` as it is, WKT by its name."""
+    match = re.match(r'\s*\w+\["([^"]+)"', crs)
+    return match.group(1) if match else crs
 
 
 def _geometries(wkb: np.ndarray, source: str) -> np.ndarray:
