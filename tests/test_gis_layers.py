@@ -18,7 +18,7 @@ from svgtile.apps.load import load_exemplar
 from svgtile.cli.main import main
 from svgtile.engines import public_params
 from svgtile.errors import RegionError
-from svgtile.gis import geojson, layers
+from svgtile.gis import geojson, layers, symbols
 
 CRS = "EPSG:32633"
 #: A unit with a hole (map frame, y up, metres) and a plain neighbour.
@@ -208,6 +208,21 @@ def test_symbols_are_square_pages_centred_on_the_anchor(tmp_path, tiny, capsys):
     assert props["size"].find("Option[@name='field']").get("value") == "size"
     assert props["angle"].find("Option[@name='field']").get("value") == "angle"
     assert layer.find("Option/Option[@name='size_unit']").get("value") == "MapUnit"
+
+
+@pytest.mark.parametrize("name", ["tiny", "viewbox", "plain"])
+def test_each_symbol_file_draws_its_kind_centred_on_the_anchor(tmp_path, write_svg, name):
+    """Read back by svgtile itself, each symbol file is one motif of the same shape, at the origin."""
+    from conftest import EXEMPLARS
+
+    ex, _ = load_exemplar(str(write_svg(EXEMPLARS[name], f"{name}.svg")))
+    docs = symbols.symbol_documents(ex)
+    assert len(docs) == len(ex.kinds)
+    for (file, text), kind in zip(docs.items(), ex.kinds, strict=True):
+        back, _ = load_exemplar(str(write_svg(text, file)))
+        assert len(back.motifs) == 1
+        assert np.allclose(back.motifs.xy[0], 0, atol=2e-3)  # the anchor is the page's centre
+        assert back.kinds[0].footprint.area == pytest.approx(kind.footprint.area, rel=2e-3)
 
 
 # ----------------------------------------------------------------------------- QGIS plugin

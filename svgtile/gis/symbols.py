@@ -48,24 +48,18 @@ def symbol_documents(exemplar: Exemplar) -> dict[str, str]:
     (:attr:`svgtile.core.footprint.Prototype.radius`), with the kind drawn once at the origin,
     angle 0, scale 1 — exactly as one ``<use>`` of a texture draws it.
     """
-    defs = []
-    for el in exemplar.defs:
-        el = copy.deepcopy(el)
+    defs = [copy.deepcopy(el) for el in exemplar.defs]
+    for el in defs:
         for node in el.iter():
             if isinstance(node.tag, str) and not node.tag.startswith("{"):
                 node.tag = f"{{{SVG_NS}}}{node.tag}"
-            if node.tag == f"{{{SVG_NS}}}symbol":
-                node.tag = f"{{{SVG_NS}}}g"
-                for key in _SYMBOL_ONLY:
-                    node.attrib.pop(key, None)
-        defs.append(el)
-    defs_text = "".join(ET.tostring(el, encoding="unicode") for el in defs)
     out: dict[str, str] = {}
     for k, kind in enumerate(exemplar.kinds):
         r = kind.prototype.radius
         side = fmt(2 * r)
         one = Arrangement(np.array([k]), np.zeros((1, 2)), np.zeros(1), np.ones(1))
         use = use_elements(one, exemplar.kinds, indent="  ")[0]
+        defs_text = "".join(ET.tostring(el, encoding="unicode") for el in _as_groups(defs, kind))
         name = file_stem(kind.name) + ".svg"
         if name in out:  # two kind names that differ only in unsafe characters
             name = f"{file_stem(kind.name)}-{k}.svg"
@@ -76,6 +70,34 @@ def symbol_documents(exemplar: Exemplar) -> dict[str, str]:
             f"  <title>{_text(kind.name)}</title>\n"
             f"  <defs>{defs_text}</defs>\n{use}\n</svg>\n"
         )
+    return out
+
+
+def _as_groups(defs: list[ET.Element], kind) -> list[ET.Element]:
+    """Copies of ``defs`` with every ``<symbol>`` a ``<g>``; the one ``kind`` uses, if it has a
+    viewBox, gets the transform its ``<use width height>`` viewport gave it (preserveAspectRatio
+    ``xMidYMid meet``, the default, or ``none``)."""
+    attrs = dict(kind.use_attrs)
+    out = [copy.deepcopy(el) for el in defs]
+    for el in out:
+        for node in el.iter(f"{{{SVG_NS}}}symbol"):
+            box = node.get("viewBox")
+            if node.get("id") == kind.href and box and "width" in attrs and "height" in attrs:
+                try:
+                    vx, vy, vw, vh = (float(v) for v in box.replace(",", " ").split())
+                    w, h = float(attrs["width"]), float(attrs["height"])
+                except ValueError:
+                    vw = vh = 0.0
+                if vw > 0 and vh > 0:
+                    if node.get("preserveAspectRatio", "").split()[:1] == ["none"]:
+                        sx, sy, tx, ty = w / vw, h / vh, -vx * w / vw, -vy * h / vh
+                    else:
+                        sx = sy = min(w / vw, h / vh)
+                        tx, ty = (w - vw * sx) / 2 - vx * sx, (h - vh * sy) / 2 - vy * sy
+                    node.set("transform", f"translate({fmt(tx)} {fmt(ty)}) scale({fmt(sx)} {fmt(sy)})")
+            node.tag = f"{{{SVG_NS}}}g"
+            for key in _SYMBOL_ONLY:
+                node.attrib.pop(key, None)
     return out
 
 
