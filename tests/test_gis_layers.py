@@ -134,6 +134,20 @@ def test_map_from_a_geopackage_to_a_shapefile(tmp_path, tiny, write_svg, capsys)
     assert '&quot;class&quot;' in (tmp_path / "filled.qml").read_text()
 
 
+def test_geojson_has_a_crs_only_when_it_names_one(tmp_path, tiny, capsys):
+    named = write_units(tmp_path / "named.geojson", driver="GeoJSON")  # GDAL writes a crs member
+    assert '"crs"' in named.read_text() and layers.crs_of(named) == CRS
+    plain = tmp_path / "plain.geojson"
+    plain.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "id": "a", "properties": {}, "geometry": json.loads(shapely.to_geojson(OUTER))}]}))  # fmt: skip
+    assert layers.crs_of(plain) is None and layers.crs_of(f"{plain}#a") is None
+    out = tmp_path / "t.gpkg"
+    assert main(["synth", str(tiny), "--region", f"{plain}#:0", "-o", str(out), "--seed", "1"]) == 0
+    assert read_points(out)[0]["crs"] is None  # OGR would say WGS 84; svgtile does not guess
+    assert main(["synth", str(tiny), "--region", f"{named}#:0", "-o", str(out), "--seed", "1"]) == 0
+    assert read_points(out)[0]["crs"] == CRS
+
+
 def test_an_input_without_crs_gives_an_output_without_crs(tmp_path, tiny, capsys):
     units = write_units(tmp_path / "units.gpkg", crs=None)
     out = tmp_path / "t.gpkg"

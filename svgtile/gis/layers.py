@@ -132,13 +132,12 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
 def crs_of(spec: str | Path | None) -> str | None:
     """The CRS of the layer a spec names (``AUTHORITY:CODE`` or WKT), None if it has none.
 
-    GeoJSON read the legacy way has none: RFC 7946 GeoJSON is WGS 84 by definition, but svgtile
-    treats its coordinates as the map units they are and does not claim a CRS for them.
+    A GeoJSON file has one only if it says so (:func:`_declares_crs`).
     """
     if spec is None or not is_gis(spec):
         return None
     s = parse_spec(spec)
-    if s.legacy:
+    if s.driver == "GeoJSON" and not _declares_crs(s.path):
         return None
     import pyogrio
 
@@ -146,6 +145,17 @@ def crs_of(spec: str | Path | None) -> str | None:
         return pyogrio.read_info(s.path, layer=s.layer).get("crs")
     except Exception as exc:
         raise RegionError(f"cannot read ({' '.join(str(exc).split())})", source=str(spec)) from None
+
+
+def _declares_crs(path: Path) -> bool:
+    """Whether a GeoJSON file names its CRS (a ``crs`` member, as GDAL writes for other CRSs than
+    WGS 84).  OGR reports WGS 84 for one that does not; svgtile takes that as no CRS, since
+    svgtile's own GeoJSON (and many hand-made files) hold projected map units without saying so."""
+    try:
+        data = geojson.load(path)
+    except RegionError:
+        return False
+    return isinstance(data.get("crs"), dict)
 
 
 def common_crs(region: str | Path | None, others: tuple[str, ...] | list[str] = ()) -> str | None:
@@ -199,7 +209,7 @@ def read_regions(spec: str | Path, *, class_property: str | None = None) -> tupl
     source = str(spec)
     s = parse_spec(spec)
     if s.legacy:
-        return geojson.read_regions(s.path, class_property=class_property, feature=s.ident), None
+        return geojson.read_regions(s.path, class_property=class_property, feature=s.ident), crs_of(s.path)
     meta, fids, wkb, fields = _read(s, source)
     names = list(meta["fields"])
     if class_property is not None and class_property not in names:
@@ -215,7 +225,7 @@ def read_regions(spec: str | Path, *, class_property: str | None = None) -> tupl
     for i, shape in zip(keep.tolist(), shapes, strict=True):
         value = None if classes is None or classes[i] is None else str(classes[i])
         out.append(Feature(str(int(fids[i])), value, shape))
-    return out, meta.get("crs")
+    return out, (meta.get("crs") if s.driver != "GeoJSON" or _declares_crs(s.path) else None)
 
 
 def flip_all(geoms: np.ndarray) -> np.ndarray:
