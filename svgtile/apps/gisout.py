@@ -74,39 +74,72 @@ def write_style(out: str | Path, exemplars: dict[str | None, Exemplar]) -> Path:
     return qml
 
 
-def exemplar_collection(exemplar: Exemplar, arr: Arrangement, *, unit: float = 1.0) -> dict:
-    """The placements FeatureCollection of a texture synthesized from ``exemplar`` (``synth``)."""
-    radius = np.array([k.prototype.radius for k in exemplar.kinds])
-    return geojson.placements(arr, [k.name for k in exemplar.kinds], radius, unit=unit)
+#: One part of a placements layer: an exemplar, its motifs (working frame, map units), and the
+#: region and class they fill (both None for ``synth``).
+Part = tuple[Exemplar, Arrangement, "str | None", "str | None"]
 
 
-def placements_collection(result: MapFill) -> dict:
-    """Every region's motifs as a GeoJSON FeatureCollection of points, with ``region`` and ``class``."""
-    features = []
+def map_parts(result: MapFill) -> list[Part]:
+    """The parts of a map fill: each filled region with its class's exemplar, in region order."""
+    exemplars: dict[str, Exemplar] = {}
+    parts = []
     for r, arr in zip(result.regions, result.results, strict=True):
         if arr is None:
             continue
-        ex, _ = load_exemplar(str(result.styles.classes[r.cls].exemplar))
-        for f in exemplar_collection(ex, arr)["features"]:
-            f["properties"] = {"region": r.ident, "class": r.cls, **f["properties"]}
+        if r.cls not in exemplars:
+            exemplars[r.cls] = load_exemplar(str(result.styles.classes[r.cls].exemplar))[0]
+        parts.append((exemplars[r.cls], arr, r.ident, r.cls))
+    return parts
+
+
+def collection(parts: list[Part]) -> dict:
+    """The parts as a GeoJSON FeatureCollection (:func:`svgtile.gis.geojson.placements`), with
+    ``region`` and ``class`` first where the parts have them."""
+    features = []
+    for ex, arr, region, cls in parts:
+        radius = np.array([k.prototype.radius for k in ex.kinds])
+        for f in geojson.placements(arr, [k.name for k in ex.kinds], radius)["features"]:
+            if region is not None:
+                f["properties"] = {"region": region, "class": cls, **f["properties"]}
             features.append(f)
     return {"type": "FeatureCollection", "features": features}
 
 
-def write_placements(collection: dict, out: str | Path, *, crs: str | None, protect: tuple = ()) -> None:
-    """Write a placements FeatureCollection (:func:`svgtile.gis.geojson.placements`) to ``out``.
+def points(parts: list[Part]) -> layers.Points:
+    """The parts as columns in the map frame (y up), in bulk: what :func:`collection` holds."""
+    cols: dict[str, list] = {name: [] for name in ("xy", "kind", "angle", "scale", "size", "region", "cls")}
+    for ex, arr, region, cls in parts:
+        names = np.array([k.name for k in ex.kinds], dtype=object)
+        radius = np.array([k.prototype.radius for k in ex.kinds])
+        cols["xy"].append(arr.xy * np.array([1.0, -1.0]))
+        cols["kind"].append(names[arr.kind])
+        cols["angle"].append(arr.angle)
+        cols["scale"].append(arr.scale)
+        cols["size"].append(2.0 * radius[arr.kind] * arr.scale)
+        cols["region"].append(np.full(len(arr), region, dtype=object))
+        cols["cls"].append(np.full(len(arr), cls, dtype=object))
+    if not parts:
+        return layers.Points(np.zeros((0, 2)), *(np.zeros(0, dtype=t) for t in (object, float, float, float)))
+    joined = {k: np.concatenate(v) for k, v in cols.items()}
+    classed = parts[0][2] is not None
+    return layers.Points(joined["xy"], joined["kind"], joined["angle"], joined["scale"], joined["size"],
+                         joined["region"] if classed else None, joined["cls"] if classed else None)  # fmt: skip
+
+
+def write_placements(parts: list[Part], out: str | Path, *, crs: str | None, protect: tuple = ()) -> None:
+    """Write the motifs of ``parts`` as a point layer to ``out`` (see the module docstring).
 
     Parameters
     ----------
-    collection : the motifs as GeoJSON features, map frame, already rounded
+    parts : ``[(exemplar, motifs, region, class)]``; one part with region None for ``synth``
     out : ``.geojson``, ``.gpkg``, ``.shp`` or ``.fgb`` (or ``-``: GeoJSON text on standard output)
     crs : the input's CRS, carried to the output; None for none
     protect : the inputs, never overwritten
     """
     if str(out) == "-" or (layers.DRIVERS.get(Path(out).suffix.lower()) == "GeoJSON" and crs is None):
-        write_file(geojson.placements_text(collection), out, protect=protect)
+        write_file(geojson.placements_text(collection(parts)), out, protect=protect)
         return
     from svgtile.files import check_output
 
     check_output(out, protect=protect)
-    layers.write_points(layers.Points.from_collection(collection), out, crs=crs)
+    layers.write_points(points(parts), out, crs=crs)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import placements_collection, write_placements, write_style
+from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
@@ -95,7 +95,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
     if kind in POINT_FORMATS:
-        write_placements(placements_collection(result), output, crs=crs, protect=inputs)
+        write_placements(map_parts(result), output, crs=crs, protect=inputs)
         if with_style:
             used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
             write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)})

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps import qgis as qg
-from svgtile.apps.gisout import placements_collection, write_placements, write_style
+from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import AVOID_MARGIN
@@ -87,7 +87,7 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
         warn(f"polygon {ident} not filled: {message}")
     if result.errors and len(result.errors) == len(result.regions):
         raise SvgtileError(f"no polygon was filled ({next(iter(result.errors.values()))}); nothing written", source=layer)
-    write_placements(placements_collection(result), output, crs=crs, protect=inputs)
+    write_placements(map_parts(result), output, crs=crs, protect=inputs)
     if with_style:
         used = sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None})
         exemplars = {c: load_exemplar(str(result.styles.classes[c].exemplar))[0] for c in used}

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import exemplar_collection, write_placements, write_style
+from svgtile.apps.gisout import write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapread import synth_region
 from svgtile.apps.preview import render_png
@@ -85,7 +85,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
     if kind in POINT_FORMATS:
-        write_placements(exemplar_collection(ex, result.arrangement), output, crs=crs, protect=(Path(exemplar),))
+        write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=(Path(exemplar),))
         if with_style:
             write_style(output, {None: ex})
         return

@@ -274,19 +274,6 @@ class Points:
     region: np.ndarray | None = None
     cls: np.ndarray | None = None
 
-    @classmethod
-    def from_collection(cls, collection: dict) -> Points:
-        """The columns of a FeatureCollection made by :func:`svgtile.gis.geojson.placements` (already rounded)."""
-        feats = collection["features"]
-        xy = np.array([f["geometry"]["coordinates"] for f in feats], dtype=np.float64).reshape(-1, 2)
-
-        def col(name, dtype=object):
-            return np.array([f["properties"][name] for f in feats], dtype=dtype)
-
-        has_region = bool(feats) and "region" in feats[0]["properties"]
-        return cls(xy, col("kind"), col("angle", np.float64), col("scale", np.float64), col("size", np.float64),
-                   col("region") if has_region else None, col("class") if has_region else None)  # fmt: skip
-
 
 def write_points(points: Points, out: str | Path, *, crs: str | None) -> None:
     """Write ``points`` as a Point layer to ``out`` (driver by suffix), atomically.
