@@ -165,9 +165,12 @@ class FillAlgorithm(QgsProcessingAlgorithm):
         param.setHelp(f"{p['help']} (default: {p['default']})")
         return param
 
-    def _engine_args(self, parameters, context):
+    def _engine_args(self, parameters, context, engine):
+        """Options for the parameters of ``engine`` the user set (the dialog shows every engine's)."""
         args = []
         for p in self.config["params"]:
+            if engine not in p["engines"]:
+                continue
             key = "P_" + p["name"].upper()
             if p["type"] == "bool":
                 if self.parameterAsBoolean(parameters, key, context):
@@ -206,7 +209,7 @@ class FillAlgorithm(QgsProcessingAlgorithm):
         field = self.parameterAsFields(parameters, self.CLASS_FIELD, context)
         if field:
             cmd += ["--class-field", field[0]]
-        cmd += self._engine_args(parameters, context)
+        cmd += self._engine_args(parameters, context, engine)
         for layer in self.parameterAsLayerList(parameters, self.AVOID, context):
             parts = QgsProviderRegistry.instance().decodeUri(layer.providerType(), layer.source())
             if layer.providerType() != "ogr" or not parts.get("path"):
