@@ -76,12 +76,16 @@ def test_fill_polygons_with_texture_in_qgis(tmp_path, tiny, qgis_env):
     units = tmp_path / "units.gpkg"
     raw.write(units, shapely.to_wkb(np.array([HOLED, NEIGHBOUR])), [np.array(["Ksh", "Qal"], dtype=object)],
               ["unit"], layer="units", geometry_type="Polygon", crs=CRS)  # fmt: skip
+    road = shapely.LineString([(90, 5), (130, 55)])  # across the plain unit: an avoid layer
+    roads = tmp_path / "roads.gpkg"
+    raw.write(roads, shapely.to_wkb(np.array([road])), [np.array(["A1"], dtype=object)], ["name"], layer="roads",
+              geometry_type="LineString", crs=CRS)  # fmt: skip
     listed = qgis_process(qgis_env, "plugins")
     assert "* svgtile_qgis" in listed.stdout, listed.stdout + listed.stderr
     out = tmp_path / "texture.gpkg"
     done = qgis_process(qgis_env, "run", "svgtile:fill", "--json", "--", f"INPUT={units}", f"EXEMPLAR={tiny}",
                         "CLASS_FIELD=unit", f"BOUNDARY={BOUNDARY_MODES.index('inside')}", "SEED=3",
-                        "P_GRID=2", f"OUTPUT={out}")  # fmt: skip
+                        "P_GRID=2", f"AVOID={roads}|layername=roads", f"OUTPUT={out}")  # fmt: skip
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     answer = json.loads(done.stdout[done.stdout.index("{"):])
     assert answer["results"]["OUTPUT"] == str(out)
@@ -101,6 +105,11 @@ def test_fill_polygons_with_texture_in_qgis(tmp_path, tiny, qgis_env):
                          fields["scale"][ksh].astype(float))  # fmt: skip
     feet = world_footprints(motifs, [k.prototype for k in ex.kinds])
     assert shapely.within(feet, geojson.flip(HOLED).buffer(1e-3)).all()  # --boundary inside: whole motifs
+    qal = Arrangement(np.array([index[k] for k in fields["kind"][~ksh]]),
+                      shapely.get_coordinates(points[~ksh]) * [1.0, -1.0], fields["angle"][~ksh].astype(float),
+                      fields["scale"][~ksh].astype(float))  # fmt: skip
+    clear = shapely.distance(world_footprints(qal, [k.prototype for k in ex.kinds]), geojson.flip(road))
+    assert clear.min() >= 2.0 - 1e-3  # the avoid layer, grown by the default margin (2 map units)
     assert (tmp_path / "texture.qml").is_file() and (tmp_path / "texture-symbols" / "dot.svg").is_file()
     # QGIS draws it with the exported symbols (the .qml beside the layer is its default style)
     png = tmp_path / "texture.png"
