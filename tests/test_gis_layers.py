@@ -191,6 +191,14 @@ def test_map_points_default_to_inside_unless_the_styles_say(tmp_path, tiny, caps
     assert found["default"] == found["inside"] != found["clip"]
 
 
+def test_the_region_file_is_never_overwritten(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    before = units.read_bytes()
+    rc = main(["synth", str(tiny), "--region", f"{units}#units:1", "-o", str(units), "--seed", "1"])
+    assert rc == 1 and "refusing to overwrite an input file" in capsys.readouterr().err
+    assert units.read_bytes() == before
+
+
 def test_with_style_needs_a_gis_output(tmp_path, tiny, capsys):
     assert main(["synth", str(tiny), "--size", "20", "-o", str(tmp_path / "t.svg"), "--with-style"]) == 1
     assert "--with-style goes with a GIS output" in capsys.readouterr().err

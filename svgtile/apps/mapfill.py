@@ -299,7 +299,7 @@ def avoid_zone(path: str | Path, doc: SvgShapes | None, specs: tuple[str, ...], 
                 raise RegionError(f"element #{spec} gives no zone to avoid", source=str(path))
             parts.append(zone)
         else:
-            raise RegionError(f"avoid {spec!r}: a GeoJSON map needs avoid specs like FILE.geojson", source=str(path))
+            raise RegionError(f"avoid {spec!r}: a GIS map needs avoid specs like FILE.gpkg#LAYER", source=str(path))
     return shapely.union_all(parts) if parts else None
 
 

@@ -71,7 +71,9 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
-    check_output(output, protect=(exemplar,))  # fail before the work, not after
+    # every input file is protected: the exemplar, and the files of --region and --avoid
+    inputs = (Path(exemplar), *(Path(spec.partition("#")[0]) for spec in (region_spec or "", *avoid) if spec))
+    check_output(output, protect=inputs)  # fail before the work, not after
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if seed is None:
@@ -85,11 +87,11 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
     if kind in POINT_FORMATS:
-        write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=(Path(exemplar),))
+        write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=inputs)
         if with_style:
             write_style(output, {None: ex})
         return
     data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
     if kind == "png":
         data = render_png(data, png_width(x1 - x0))
-    write_file(data, output, protect=(Path(exemplar),))
+    write_file(data, output, protect=inputs)
