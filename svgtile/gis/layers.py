@@ -119,7 +119,7 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
     except (DataSourceError, DataLayerError, FieldError, GeometryError) as exc:
         if spec.fid is not None and "fid" in str(exc):
             raise RegionError(f"no feature with id {spec.fid}", source=source) from None
-        raise RegionError(f"cannot read ({' '.join(str(exc).split())})", source=source) from None
+        raise RegionError(f"cannot read ({_gdal_message(exc)})", source=source) from None
     except Exception as exc:  # pyogrio raises plain errors for a bad WHERE, a bad fid …
         if spec.fid is not None and "fid" in str(exc):
             raise RegionError(f"no feature with id {spec.fid}", source=source) from None
@@ -127,6 +127,12 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
     if spec.fid is not None and len(fids) == 0:
         raise RegionError(f"no feature with id {spec.fid}", source=source)
     return meta, np.asarray(fids), np.asarray(geometry, dtype=object), list(fields)
+
+
+def _gdal_message(exc: BaseException) -> str:
+    """GDAL's message on one line, without its advice about driver prefixes (svgtile picks the
+    driver by the suffix)."""
+    return " ".join(str(exc).split("; It might help")[0].split()).rstrip(".")
 
 
 def crs_of(spec: str | Path | None) -> str | None:
@@ -144,7 +150,7 @@ def crs_of(spec: str | Path | None) -> str | None:
     try:
         return pyogrio.read_info(s.path, layer=s.layer).get("crs")
     except Exception as exc:
-        raise RegionError(f"cannot read ({' '.join(str(exc).split())})", source=str(spec)) from None
+        raise RegionError(f"cannot read ({_gdal_message(exc)})", source=str(spec)) from None
 
 
 def _declares_crs(path: Path) -> bool:
