@@ -199,6 +199,16 @@ def test_the_region_file_is_never_overwritten(tmp_path, tiny, capsys):
     assert units.read_bytes() == before
 
 
+@pytest.mark.parametrize(("name", "message"), [("bad.gpkg", "not recognized as being in a supported file format"),
+                                                ("none.shp", "no such file")])  # fmt: skip
+def test_an_unreadable_layer_file_is_one_line(tmp_path, tiny, capsys, name, message):
+    if name.startswith("bad"):
+        (tmp_path / name).write_text("garbage")
+    rc = main(["synth", str(tiny), "--region", str(tmp_path / name), "-o", str(tmp_path / "t.gpkg"), "--seed", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and message in err and "It might help" not in err
+
+
 def test_with_style_needs_a_gis_output(tmp_path, tiny, capsys):
     assert main(["synth", str(tiny), "--size", "20", "-o", str(tmp_path / "t.svg"), "--with-style"]) == 1
     assert "--with-style goes with a GIS output" in capsys.readouterr().err
