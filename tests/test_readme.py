@@ -63,6 +63,8 @@ def test_readme_command_runs_as_written(command, out):
     run = command.replace(" out/", f" {tmp_path}/")
     if run.startswith("svgtile inkscape "):
         run += f" --user-dir {tmp_path / 'inkscape'}"
+    if run.startswith("svgtile qgis "):
+        run += f" --profile {tmp_path / 'qgis'}"
     if "gravel-texture.svg" in run and " synth " not in f" {run}":  # made by the README's first command
         done = _run(f"svgtile synth exemplars/gravel.svg -o {tmp_path}/gravel-texture.svg --size 300x200 --seed 1"
                     .replace("svgtile", f"{shlex.quote(sys.executable)} -m svgtile", 1))  # fmt: skip

@@ -44,7 +44,7 @@ from svgtile.apps.mapread import (
     MAX_AVOID_MARGIN,
     MapRegion,
     classed_regions,
-    is_geojson,
+    is_gis,
     read_avoid_shape,
     split_spec,
 )
@@ -52,7 +52,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import BOUNDARY_MODES, Region
 from svgtile.engines import ENGINES, engines_with, make_params, public_params, synthesize
 from svgtile.errors import ParameterError, RegionError, SvgtileError
-from svgtile.gis import geojson
+from svgtile.gis import geojson, layers
 from svgtile.svg.mapdoc import SvgShapes
 
 if sys.version_info >= (3, 11):
@@ -108,8 +108,11 @@ class Styles:
     source: str = "<styles>"
 
 
-def read_styles(path: str | Path) -> Styles:
-    """Parse a styles file (see the module docstring); errors name the file and the key."""
+def read_styles(path: str | Path, *, boundary: str = "clip") -> Styles:
+    """Parse a styles file (see the module docstring); errors name the file and the key.
+
+    ``boundary`` is the boundary mode of the classes that give none (``inside`` for point outputs).
+    """
     source = str(path)
     try:
         with open(path, "rb") as fh:
@@ -118,10 +121,10 @@ def read_styles(path: str | Path) -> Styles:
         raise ParameterError(f"cannot read file ({exc.strerror or exc})", source=source) from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError(f"not a valid TOML file ({' '.join(str(exc).split())})", source=source) from None
-    return parse_styles(data, source=source, folder=Path(path).parent)
+    return parse_styles(data, source=source, folder=Path(path).parent, boundary=boundary)
 
 
-def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path()) -> Styles:
+def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path(), boundary: str = "clip") -> Styles:
     """:func:`read_styles` on already-parsed TOML data."""
     unknown = sorted(set(data) - set(CLASS_KEYS) - set(RUN_KEYS))
     if unknown:
@@ -141,7 +144,7 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
         own = ENGINES[engine].Params.public_names() if isinstance(engine, str) and engine in ENGINES else set()
         used |= own
         # a top-level engine parameter is a default for the classes whose engine has it
-        merged = {**{k: v for k, v in defaults.items() if k not in PARAM_KEYS or k in own}, **table}
+        merged = {"boundary": boundary, **{k: v for k, v in defaults.items() if k not in PARAM_KEYS or k in own}, **table}
         classes[str(name)] = _style(str(name), merged, source, folder)
     unused = sorted(k for k in defaults if k in PARAM_KEYS and k not in used)
     if unused:
@@ -153,7 +156,7 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path())
     if not isinstance(avoid, list) or not all(isinstance(a, str) for a in avoid):
         raise ParameterError("avoid must be a list of ids or MAP.svg#ID specs", source=source)
     # "#labels" and "labels" are ids in the map; "other.svg#ID" and "x.geojson" are files
-    avoid = [a[1:] if a.startswith("#") else str(folder / a) if "#" in a or is_geojson(a) else a for a in avoid]
+    avoid = [a[1:] if a.startswith("#") else str(folder / a) if "#" in a or is_gis(a) else a for a in avoid]
     margin = data.get("avoid_margin", AVOID_MARGIN)
     if not isinstance(margin, (int, float)) or isinstance(margin, bool) or not 0 <= margin <= MAX_AVOID_MARGIN:
         raise ParameterError(f"avoid_margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin!r}", source=source)
@@ -263,8 +266,8 @@ def read_map(path: str | Path, styles: Styles) -> tuple[list[MapRegion], SvgShap
     """The classed regions of a map SVG or GeoJSON file whose class the styles know."""
     classes = set(styles.classes)
     doc = None
-    if is_geojson(path):
-        feats = geojson.read_regions(path, class_property=styles.class_property)
+    if is_gis(path):
+        feats, _ = layers.read_regions(path, class_property=styles.class_property)
         regions = [MapRegion(f.ident, f.cls, f.shape) for f in feats if f.cls in classes]
         if not regions:
             raise RegionError(f"no feature has a property {styles.class_property!r} naming a class of "
@@ -287,7 +290,7 @@ def avoid_zone(path: str | Path, doc: SvgShapes | None, specs: tuple[str, ...], 
     """The union of the avoid zones: bare ids are elements of the map itself."""
     parts = []
     for spec in specs:
-        if "#" in spec or is_geojson(spec):
+        if "#" in spec or is_gis(spec):
             split_spec(spec)
             parts.append(read_avoid_shape(spec, margin))
         elif doc is not None:
@@ -296,7 +299,7 @@ def avoid_zone(path: str | Path, doc: SvgShapes | None, specs: tuple[str, ...], 
                 raise RegionError(f"element #{spec} gives no zone to avoid", source=str(path))
             parts.append(zone)
         else:
-            raise RegionError(f"avoid {spec!r}: a GeoJSON map needs avoid specs like FILE.geojson", source=str(path))
+            raise RegionError(f"avoid {spec!r}: a GIS map needs avoid specs like FILE.gpkg#LAYER", source=str(path))
     return shapely.union_all(parts) if parts else None
 
 

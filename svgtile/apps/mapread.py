@@ -1,16 +1,18 @@
-"""Reading map regions and avoid zones: ``MAP.svg#ID``, ``FILE.geojson[#ID]``, classed units.
+"""Reading map regions and avoid zones: ``MAP.svg#ID``, GIS layer specs, classed units.
 
 A *region spec* names where an output region comes from:
 
 * ``MAP.svg#ID`` — the element with that id: any closed shape or group of shapes, transforms of
   the element and its ancestors applied, holes by each shape's fill rule;
-* ``FILE.geojson`` — every Polygon and MultiPolygon of the file, merged; ``FILE.geojson#ID`` —
-  the feature whose ``id`` (or ``properties.id``, or ``properties.name``) is ID.
+* ``FILE.gpkg``, ``FILE.shp``, ``FILE.fgb``, ``FILE.geojson`` — every Polygon and MultiPolygon
+  of the layer, merged; ``FILE.gpkg#LAYER``, ``#LAYER:FID``, ``#LAYER?WHERE`` select a layer and
+  features (:mod:`svgtile.gis.layers`); ``FILE.geojson#ID`` — the feature whose ``id`` (or
+  ``properties.id``, or ``properties.name``) is ID.
 
 An *avoid spec* ``MAP.svg#ID`` names the labels, lines or shapes the texture must keep clear of:
 texts as estimated boxes, shapes as their footprints, lines as their stroke, each grown by a
 margin (:meth:`svgtile.svg.mapdoc.SvgShapes.keep_clear`); a GeoJSON avoid spec takes its polygons
-as they are and grows lines and points by the margin.
+as they are and grows lines and points by the margin (so does any GIS layer spec).
 
 Map units in a map SVG carry a *class* (:func:`class_of`), which the styles file of
 ``svgtile map`` maps to an exemplar.  The SVG geometry itself is read by
@@ -28,7 +30,8 @@ import shapely
 
 from svgtile.core.region import Region
 from svgtile.errors import ParameterError, RegionError
-from svgtile.gis import geojson
+from svgtile.gis import layers
+from svgtile.gis.layers import is_gis
 from svgtile.svg.dialect import CONTAINERS, INKSCAPE_NS, NOT_RENDERED, SHAPES
 from svgtile.svg.mapdoc import SvgShapes
 
@@ -70,16 +73,12 @@ def split_spec(spec: str) -> tuple[Path, str | None]:
     return Path(path), (ident if sep else None)
 
 
-def is_geojson(path: str | Path) -> bool:
-    return Path(path).suffix.lower() in (".geojson", ".json")
-
-
 def read_region_shape(spec: str) -> shapely.Geometry:
     """The geometry a region spec names (see the module docstring), in user units."""
-    path, ident = split_spec(spec)
-    if is_geojson(path):
-        regions = geojson.read_regions(path, feature=ident)
+    if is_gis(spec):
+        regions, _ = layers.read_regions(spec)
         return shapely.union_all([r.shape for r in regions])
+    path, ident = split_spec(spec)
     if ident is None:
         raise RegionError("name the region's element: MAP.svg#ID", source=str(path))
     doc = SvgShapes.read(path)
@@ -91,9 +90,9 @@ def read_region_shape(spec: str) -> shapely.Geometry:
 
 def read_avoid_shape(spec: str, margin: float = AVOID_MARGIN) -> shapely.Geometry:
     """The avoid zone an avoid spec names, grown by ``margin`` user units."""
+    if is_gis(spec):
+        return layers.read_zones(spec, margin)
     path, ident = split_spec(spec)
-    if is_geojson(path):
-        return geojson.read_zones(path, margin, feature=ident)
     if ident is None:
         raise RegionError("name the element to avoid: MAP.svg#ID", source=str(path))
     doc = SvgShapes.read(path)
@@ -161,7 +160,7 @@ def synth_region(
     margin : growth of avoid zones, user units
     """
     if (size is None) == (region is None):
-        raise ParameterError("give either --size WIDTHxHEIGHT or --region MAP.svg#ID / FILE.geojson")
+        raise ParameterError("give either --size WIDTHxHEIGHT or --region MAP.svg#ID / FILE.gpkg")
     if not (0 <= margin <= MAX_AVOID_MARGIN):
         raise ParameterError(f"--avoid-margin must be a number from 0 to {MAX_AVOID_MARGIN:g}, not {margin:g}")
     zone = shapely.union_all([read_avoid_shape(spec, margin) for spec in avoid]) if avoid else None

@@ -98,12 +98,14 @@ def one_line(exc: BaseException) -> str:
 
 
 #: Output formats by file suffix (``-``, standard output, and a name without suffix are SVG).
-FORMATS = {".svg": "svg", ".geojson": "geojson", ".png": "png"}
+FORMATS = {".svg": "svg", ".geojson": "geojson", ".png": "png", ".gpkg": "gis", ".shp": "gis", ".fgb": "gis"}
+#: Output kinds that are one point per motif (the boundary mode defaults to ``inside`` for them).
+POINT_FORMATS = ("geojson", "gis")
 #: Pixels per user unit of a ``.png`` output, and the limits of its width in pixels.
 PNG_SCALE, PNG_MIN, PNG_MAX = 2.0, 64, 8192
 
 
-def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "png")) -> str:
+def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "png", "gis")) -> str:
     """What ``-o OUTPUT`` asks for, by its suffix; another suffix is refused (never SVG text in a
     file named ``.png`` or ``.pdf``)."""
     suffix = Path(output).suffix.lower() if output != "-" else ""
@@ -116,6 +118,16 @@ def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "pn
 
         require_renderer()
     return fmt
+
+
+def default_boundary(kind: str, boundary: str | None) -> str:
+    """``--boundary`` as given, else ``inside`` for point outputs and ``clip`` for pictures.
+
+    A point layer draws every motif whole (a marker cannot be cut at a unit's edge), so ``clip``
+    would leave markers across the edge and over holes; ``inside`` keeps every marker wholly in
+    its unit, clear of holes.  ``centroid`` would still let them stick out.
+    """
+    return boundary if boundary is not None else "inside" if kind in POINT_FORMATS else "clip"
 
 
 def png_width(width: float) -> int:

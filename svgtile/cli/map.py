@@ -8,15 +8,15 @@ import sys
 from pathlib import Path
 
 import click
-import numpy as np
 
+from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
-from svgtile.cli.common import Stderr, output_format, warn
+from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
-from svgtile.gis import geojson
+from svgtile.gis.layers import common_crs, is_gis
 from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
 
 
@@ -32,7 +32,9 @@ def _with_params(f):
 @click.option("--styles", "styles_file", required=True, type=click.Path(dir_okay=False),
               help="TOML file mapping each class to an exemplar and its parameters (see the README).")
 @click.option("-o", "--output", required=True,
-              help="The filled map (.svg), or one point per motif for GIS (.geojson).")
+              help="The filled map (.svg), or one point per motif for GIS (.gpkg, .shp, .fgb, .geojson; in MAP's CRS).")
+@click.option("--with-style", is_flag=True,
+              help="With a GIS output: also write OUT.qml (a QGIS style) and OUT-symbols/CLASS/KIND.svg.")
 @click.option("--avoid", multiple=True, metavar="ID|MAP.svg#ID",
               help="More labels, lines or shapes every texture keeps clear of (an id in MAP, or a spec). Repeatable.")
 @click.option("--seed", type=click.IntRange(min=0), default=None,
@@ -40,11 +42,11 @@ def _with_params(f):
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="Regions filled at once, in separate processes [default: the usable cores].")
 @_with_params
-def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
-    """Fill every unit of MAP (SVG or GeoJSON) whose class the styles file knows.
+def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
+    """Fill every unit of MAP (SVG, or a GIS layer: .gpkg, .shp, .fgb, .geojson) whose class the styles file knows.
 
     A unit's class is its class attribute (or the attribute the styles file names) or its
-    Inkscape label; in GeoJSON, the property the styles file names (default "class"). The output
+    Inkscape label; in a GIS layer, the field the styles file names (default "class"). The output
     keeps the map and adds one texture group per unit, above the unit and below what follows it.
     A unit that fails is reported; the others are written, and the exit code is 1.
 
@@ -54,19 +56,22 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
       engine = "patch"        one of the engines (svgtile synth --help)
       seed = 7                this class's seed (else the run's)
       unit = 1.0              map units per exemplar user unit
-      boundary = "clip"       inside, centroid, clip or none
+      boundary = "clip"       inside, centroid, clip or none (default: clip; inside for GIS points)
     and any parameter of its engine, as in svgtile synth with _ for -.
     Keys at the top level are defaults for every class (an engine parameter only for the
     classes whose engine has it; a seed there is every class's), plus:
       avoid = ["labels"]      ids in the map (or MAP.svg#ID specs) every texture keeps clear of
       avoid_margin = 2        clear space around them, map units
       class_attribute = "data-unit"   SVG maps: the attribute naming a unit's class
-      class_property = "unit"         GeoJSON maps: the property naming a feature's class
+      class_property = "unit"         GIS maps: the field naming a feature's class
 
     Engine parameters: %(params)s.
     """
-    kind = output_format(output, ("svg", "geojson"))
-    styles = read_styles(styles_file)
+    kind = output_format(output, ("svg", "geojson", "gis"))
+    if with_style and (kind not in POINT_FORMATS or output == "-"):
+        raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
+    styles = read_styles(styles_file, boundary=default_boundary(kind, None))
+    crs = common_crs(map_file, [a for a in (*styles.avoid, *avoid) if is_gis(a)])
     inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
@@ -89,13 +94,15 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         warn(message)
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
-    if kind == "geojson":
-        text = placements_document(result)
+    if kind in POINT_FORMATS:
+        write_placements(map_parts(result), output, crs=crs, protect=inputs)
+        if with_style:
+            used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
+            write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)})
     else:
         params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
-        text = svg_map(result, params)
-    write_file(text, output, protect=inputs)
+        write_file(svg_map(result, params), output, protect=inputs)
     if result.errors:
         raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} regions failed (see the warnings); "
                            f"the others were written", source=str(output))  # fmt: skip
@@ -131,18 +138,3 @@ def svg_map(result: MapFill, params: dict) -> str:
     doc = result.doc
     return map_document(None if doc is None else doc.root, defs, layers, params=params,
                         namespaces=() if doc is None else doc.namespaces)  # fmt: skip
-
-
-def placements_document(result: MapFill) -> str:
-    """Every region's motifs as GeoJSON points, with ``region`` and ``class`` properties."""
-    features = []
-    for r, arr in zip(result.regions, result.results, strict=True):
-        if arr is None:
-            continue
-        ex, _ = load_exemplar(str(result.styles.classes[r.cls].exemplar))
-        names = [k.name for k in ex.kinds]
-        radius = np.array([k.prototype.radius for k in ex.kinds])
-        for f in geojson.placements(arr, names, radius)["features"]:
-            f["properties"] = {"region": r.ident, "class": r.cls, **f["properties"]}
-            features.append(f)
-    return geojson.placements_text({"type": "FeatureCollection", "features": features})

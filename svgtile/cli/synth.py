@@ -7,11 +7,14 @@ from pathlib import Path
 
 import click
 
+from svgtile.apps.gisout import write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapread import synth_region
 from svgtile.apps.preview import render_png
 from svgtile.cli.common import (
+    POINT_FORMATS,
     Stderr,
+    default_boundary,
     engine_options,
     engine_params,
     load,
@@ -25,33 +28,35 @@ from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import synthesize
 from svgtile.errors import ParameterError
 from svgtile.files import check_output, same_file, write_file
-from svgtile.gis.geojson import exemplar_placements
+from svgtile.gis.layers import common_crs, is_gis
 from svgtile.svg.writer import fmt, result_document
 
 
 @click.command(name="synth")
 @click.argument("exemplar", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, help="Output file, its format by its suffix: .svg (or - for standard output), .geojson (one point per motif: kind, angle, scale, for GIS) or .png (a picture, 2 pixels per user unit, 64 to 8192 pixels wide; needs the 'png' extra).")
+@click.option("-o", "--output", required=True, help="Output file, its format by its suffix: .svg (or - for standard output), .png (a picture, 2 pixels per user unit, 64 to 8192 pixels wide; needs the 'png' extra), or one point per motif for GIS (kind, angle, scale, size): .gpkg, .shp, .fgb or .geojson, in --region's CRS.")
 @click.option("--size", default=None,
               help="Output size WIDTHxHEIGHT in the exemplar's user units, e.g. 800x600 (one number: a square).")
-@click.option("--region", "region_spec", default=None, metavar="MAP.svg#ID|FILE.geojson",
-              help="Fill this shape instead of a --size rectangle: an element (closed shape or group) of another SVG, holes by its fill rule, or the polygons of a GeoJSON file (FILE.geojson#ID: one feature).")
+@click.option("--region", "region_spec", default=None, metavar="MAP.svg#ID|FILE.gpkg[#LAYER[:FID|?WHERE]]",
+              help="Fill this shape instead of a --size rectangle: an element (closed shape or group) of another SVG, holes by its fill rule, or the polygons of a GIS layer (.gpkg, .shp, .fgb, .geojson; FILE#LAYER:FID one feature, FILE#LAYER?WHERE those an SQL condition selects, FILE.geojson#ID the feature with that id).")
 @click.option("--avoid", multiple=True, metavar="MAP.svg#ID",
               help="Keep every motif clear of these labels, lines or shapes (texts by their box, lines by their stroke, grown by --avoid-margin). Repeatable.")
 @click.option("--avoid-margin", type=float, default=2.0, show_default=True,
               help="Clear space around --avoid zones, user units.")
 @engine_options
-@click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip", show_default=True,
-              help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out.")
+@click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default=None,
+              help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out. [default: clip; inside for GIS point outputs, whose markers cannot be cut]")
+@click.option("--with-style", is_flag=True,
+              help="With a GIS output: also write OUT.qml (a QGIS style QGIS loads with the layer) and OUT-symbols/ (each kind as an SVG), so QGIS draws the texture at once.")
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 @click.pass_context
-def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, seed, force, as_tile,
-          **values):  # fmt: skip
-    """Synthesize a texture like EXEMPLAR and write it (SVG, GeoJSON points or PNG, by -o's suffix).
+def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, with_style, seed, force,
+          as_tile, **values):  # fmt: skip
+    """Synthesize a texture like EXEMPLAR and write it (SVG, PNG or GIS points, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
     with id="region" (else the viewBox) is the area the motifs were drawn in.
@@ -60,9 +65,15 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
     kind = output_format(output)
+    boundary = default_boundary(kind, boundary)
+    if with_style and (kind not in POINT_FORMATS or output == "-"):
+        raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
+    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
-    check_output(output, protect=(exemplar,))  # fail before the work, not after
+    # every input file is protected: the exemplar, and the files of --region and --avoid
+    inputs = (Path(exemplar), *(Path(spec.partition("#")[0]) for spec in (region_spec or "", *avoid) if spec))
+    check_output(output, protect=inputs)  # fail before the work, not after
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if seed is None:
@@ -75,10 +86,12 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
-    if kind == "geojson":
-        data = exemplar_placements(ex, result.arrangement)
-    else:
-        data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
-        if kind == "png":
-            data = render_png(data, png_width(x1 - x0))
-    write_file(data, output, protect=(Path(exemplar),))
+    if kind in POINT_FORMATS:
+        write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=inputs)
+        if with_style:
+            write_style(output, {None: ex})
+        return
+    data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
+    if kind == "png":
+        data = render_png(data, png_width(x1 - x0))
+    write_file(data, output, protect=inputs)
