@@ -7,7 +7,7 @@ over the texture's motifs.  Positions are measured in the exemplar's mean spacin
 is dimensionless: 0 when every texture neighbourhood occurs in the exemplar exactly.
 
 In the analysis stage so that engines (the optimize engine, ma2011) and the metrics share one
-implementation.  Standalone for now: :func:`svgtile.metrics.score` does not call it yet.
+implementation; :mod:`svgtile.metrics.likeness` makes it a figure of :func:`svgtile.metrics.score`.
 
 References
 ----------
@@ -25,8 +25,11 @@ from scipy.spatial import cKDTree
 #: infinite extent so that it never runs out before the texture's; twice ``k`` also covers
 #: ties at the k-th distance (a square lattice has 4 neighbours at a, 4 at a·√2).
 EXEMPLAR_FACTOR = 2
-#: The greedy pairings are computed on blocks of at most this many float64 distances.
-BLOCK = 1 << 22
+#: Neighbourhood pairs are bounded on blocks of at most this many float64 distances.
+BLOCK = 1 << 21
+#: Exemplar neighbourhoods (with all their turns) paired per texture neighbourhood and round of
+#: the branch and bound.
+ROUND = 4
 
 
 def neighbourhoods(
@@ -141,6 +144,122 @@ def _greedy_costs(
     return cost
 
 
+def _turns(p_t: np.ndarray, p_e: np.ndarray, k: int, rotate: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The turns tried per pair of neighbourhoods, as two angle arrays, radians.
+
+    Returns ``phi_t`` (m,) and ``phi_e`` (n_e, r): a texture neighbourhood is turned by
+    ``phi_e[j, t] − phi_t`` before it is compared with exemplar neighbourhood ``j``.  Without
+    ``rotate`` there is one turn, by nothing.  With it, the turns bring the texture's nearest
+    neighbour onto the direction of each of the exemplar neighbourhood's ``k`` nearest.
+    """
+    if not rotate:
+        return np.zeros(len(p_t)), np.zeros((len(p_e), 1))
+    phi_t = np.nan_to_num(np.arctan2(p_t[:, 0, 1], p_t[:, 0, 0]))
+    phi_e = np.arctan2(p_e[:, :k, 1], p_e[:, :k, 0])
+    phi_e = np.nan_to_num(np.where(np.isnan(phi_e), phi_e[:, :1], phi_e))
+    return phi_t, phi_e
+
+
+def _bound(p_t: np.ndarray, k_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of :func:`_greedy_costs` (same arguments, (G,) float): each texture
+    neighbour pays at least its cheapest partner or being left alone, whichever is less."""
+    d = (p_t[:, :, None, 0] - p_e[:, None, :, 0]) ** 2 + (p_t[:, :, None, 1] - p_e[:, None, :, 1]) ** 2
+    d = np.where(np.isnan(d), np.inf, d) + alpha * (k_t[:, :, None] != k_e[:, None, :])
+    lone = (p_t**2).sum(axis=-1) + alpha
+    return np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+
+
+def _nearest_costs(
+    p_t: np.ndarray,
+    k_t: np.ndarray,
+    c_t: np.ndarray,
+    p_e: np.ndarray,
+    k_e: np.ndarray,
+    c_e: np.ndarray,
+    alpha: float,
+    *,
+    rotate: bool,
+) -> np.ndarray:
+    """For each texture neighbourhood, its smallest eq. (1) distance to an exemplar one.
+
+    Exact, by branch and bound: the greedy pairing (:func:`_greedy_costs`, k passes over all
+    k·ke neighbour pairs) is what costs, and most exemplar neighbourhoods are far from a given
+    texture one.  A lower bound of eq. (1) is cheap — each texture neighbour costs at least its
+    cheapest partner, ``min_q |p̂ − q̂|² + α·[kinds differ]``, or being left alone, whichever is
+    less — so the pairing is computed in order of increasing bound, a few candidates per round,
+    and stops for a centre once its next bound exceeds the best distance found.  The result is
+    the minimum over every exemplar neighbourhood and turn, bit for bit.
+
+    Parameters
+    ----------
+    p_t : (m, k, 2) texture neighbourhoods, spacings (NaN: absent)
+    k_t : (m, k) int kinds of the neighbours; c_t : (m,) kinds of the centres
+    p_e : (n_e, ke, 2) exemplar neighbourhoods, spacings; k_e : (n_e, ke); c_e : (n_e,)
+    alpha : cost of a kind mismatch, squared spacings
+    rotate : try the turns of :func:`_turns`
+
+    Returns
+    -------
+    (m,) float, squared spacings
+    """
+    m, k, _ = p_t.shape
+    n_e, ke = k_e.shape
+    phi_t, phi_e = _turns(p_t, p_e, k, rotate)
+    r = phi_e.shape[1]
+    # The bound may sum its terms in another order than the pairing: a hair of slack keeps it
+    # a bound in floating point.
+    slack = 1 + 1e-9
+    best = np.full(m, np.inf)
+    batch = max(1, BLOCK // max(n_e * k * ke, 1))
+    # (1, n_e, 1, ke, D): what the bound compares of the exemplar neighbours, an absent one
+    # infinitely far: positions (D = 2), or distances (D = 1) when the neighbourhood may turn,
+    # since |p̂ − R·q̂| ≥ ||p̂| − |q̂|| for every turn R.
+    q = np.hypot(p_e[..., :1], p_e[..., 1:]) if rotate else p_e
+    q = np.nan_to_num(q, nan=np.inf)[None, :, None, :, :]
+    for start in range(0, m, batch):
+        sl = slice(start, start + batch)
+        pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
+        b = len(pt)
+        # (b, n_e, k): the cheapest partner of each texture neighbour, or none.
+        p = np.hypot(pt[..., :1], pt[..., 1:]) if rotate else pt
+        p = p[:, None, :, None, :]
+        d = np.zeros((b, n_e, k, ke))
+        for c in range(p.shape[-1]):
+            dc = p[..., c] - q[..., c]
+            dc *= dc
+            d += dc
+        d += alpha * (kt[:, None, :, None] != k_e[None, :, None, :])
+        lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
+        low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+        low += alpha * (ct[:, None] != c_e[None, :])
+        del d, lone
+        low = np.repeat(low, r, axis=1)  # (b, n_e·r): every turn has its neighbourhood's bound
+        order = np.argsort(low, axis=1, kind="stable")
+        low = np.take_along_axis(low, order, axis=1)
+        top = np.full(b, np.inf)
+        step = ROUND * r
+        for pos in range(0, n_e * r, step):
+            live = low[:, pos : pos + step] <= top[:, None] * slack
+            if not live.any():
+                break
+            rows, cols = np.nonzero(live)
+            je, jr = np.divmod(order[rows, pos + cols], r)
+            pair = pt[rows]
+            if rotate:  # each texture neighbourhood turned for the exemplar one
+                turn = (phi_e[je, jr] - phi_t[start + rows])[:, None]
+                cos, sin = np.cos(turn), np.sin(turn)
+                x, y = pair[..., 0], pair[..., 1]
+                pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
+            cost = alpha * (ct[rows] != c_e[je])
+            if rotate:  # the distance bound is weak: bound each turn by position first
+                near = _bound(pair, kt[rows], p_e[je], k_e[je], alpha) + cost <= top[rows] * slack
+                rows, je, pair, cost = rows[near], je[near], pair[near], cost[near]
+            cost += _greedy_costs(pair, kt[rows], p_e[je], k_e[je], alpha)
+            np.minimum.at(top, rows, cost)
+        best[sl] = top
+    return best
+
+
 def neighbourhood_distance(
     texture_xy: np.ndarray,
     texture_kind: np.ndarray,
@@ -214,45 +333,7 @@ def neighbourhood_distance(
     p_e, k_e = neighbourhoods(exemplar_xy, exemplar_kind, EXEMPLAR_FACTOR * k, period=period)
     p_t = p_t / spacing
     p_e = p_e / spacing
-    c_t = texture_kind[centres]
-    c_e = exemplar_kind
-
-    n_e, ke = k_e.shape
-    if rotate:
-        # (c,) angle of the texture's nearest neighbour, (n_e, R) of the exemplar's k nearest.
-        phi_t = np.arctan2(p_t[:, 0, 1], p_t[:, 0, 0])
-        phi_e = np.arctan2(p_e[:, :k, 1], p_e[:, :k, 0])
-        phi_t = np.nan_to_num(phi_t)
-        phi_e = np.where(np.isnan(phi_e), phi_e[:, :1], phi_e)
-        phi_e = np.nan_to_num(phi_e)
-    else:
-        phi_e = np.zeros((n_e, 1))
-    r = phi_e.shape[1]
-    per_centre = n_e * r * k * ke
-    batch = max(1, BLOCK // max(per_centre, 1))
-    best = np.empty(len(centres))
-    for start in range(0, len(centres), batch):
-        sl = slice(start, start + batch)
-        pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
-        b = len(pt)
-        # (b, n_e, r, k, 2): every texture neighbourhood against every exemplar one and turn.
-        if rotate:
-            turn = phi_e[None, :, :] - phi_t[sl, None, None]
-            cos, sin = np.cos(turn)[..., None], np.sin(turn)[..., None]
-            x, y = pt[:, None, None, :, 0], pt[:, None, None, :, 1]
-            pr = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
-        else:
-            pr = np.broadcast_to(pt[:, None, None], (b, n_e, r, k, 2))
-        g = b * n_e * r
-        cost = _greedy_costs(
-            pr.reshape(g, k, 2),
-            np.broadcast_to(kt[:, None, None], (b, n_e, r, k)).reshape(g, k),
-            np.broadcast_to(p_e[None, :, None], (b, n_e, r, ke, 2)).reshape(g, ke, 2),
-            np.broadcast_to(k_e[None, :, None], (b, n_e, r, ke)).reshape(g, ke),
-            alpha,
-        ).reshape(b, n_e, r)
-        cost += alpha * (ct[:, None, None] != c_e[None, :, None])
-        best[sl] = cost.min(axis=(1, 2))
+    best = _nearest_costs(p_t, k_t, texture_kind[centres], p_e, k_e, exemplar_kind, alpha, rotate=rotate)
     return float(best.mean())
 
 
