@@ -103,6 +103,8 @@ def _greedy_costs(
     p_e: np.ndarray,
     k_e: np.ndarray,
     alpha: float,
+    *,
+    d: np.ndarray | None = None,
 ) -> np.ndarray:
     """Eq. (1) for G pairs of neighbourhoods, pairing greedily (§3.2).
 
@@ -113,6 +115,7 @@ def _greedy_costs(
     p_e : (G, ke, 2) exemplar neighbourhoods, spacings; NaN rows are absent.
     k_e : (G, ke) int kinds
     alpha : cost of a kind mismatch, squared spacings
+    d : (G, k, ke) :func:`_square_distances` of ``p_t`` and ``p_e``, if already computed
 
     Returns
     -------
@@ -123,8 +126,7 @@ def _greedy_costs(
     """
     g, k, _ = p_t.shape
     ke = p_e.shape[1]
-    d = ((p_t[:, :, None, :] - p_e[:, None, :, :]) ** 2).sum(axis=-1)
-    d = np.where(np.isnan(d), np.inf, d).reshape(g, k * ke)
+    d = (_square_distances(p_t, p_e) if d is None else d.copy()).reshape(g, k * ke)
     rows = np.arange(g)
     cost = np.zeros(g)
     matched = np.zeros((g, k), dtype=bool)
@@ -160,13 +162,76 @@ def _turns(p_t: np.ndarray, p_e: np.ndarray, k: int, rotate: bool) -> tuple[np.n
     return phi_t, phi_e
 
 
-def _bound(p_t: np.ndarray, k_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
-    """A lower bound of :func:`_greedy_costs` (same arguments, (G,) float): each texture
-    neighbour pays at least its cheapest partner or being left alone, whichever is less."""
-    d = (p_t[:, :, None, 0] - p_e[:, None, :, 0]) ** 2 + (p_t[:, :, None, 1] - p_e[:, None, :, 1]) ** 2
-    d = np.where(np.isnan(d), np.inf, d) + alpha * (k_t[:, :, None] != k_e[:, None, :])
+def _square_distances(p_t: np.ndarray, p_e: np.ndarray) -> np.ndarray:
+    """(G, k, ke) squared distances between the neighbours of G pairs of neighbourhoods
+    ((G, k, 2) and (G, ke, 2)), infinite where either is absent."""
+    dx = p_t[:, :, None, 0] - p_e[:, None, :, 0]
+    d = dx * dx
+    dx = p_t[:, :, None, 1] - p_e[:, None, :, 1]
+    dx *= dx
+    d += dx
+    d[np.isnan(d)] = np.inf
+    return d
+
+
+def _bound(d: np.ndarray, p_t: np.ndarray, k_t: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of :func:`_greedy_costs` from its :func:`_square_distances` ``d``, (G,):
+    each texture neighbour pays at least its cheapest partner or being left alone."""
+    low = (d + alpha * (k_t[:, :, None] != k_e[:, None, :])).min(axis=-1)
     lone = (p_t**2).sum(axis=-1) + alpha
-    return np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+    return np.where(np.isnan(lone), 0.0, np.minimum(low, lone)).sum(axis=-1)
+
+
+def _turning_bound(p_t: np.ndarray, k_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of eq. (1) between texture and exemplar neighbourhoods under every turn.
+
+    The greedy pairing is a matching (each neighbour used once), so it costs at least the
+    cheapest matching; a turn keeps distances from the centre and ``|p̂ − R·q̂| ≥ ||p̂| − |q̂||``,
+    so that matching costs at least the cheapest matching of the distances alone — on a line
+    with a convex cost, one that keeps their order, found by dynamic programming over the two
+    sorted lists.  Kinds add at least α per texture neighbour the exemplar's kind counts cannot
+    match.  A texture neighbour may also be left alone (``|p̂|² + α``).
+
+    Parameters
+    ----------
+    p_t : (b, k, 2) texture neighbourhoods, nearest first; k_t : (b, k)
+    p_e : (n_e, ke, 2) exemplar neighbourhoods, nearest first; k_e : (n_e, ke)
+    alpha : cost of a kind mismatch
+
+    Returns
+    -------
+    (b, n_e) float, squared spacings, without the centres' own kinds
+    """
+    b, k = k_t.shape
+    n_e, ke = k_e.shape
+    rt = np.hypot(p_t[..., 0], p_t[..., 1])  # (b, k), NaN for an absent neighbour
+    re = np.nan_to_num(np.hypot(p_e[..., 0], p_e[..., 1]), nan=np.inf)  # (n_e, ke)
+    present = ~np.isnan(rt)
+    lone = np.where(present, rt * rt, 0.0)  # the α of a lone neighbour is counted with kinds
+    # cost[j] after texture neighbour i: cheapest order-keeping matching of neighbours 0..i to
+    # exemplar neighbours 0..j-1 of each pair, (b, n_e, ke + 1).
+    cost = np.zeros((b, n_e, ke + 1))
+    for i in range(k):
+        a = rt[:, i, None, None]
+        pair = (a - re[None]) ** 2  # (b, n_e, ke)
+        pair = np.where(present[:, i, None, None], pair, 0.0)
+        new = np.empty_like(cost)
+        new[..., 0] = cost[..., 0] + lone[:, i, None]
+        paired = cost[..., :-1] + pair
+        alone = cost[..., 1:] + lone[:, i, None, None]
+        step = np.minimum(paired, alone)
+        # new[j] = min(new[j − 1], step[j − 1]): exemplar neighbour j − 1 used by i, or not at all
+        new[..., 1:] = step
+        np.minimum.accumulate(new, axis=-1, out=new)
+        cost = new
+    low = cost[..., -1]
+    kinds = int(max(k_t.max(initial=-1), k_e.max(initial=-1))) + 1
+    if kinds > 0:
+        ct = np.stack([(k_t == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (b, kinds)
+        ce = np.stack([(k_e == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (n_e, kinds)
+        shared = np.minimum(ct[:, None, :], ce[None, :, :]).sum(axis=-1)
+        low = low + alpha * (present.sum(axis=1)[:, None] - shared)
+    return low
 
 
 def _nearest_costs(
@@ -211,28 +276,26 @@ def _nearest_costs(
     slack = 1 + 1e-9
     best = np.full(m, np.inf)
     batch = max(1, BLOCK // max(n_e * k * ke, 1))
-    # (1, n_e, 1, ke, D): what the bound compares of the exemplar neighbours, an absent one
-    # infinitely far: positions (D = 2), or distances (D = 1) when the neighbourhood may turn,
-    # since |p̂ − R·q̂| ≥ ||p̂| − |q̂|| for every turn R.
-    q = np.hypot(p_e[..., :1], p_e[..., 1:]) if rotate else p_e
-    q = np.nan_to_num(q, nan=np.inf)[None, :, None, :, :]
+    # (1, n_e, 1, ke): exemplar neighbours, an absent one infinitely far.
+    q_x = np.nan_to_num(p_e[None, :, None, :, 0], nan=np.inf)
+    q_y = np.nan_to_num(p_e[None, :, None, :, 1], nan=np.inf)
     for start in range(0, m, batch):
         sl = slice(start, start + batch)
         pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
         b = len(pt)
-        # (b, n_e, k): the cheapest partner of each texture neighbour, or none.
-        p = np.hypot(pt[..., :1], pt[..., 1:]) if rotate else pt
-        p = p[:, None, :, None, :]
-        d = np.zeros((b, n_e, k, ke))
-        for c in range(p.shape[-1]):
-            dc = p[..., c] - q[..., c]
-            dc *= dc
-            d += dc
-        d += alpha * (kt[:, None, :, None] != k_e[None, :, None, :])
-        lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
-        low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+        if rotate:
+            low = _turning_bound(pt, kt, p_e, k_e, alpha)
+        else:  # (b, n_e, k, ke): each texture neighbour pays its cheapest partner or none
+            dx = pt[:, None, :, None, 0] - q_x
+            d = dx * dx
+            dx = pt[:, None, :, None, 1] - q_y
+            dx *= dx
+            d += dx
+            d += alpha * (kt[:, None, :, None] != k_e[None, :, None, :])
+            lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
+            low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+            del d, dx, lone
         low += alpha * (ct[:, None] != c_e[None, :])
-        del d, lone
         low = np.repeat(low, r, axis=1)  # (b, n_e·r): every turn has its neighbourhood's bound
         order = np.argsort(low, axis=1, kind="stable")
         low = np.take_along_axis(low, order, axis=1)
@@ -251,10 +314,12 @@ def _nearest_costs(
                 x, y = pair[..., 0], pair[..., 1]
                 pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
             cost = alpha * (ct[rows] != c_e[je])
-            if rotate:  # the distance bound is weak: bound each turn by position first
-                near = _bound(pair, kt[rows], p_e[je], k_e[je], alpha) + cost <= top[rows] * slack
-                rows, je, pair, cost = rows[near], je[near], pair[near], cost[near]
-            cost += _greedy_costs(pair, kt[rows], p_e[je], k_e[je], alpha)
+            q, kq = p_e[je], k_e[je]
+            d = _square_distances(pair, q)
+            if rotate:  # bound each turn by position before pairing
+                near = _bound(d, pair, kt[rows], kq, alpha) + cost <= top[rows] * slack
+                rows, pair, q, kq, d, cost = rows[near], pair[near], q[near], kq[near], d[near], cost[near]
+            cost += _greedy_costs(pair, kt[rows], q, kq, alpha, d=d)
             np.minimum.at(top, rows, cost)
         best[sl] = top
     return best
