@@ -60,7 +60,7 @@ SAMPLE_SEED = 0x5C0E
 #: Seed of the baseline textures.
 BASELINE_SEED = 1
 #: The baselines fill a square this many exemplar widths on a side …
-BASELINE_WIDTHS = 5
+BASELINE_WIDTHS = 3
 #: … or larger, so that its interior holds about this many motifs.
 BASELINE_MOTIFS = 600
 #: A kind "shows every orientation" when its exemplar arc is at least this wide, degrees: the
