@@ -2,7 +2,7 @@
 """Choose α, the kind-mismatch cost of the neighbourhood distance, on the whole data sets.
 
 For every bundled exemplar and every tile of FGDC lithology, osm-carto (patterns, symbols) and
-Equinor that ``svgtile import`` accepts: the ``tile``, ``random`` and ``patch`` engines fill the
+Equinor that ``svgtile import`` accepts: the ``tile`` and ``random`` engines (and ``patch``) fill the
 baselines' square (:func:`svgtile.metrics.likeness.baseline_region`, seed 1), and the
 neighbourhood distance E of each is measured as :func:`svgtile.metrics.score` measures it, for
 each α of ALPHAS.  Prints one line per exemplar and, per α, over the exemplars whose baselines
@@ -12,7 +12,7 @@ exemplars where E_random ≤ E_tile (the figure cannot tell them apart), and pat
 
 Needs ``../shared/data`` beside the repository.  Usage, from the repository root::
 
-    python benchmarks/choose_alpha.py [--limit N] [--data ../shared/data]   # N files per set
+    python benchmarks/choose_alpha.py [--limit N] [--data ../shared/data] [--patch]   # N files per set
 """
 
 from __future__ import annotations
@@ -55,11 +55,11 @@ def exemplars(limit: int | None, data: Path = DATA):
                 continue
 
 
-def distances(ex, stats) -> dict[str, list[float]]:
+def distances(ex, stats, engines) -> dict[str, list[float]]:
     region = order.baseline_region(ex, stats)
     window = interior(ex, region)
-    out = {}
-    for engine in ("tile", "random", "patch"):
+    out = {"patch": [math.nan] * len(ALPHAS)}
+    for engine in engines:
         arr = synthesize(ex, region, engine, seed=order.BASELINE_SEED, stats=stats).arrangement
         centres = np.flatnonzero(in_window(arr, window))
         out[engine] = [
@@ -77,13 +77,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--limit", type=int, default=None)
     parser.add_argument("--data", type=Path, default=DATA, help="the shared data folder")
+    parser.add_argument("--patch", action="store_true", help="also the patch engine (slow), for its L")
     args = parser.parse_args()
     rows = []
     for group, name, ex in exemplars(args.limit, args.data):
         stats = analyze(ex)
         if stats.count_density <= 0 or order.baseline_region(ex, stats).area * stats.count_density > 20000:
             continue
-        e = distances(ex, stats)
+        e = distances(ex, stats, ("tile", "random", "patch") if args.patch else ("tile", "random"))
         rows.append(e)
         cells = "  ".join(f"{t:.3f}/{r:.3f}/{p:.3f}" for t, r, p in zip(e["tile"], e["random"], e["patch"], strict=True))
         print(f"{group:12s} {name:24s} {len(ex.motifs):4d} tile/random/patch per α: {cells}", flush=True)
@@ -92,9 +93,9 @@ def main() -> None:
         t = np.array([r["tile"][i] for r in rows])
         rnd = np.array([r["random"][i] for r in rows])
         p = np.array([r["patch"][i] for r in rows])
-        ok = np.isfinite(t) & np.isfinite(rnd) & np.isfinite(p)
+        ok = np.isfinite(t) & np.isfinite(rnd) & (rnd > 0)
         contrast = (rnd[ok] - t[ok]) / rnd[ok]
-        ls = np.array([likeness(pp, tt, rr) for pp, tt, rr in zip(p[ok], t[ok], rnd[ok], strict=True)])
+        ls = np.array([likeness(pp, tt, rr) for pp, tt, rr in zip(p[ok], t[ok], rnd[ok], strict=True)] + [math.nan])
         print(f"α = {a:4}: median contrast {np.median(contrast):.3f}, 10th percentile {np.percentile(contrast, 10):.3f}, "
               f"E_random ≤ E_tile on {int((contrast <= 0).sum())}, patch L median {np.nanmedian(ls):.2f}")  # fmt: skip
 
