@@ -162,15 +162,17 @@ def _turns(p_t: np.ndarray, p_e: np.ndarray, k: int, rotate: bool) -> tuple[np.n
     return phi_t, phi_e
 
 
-def _square_distances(p_t: np.ndarray, p_e: np.ndarray) -> np.ndarray:
+def _square_distances(p_t: np.ndarray, p_e: np.ndarray, *, finite: bool = False) -> np.ndarray:
     """(G, k, ke) squared distances between the neighbours of G pairs of neighbourhoods
-    ((G, k, 2) and (G, ke, 2)), infinite where either is absent."""
+    ((G, k, 2) and (G, ke, 2)), infinite where either is absent (NaN).  ``finite``: the caller
+    knows ``p_t`` has no NaN and ``p_e`` has ±inf for NaN, so nothing needs replacing."""
     dx = p_t[:, :, None, 0] - p_e[:, None, :, 0]
     d = dx * dx
     dx = p_t[:, :, None, 1] - p_e[:, None, :, 1]
     dx *= dx
     d += dx
-    d[np.isnan(d)] = np.inf
+    if not finite:
+        d[np.isnan(d)] = np.inf
     return d
 
 
@@ -276,9 +278,11 @@ def _nearest_costs(
     slack = 1 + 1e-9
     best = np.full(m, np.inf)
     batch = max(1, BLOCK // max(n_e * k * ke, 1))
-    # (1, n_e, 1, ke): exemplar neighbours, an absent one infinitely far.
-    q_x = np.nan_to_num(p_e[None, :, None, :, 0], nan=np.inf)
-    q_y = np.nan_to_num(p_e[None, :, None, :, 1], nan=np.inf)
+    # Exemplar neighbours, an absent one infinitely far; texture neighbourhoods all present
+    # (the texture has more than k motifs) need no test for absent ones.
+    p_far = np.nan_to_num(p_e, nan=np.inf)
+    q_x, q_y = p_far[None, :, None, :, 0], p_far[None, :, None, :, 1]
+    whole = not np.isnan(p_t).any()
     for start in range(0, m, batch):
         sl = slice(start, start + batch)
         pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
@@ -314,8 +318,8 @@ def _nearest_costs(
                 x, y = pair[..., 0], pair[..., 1]
                 pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
             cost = alpha * (ct[rows] != c_e[je])
-            q, kq = p_e[je], k_e[je]
-            d = _square_distances(pair, q)
+            q, kq = p_far[je], k_e[je]
+            d = _square_distances(pair, q, finite=whole)
             if rotate:  # bound each turn by position before pairing
                 near = _bound(d, pair, kt[rows], kq, alpha) + cost <= top[rows] * slack
                 rows, pair, q, kq, d, cost = rows[near], pair[near], q[near], kq[near], d[near], cost[near]
