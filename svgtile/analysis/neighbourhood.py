@@ -254,8 +254,11 @@ def _nearest_costs(
     texture one.  A lower bound of eq. (1) is cheap — each texture neighbour costs at least its
     cheapest partner, ``min_q |p̂ − q̂|² + α·[kinds differ]``, or being left alone, whichever is
     less — so the pairing is computed in order of increasing bound, a few candidates per round,
-    and stops for a centre once its next bound exceeds the best distance found.  The result is
-    the minimum over every exemplar neighbourhood and turn, bit for bit.
+    and stops for a centre once its next bound exceeds the best distance found.  Neighbourhoods
+    that may turn are ordered by a bound that holds for every turn (:func:`_turning_bound`),
+    and each turn is bounded by position (:func:`_bound`) before it is paired.  The result is
+    the minimum over every exemplar neighbourhood and turn, bit for bit
+    (``tests/test_neighbourhood.py`` compares it with every pairing).
 
     Parameters
     ----------
