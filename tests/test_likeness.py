@@ -30,7 +30,7 @@ NAMES = sorted(p.stem for p in EXEMPLARS.glob("*.svg"))
 SIZE = 1000.0
 SEED = 1
 #: patch's likeness L is above this on every exemplar (issue 12 asks 0.6 of the engines to come;
-#: measured at the time of writing: PLACEHOLDER)
+#: measured at seed 1: 0.26 sand, 0.34 till to 0.98 boulders; tile 0.93–1.06, random −0.04–0.04)
 PATCH_LIKENESS = 0.2
 
 
