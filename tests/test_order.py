@@ -118,6 +118,7 @@ def test_the_same_texture_gives_the_same_figure_and_the_sample_is_bounded(tile):
 def test_score_json_and_text_carry_the_likeness(tmp_path):
     from click.testing import CliRunner
 
+    from svgtile.apps.compare import FIGURES
     from svgtile.cli.main import cli
 
     runner = CliRunner()
@@ -134,5 +135,6 @@ def test_score_json_and_text_carry_the_likeness(tmp_path):
         / (data["neighbourhood_random"] - data["neighbourhood_tile"])
     )
     text = runner.invoke(cli, ["score", ex, str(out)]).output
-    assert f"likeness L (tile 1, random 0)  {data['likeness']:9.2f}" in text
+    width = max(len(label) for _, label, _ in FIGURES)
+    assert f"{'likeness L':<{width}}  {data['likeness']:9.2f}" in text
     assert f"{data['neighbourhood_tile']:9.3f}  {data['neighbourhood_random']:.3f}" in text
