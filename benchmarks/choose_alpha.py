@@ -96,8 +96,9 @@ def main() -> None:
         ok = np.isfinite(t) & np.isfinite(rnd) & (rnd > 0)
         contrast = (rnd[ok] - t[ok]) / rnd[ok]
         ls = np.array([likeness(pp, tt, rr) for pp, tt, rr in zip(p[ok], t[ok], rnd[ok], strict=True)] + [math.nan])
+        patch = f", patch L median {np.nanmedian(ls):.2f}" if args.patch else ""
         print(f"α = {a:4}: median contrast {np.median(contrast):.3f}, 10th percentile {np.percentile(contrast, 10):.3f}, "
-              f"E_random ≤ E_tile on {int((contrast <= 0).sum())}, patch L median {np.nanmedian(ls):.2f}")  # fmt: skip
+              f"E_random ≤ E_tile on {int((contrast <= 0).sum())}{patch}")  # fmt: skip
 
 
 if __name__ == "__main__":
