@@ -138,3 +138,15 @@ def test_score_json_and_text_carry_the_likeness(tmp_path):
     width = max(len(label) for _, label, _ in FIGURES)
     assert f"{'likeness L':<{width}}  {data['likeness']:9.2f}" in text
     assert f"{data['neighbourhood_tile']:9.3f}  {data['neighbourhood_random']:.3f}" in text
+
+
+def test_an_exemplar_without_neighbourhoods_has_no_likeness():
+    from conftest import TINY
+
+    ex = parse_exemplar(TINY, source="tiny.svg")  # 5 motifs: none has 6 neighbours
+    stats = analyze(ex)
+    region = Region.rectangle(200, 150)
+    arr = synthesize(ex, region, "patch", seed=1, stats=stats).arrangement
+    s = score(ex, stats, arr, region)
+    assert s.motifs > 0
+    assert s.neighbourhood_distance is s.neighbourhood_tile is s.neighbourhood_random is s.likeness is None

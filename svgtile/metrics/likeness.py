@@ -84,7 +84,7 @@ class Likeness:
         ``E_random``: the same for the ``random`` engine there.
     likeness : float or None
         ``L = (E_random − E) / (E_random − E_tile)``: 1 as faithful as stamping copies, 0 no
-        better than dart throwing; None when a figure is undefined or the baselines coincide.
+        better than dart throwing; None when a distance is undefined or ``E_random ≤ E_tile``.
     """
 
     distance: float | None
@@ -111,11 +111,13 @@ def texture_distance(
 
     Returns
     -------
-    float, squared spacings; NaN without centres or without an exemplar spacing.
+    float, squared spacings; NaN without centres, or when the exemplar has no neighbourhood of
+    :data:`K` neighbours to compare with (K motifs or fewer, and not a repeating tile).
     """
     s = spacing(stats)
     centres = np.flatnonzero(inside)
-    if not math.isfinite(s) or len(centres) == 0 or len(exemplar.motifs) == 0:
+    too_few = len(exemplar.motifs) <= K and exemplar.period is None
+    if not math.isfinite(s) or len(centres) == 0 or len(exemplar.motifs) == 0 or too_few:
         return math.nan
     ex = exemplar.motifs
     return neighbourhood_distance(
@@ -157,9 +159,11 @@ def measure(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, inside: 
     """:class:`Likeness` of a texture whose motifs in its interior are ``inside`` ((n,) bool)."""
     e = texture_distance(exemplar, stats, arrangement, inside)
     e_tile, e_random = baseline_distances(exemplar, stats)
+    # baselines that do not tell order from disorder leave L undefined, not wild
+    apart = e_random > e_tile
     return Likeness(
         distance=finite_or_none(e),
         tile=finite_or_none(e_tile),
         random=finite_or_none(e_random),
-        likeness=finite_or_none(likeness(e, e_tile, e_random)),
+        likeness=finite_or_none(likeness(e, e_tile, e_random)) if apart else None,
     )
