@@ -45,6 +45,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
+from svgtile.errors import SvgtileError
 from svgtile.metrics.window import exemplar_size, finite_or_none, in_window, interior, spacing
 
 #: Neighbours per neighbourhood (Ma, Wei & Tong use the neighbours within a radius; six is the
@@ -148,7 +149,11 @@ def baseline_distances(exemplar: Exemplar, stats: Stats) -> tuple[float, float]:
         window = interior(exemplar, region)
         found = []
         for engine in ("tile", "random"):
-            arr = synthesize(exemplar, region, engine, seed=BASELINE_SEED, stats=stats).arrangement
+            try:
+                arr = synthesize(exemplar, region, engine, seed=BASELINE_SEED, stats=stats).arrangement
+            except SvgtileError:  # no baseline, no L; the texture's own figures still stand
+                found.append(math.nan)
+                continue
             found.append(texture_distance(exemplar, stats, arr, in_window(arr, window)))
         known = (stats, (found[0], found[1]))
         _BASELINES[exemplar] = known
