@@ -24,7 +24,9 @@ How the figure is measured, and why:
   an imported tile's neighbourhoods wrap across its edges (``exemplar.period``);
 * turns — the neighbourhood may turn (:func:`turns_allowed`) when the exemplar's motifs show
   every orientation: gravel or breccia is alike whichever way it is turned, rows are not;
-* α — :data:`ALPHA`, chosen on the whole data sets (benchmarks/README.md, "Choosing α").
+* α — :data:`ALPHA` = 1, a wrong kind as costly as a neighbour one spacing off: how far apart
+  the baselines lie hardly depends on α (measured on the bundled exemplars and imported tiles
+  of each data set, ``benchmarks/choose_alpha.py``; benchmarks/README.md, "Choosing α").
 
 References
 ----------
@@ -52,7 +54,7 @@ from svgtile.metrics.window import exemplar_size, finite_or_none, in_window, int
 #: first ring of a hexagonal packing).
 K = 6
 #: Cost of a kind mismatch, squared spacings: a neighbour of the wrong kind costs as much as
-#: one displaced by √α spacings.  Chosen on the whole data sets (module docstring).
+#: one displaced by √α spacings (module docstring: how it was chosen).
 ALPHA = 1.0
 #: Texture motifs measured.  The sample's error is small against what L tells apart: on the
 #: 177k-motif gravel texture of benchmarks/README.md, L's standard deviation over 20 sample
