@@ -29,6 +29,9 @@ EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 NAMES = sorted(p.stem for p in EXEMPLARS.glob("*.svg"))
 SIZE = 1000.0
 SEED = 1
+#: patch's likeness L is above this on every exemplar (issue 12 asks 0.6 of the engines to come;
+#: measured at seed 1: 0.26 sand, 0.34 till to 0.98 boulders; tile 0.93–1.06, random −0.04–0.04)
+PATCH_LIKENESS = 0.2
 
 
 @cache
@@ -80,3 +83,18 @@ def test_patch_pair_correlation_is_closer_than_random(name):
     # exemplar's than random's (measured ratios 0.39–0.71)
     s = scores(name)
     assert s["patch"].pair_correlation_distance < s["random"].pair_correlation_distance
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_likeness_baselines_sit_at_their_ends(name):
+    # tile and random on this region are not the baselines themselves (those fill a region of
+    # their own), so they land near 1 and 0, not on them (measured: within 0.06 of each)
+    s = scores(name)
+    assert s["tile"].likeness == pytest.approx(1.0, abs=0.15)
+    assert s["random"].likeness == pytest.approx(0.0, abs=0.15)
+    assert s["patch"].neighbourhood_tile == s["random"].neighbourhood_tile  # one baseline per exemplar
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_patch_keeps_more_order_than_random(name):
+    assert scores(name)["patch"].likeness > PATCH_LIKENESS

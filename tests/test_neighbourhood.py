@@ -111,3 +111,43 @@ def test_sample_needs_rng_and_is_reproducible():
     c = dist(xy, sample=50, rng=np.random.default_rng(8))
     assert a == b
     assert a != c
+
+
+def brute_force(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate):
+    """Every exemplar neighbourhood and turn paired greedily: what the branch and bound prunes."""
+    from svgtile.analysis.neighbourhood import _greedy_costs, _turns
+
+    m, k, _ = p_t.shape
+    phi_t, phi_e = _turns(p_t, p_e, k, rotate)
+    best = np.full(m, np.inf)
+    for j in range(len(p_e)):
+        for t in range(phi_e.shape[1]):
+            turn = (phi_e[j, t] - phi_t)[:, None]
+            pr = p_t
+            if rotate:
+                cos, sin = np.cos(turn), np.sin(turn)
+                pr = np.stack([cos * p_t[..., 0] - sin * p_t[..., 1], sin * p_t[..., 0] + cos * p_t[..., 1]], axis=-1)
+            cost = _greedy_costs(pr, k_t, np.repeat(p_e[j : j + 1], m, 0), np.repeat(k_e[j : j + 1], m, 0), alpha)
+            best = np.minimum(best, cost + alpha * (c_t != c_e[j]))
+    return best
+
+
+@pytest.mark.parametrize("rotate", [False, True])
+@pytest.mark.parametrize("period", [None, (50.0, 40.0)])
+def test_pruned_search_equals_every_pairing(rotate, period):
+    from svgtile.analysis.neighbourhood import _nearest_costs
+
+    rng = np.random.default_rng(11)
+    ex = rng.uniform(0, 1, size=(30, 2)) * (50.0, 40.0)
+    ex_kind = rng.integers(0, 3, size=30)
+    tex = rng.uniform(0, 200, size=(400, 2))
+    tex_kind = rng.integers(0, 3, size=400)
+    tex[:30] = ex + 100.0  # some neighbourhoods that occur in the exemplar
+    tex_kind[:30] = ex_kind
+    k, s = 5, 7.0
+    p_t, k_t = neighbourhoods(tex, tex_kind, k, centres=np.arange(60))
+    p_e, k_e = neighbourhoods(ex, ex_kind, 2 * k, period=period)
+    args = (p_t / s, k_t, tex_kind[:60], p_e / s, k_e, ex_kind, 0.7)
+    fast = _nearest_costs(*args, rotate=rotate)
+    np.testing.assert_array_equal(fast, brute_force(*args, rotate))
+    assert np.ptp(fast) > 0.1  # the sample has near and far neighbourhoods

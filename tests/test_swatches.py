@@ -42,6 +42,8 @@ def test_sheet_shows_texture_or_reason(tiles):
     root = ET.fromstring(sheet.text)
     texts = " ".join(t.text or "" for t in root.iter(f"{{{SVG_NS}}}text"))
     assert "b-good Good pattern" in texts and "refused:" in texts
+    assert good.likeness is not None and hatch.likeness is None
+    assert f"b-good Good pattern  L {good.likeness:.2f}" in texts
     ids = [el.get("id") for el in root.iter() if el.get("id")]
     assert len(ids) == len(set(ids))  # every pattern's ids prefixed
     # the original tile is repeated through a pattern; the texture is a nested svg of <use>s

@@ -5,7 +5,9 @@ Runs :func:`svgtile.apps.compare.compare` (patch, tile, random; one seed) on eve
 or the ones named, on a square region, and prints one row per exemplar with the columns of the
 README: overlaps / violators, density / ρ and kind-mix TV of patch, repetition and nearest-gap
 W1 of the three engines, patch's gap sampling noise, the patch / random gap ratio (✗ where it
-is above the issue's 0.5), pair correlation and coverage of the three engines.
+is above the issue's 0.5), pair correlation and coverage of the three engines, the neighbourhood
+distance E of the three and their likeness L (the tile and random columns sit near 1 and 0,
+not exactly: the baselines are measured on a region of their own).
 
 Usage:  python tools/likeness_table.py [NAME ...] [--size 1000] [--seed 1] [--dir exemplars]
 """
@@ -25,8 +27,9 @@ ROOT = Path(__file__).resolve().parents[1]
 HEAD = (
     "| exemplar | overlaps / violators | density / ρ | kind mix TV | repetition patch · tile · random "
     "| gap W1 patch · tile · random | gap noise (patch) | patch / random gap "
-    "| pair corr. patch · tile · random | coverage patch · tile · random |\n"
-    "|---|---|---|---|---|---|---|---|---|---|"
+    "| pair corr. patch · tile · random | coverage patch · tile · random "
+    "| neighbourhood E patch · tile · random | L patch · tile · random |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|"
 )
 
 
@@ -47,7 +50,8 @@ def row(name: str, size: float, seed: int, folder: Path = ROOT / "exemplars") ->
         f"| {name} | {p.overlaps} / {p.violators} | {p.density_ratio:.3f} | {p.kind_mix_tv:.3f} "
         f"| {three(lambda e: e.repetition, '.2f')} | {three(lambda e: e.gap_distance, '.3f')} | {p.gap_noise:.3f} "
         f"| {ratio:.2f}{mark} | {three(lambda e: e.pair_correlation_distance, '.3f')} "
-        f"| {three(lambda e: e.coverage, '.2f')} |"
+        f"| {three(lambda e: e.coverage, '.2f')} | {three(lambda e: e.neighbourhood_distance, '.3f')} "
+        f"| {three(lambda e: e.likeness, '.2f')} |"
     )
 
 

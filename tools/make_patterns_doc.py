@@ -2,7 +2,8 @@
 
 For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), then a texture of
 3 × 3 tile sizes synthesized with the patch engine (seed 1) and its figures from
-:func:`svgtile.metrics.score`.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+:func:`svgtile.metrics.score` (likeness L among them: on a 3 × 3 texture, one tile of interior,
+a rough figure).  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
 (the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
 
 Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
@@ -54,7 +55,7 @@ def row(path: Path, names: dict[str, str]) -> dict:
         motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
         overlaps=figures.overlaps_total, violators=figures.violators_total,
         density=figures.density_ratio, kind_mix=figures.kind_mix_tv, coverage=figures.coverage,
-        exemplar_overlaps=stats.overlaps,
+        likeness=figures.likeness, exemplar_overlaps=stats.overlaps,
     )  # fmt: skip
     return out
 
@@ -65,17 +66,17 @@ def fmt(v, digits=2) -> str:
 
 def table(rows: list[dict]) -> list[str]:
     lines = [
-        "| pattern | name | motifs | kinds | cut & reassembled | result | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage |",
-        "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|",
+        "| pattern | name | motifs | kinds | cut & reassembled | result | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage | likeness L |",
+        "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|",
     ]
     for r in rows:
         if "refused" in r:
-            lines.append(f"| {r['pattern']} | {r['name']} | | | | refused: {r['refused']} | | | | | | |")
+            lines.append(f"| {r['pattern']} | {r['name']} | | | | refused: {r['refused']} | | | | | | | |")
         else:
             lines.append(
                 f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted | "
                 f"{r['texture']} | {r['overlaps']} | {r['violators']} | {fmt(r['density'])} | "
-                f"{fmt(r['kind_mix'])} | {fmt(r['coverage'])} |"
+                f"{fmt(r['kind_mix'])} | {fmt(r['coverage'])} | {fmt(r['likeness'])} |"
             )
     return lines
 

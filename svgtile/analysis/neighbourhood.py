@@ -7,7 +7,7 @@ over the texture's motifs.  Positions are measured in the exemplar's mean spacin
 is dimensionless: 0 when every texture neighbourhood occurs in the exemplar exactly.
 
 In the analysis stage so that engines (the optimize engine, ma2011) and the metrics share one
-implementation.  Standalone for now: :func:`svgtile.metrics.score` does not call it yet.
+implementation; :mod:`svgtile.metrics.likeness` makes it a figure of :func:`svgtile.metrics.score`.
 
 References
 ----------
@@ -25,8 +25,11 @@ from scipy.spatial import cKDTree
 #: infinite extent so that it never runs out before the texture's; twice ``k`` also covers
 #: ties at the k-th distance (a square lattice has 4 neighbours at a, 4 at a·√2).
 EXEMPLAR_FACTOR = 2
-#: The greedy pairings are computed on blocks of at most this many float64 distances.
-BLOCK = 1 << 22
+#: Neighbourhood pairs are bounded on blocks of at most this many float64 distances.
+BLOCK = 1 << 21
+#: Exemplar neighbourhoods (with all their turns) paired per texture neighbourhood and round of
+#: the branch and bound.
+ROUND = 4
 
 
 def neighbourhoods(
@@ -100,6 +103,8 @@ def _greedy_costs(
     p_e: np.ndarray,
     k_e: np.ndarray,
     alpha: float,
+    *,
+    d: np.ndarray | None = None,
 ) -> np.ndarray:
     """Eq. (1) for G pairs of neighbourhoods, pairing greedily (§3.2).
 
@@ -110,6 +115,7 @@ def _greedy_costs(
     p_e : (G, ke, 2) exemplar neighbourhoods, spacings; NaN rows are absent.
     k_e : (G, ke) int kinds
     alpha : cost of a kind mismatch, squared spacings
+    d : (G, k, ke) :func:`_square_distances` of ``p_t`` and ``p_e``, if already computed
 
     Returns
     -------
@@ -120,8 +126,7 @@ def _greedy_costs(
     """
     g, k, _ = p_t.shape
     ke = p_e.shape[1]
-    d = ((p_t[:, :, None, :] - p_e[:, None, :, :]) ** 2).sum(axis=-1)
-    d = np.where(np.isnan(d), np.inf, d).reshape(g, k * ke)
+    d = (_square_distances(p_t, p_e) if d is None else d.copy()).reshape(g, k * ke)
     rows = np.arange(g)
     cost = np.zeros(g)
     matched = np.zeros((g, k), dtype=bool)
@@ -139,6 +144,192 @@ def _greedy_costs(
     lone = present & ~matched
     cost += np.where(lone, (p_t**2).sum(axis=-1) + alpha, 0.0).sum(axis=1)
     return cost
+
+
+def _turns(p_t: np.ndarray, p_e: np.ndarray, k: int, rotate: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The turns tried per pair of neighbourhoods, as two angle arrays, radians.
+
+    Returns ``phi_t`` (m,) and ``phi_e`` (n_e, r): a texture neighbourhood is turned by
+    ``phi_e[j, t] − phi_t`` before it is compared with exemplar neighbourhood ``j``.  Without
+    ``rotate`` there is one turn, by nothing.  With it, the turns bring the texture's nearest
+    neighbour onto the direction of each of the exemplar neighbourhood's ``k`` nearest.
+    """
+    if not rotate:
+        return np.zeros(len(p_t)), np.zeros((len(p_e), 1))
+    phi_t = np.nan_to_num(np.arctan2(p_t[:, 0, 1], p_t[:, 0, 0]))
+    phi_e = np.arctan2(p_e[:, :k, 1], p_e[:, :k, 0])
+    phi_e = np.nan_to_num(np.where(np.isnan(phi_e), phi_e[:, :1], phi_e))
+    return phi_t, phi_e
+
+
+def _square_distances(p_t: np.ndarray, p_e: np.ndarray, *, finite: bool = False) -> np.ndarray:
+    """(G, k, ke) squared distances between the neighbours of G pairs of neighbourhoods
+    ((G, k, 2) and (G, ke, 2)), infinite where either is absent (NaN).  ``finite``: the caller
+    knows ``p_t`` has no NaN and ``p_e`` has ±inf for NaN, so nothing needs replacing."""
+    dx = p_t[:, :, None, 0] - p_e[:, None, :, 0]
+    d = dx * dx
+    dx = p_t[:, :, None, 1] - p_e[:, None, :, 1]
+    dx *= dx
+    d += dx
+    if not finite:
+        d[np.isnan(d)] = np.inf
+    return d
+
+
+def _bound(d: np.ndarray, p_t: np.ndarray, k_t: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of :func:`_greedy_costs` from its :func:`_square_distances` ``d``, (G,):
+    each texture neighbour pays at least its cheapest partner or being left alone."""
+    low = (d + alpha * (k_t[:, :, None] != k_e[:, None, :])).min(axis=-1)
+    lone = (p_t**2).sum(axis=-1) + alpha
+    return np.where(np.isnan(lone), 0.0, np.minimum(low, lone)).sum(axis=-1)
+
+
+def _turning_bound(p_t: np.ndarray, k_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of eq. (1) between texture and exemplar neighbourhoods under every turn.
+
+    The greedy pairing is a matching (each neighbour used once), so it costs at least the
+    cheapest matching; a turn keeps distances from the centre and ``|p̂ − R·q̂| ≥ ||p̂| − |q̂||``,
+    so that matching costs at least the cheapest matching of the distances alone — on a line
+    with a convex cost, one that keeps their order, found by dynamic programming over the two
+    sorted lists.  Kinds add at least α per texture neighbour the exemplar's kind counts cannot
+    match.  A texture neighbour may also be left alone (``|p̂|² + α``).
+
+    Parameters
+    ----------
+    p_t : (b, k, 2) texture neighbourhoods, nearest first; k_t : (b, k)
+    p_e : (n_e, ke, 2) exemplar neighbourhoods, nearest first; k_e : (n_e, ke)
+    alpha : cost of a kind mismatch
+
+    Returns
+    -------
+    (b, n_e) float, squared spacings, without the centres' own kinds
+    """
+    b, k = k_t.shape
+    n_e, ke = k_e.shape
+    rt = np.hypot(p_t[..., 0], p_t[..., 1])  # (b, k), NaN for an absent neighbour
+    re = np.nan_to_num(np.hypot(p_e[..., 0], p_e[..., 1]), nan=np.inf)  # (n_e, ke)
+    present = ~np.isnan(rt)
+    lone = np.where(present, rt * rt, 0.0)  # the α of a lone neighbour is counted with kinds
+    # cost[j] after texture neighbour i: cheapest order-keeping matching of neighbours 0..i to
+    # exemplar neighbours 0..j-1 of each pair, (b, n_e, ke + 1).
+    cost = np.zeros((b, n_e, ke + 1))
+    for i in range(k):
+        a = rt[:, i, None, None]
+        pair = (a - re[None]) ** 2  # (b, n_e, ke)
+        pair = np.where(present[:, i, None, None], pair, 0.0)
+        new = np.empty_like(cost)
+        new[..., 0] = cost[..., 0] + lone[:, i, None]
+        paired = cost[..., :-1] + pair
+        alone = cost[..., 1:] + lone[:, i, None, None]
+        step = np.minimum(paired, alone)
+        # new[j] = min(new[j − 1], step[j − 1]): exemplar neighbour j − 1 used by i, or not at all
+        new[..., 1:] = step
+        np.minimum.accumulate(new, axis=-1, out=new)
+        cost = new
+    low = cost[..., -1]
+    kinds = int(max(k_t.max(initial=-1), k_e.max(initial=-1))) + 1
+    if kinds > 0:
+        ct = np.stack([(k_t == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (b, kinds)
+        ce = np.stack([(k_e == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (n_e, kinds)
+        shared = np.minimum(ct[:, None, :], ce[None, :, :]).sum(axis=-1)
+        low = low + alpha * (present.sum(axis=1)[:, None] - shared)
+    return low
+
+
+def _nearest_costs(
+    p_t: np.ndarray,
+    k_t: np.ndarray,
+    c_t: np.ndarray,
+    p_e: np.ndarray,
+    k_e: np.ndarray,
+    c_e: np.ndarray,
+    alpha: float,
+    *,
+    rotate: bool,
+) -> np.ndarray:
+    """For each texture neighbourhood, its smallest eq. (1) distance to an exemplar one.
+
+    Exact, by branch and bound: the greedy pairing (:func:`_greedy_costs`, k passes over all
+    k·ke neighbour pairs) is what costs, and most exemplar neighbourhoods are far from a given
+    texture one.  A lower bound of eq. (1) is cheap — each texture neighbour costs at least its
+    cheapest partner, ``min_q |p̂ − q̂|² + α·[kinds differ]``, or being left alone, whichever is
+    less — so the pairing is computed in order of increasing bound, a few candidates per round,
+    and stops for a centre once its next bound exceeds the best distance found.  Neighbourhoods
+    that may turn are ordered by a bound that holds for every turn (:func:`_turning_bound`),
+    and each turn is bounded by position (:func:`_bound`) before it is paired.  The result is
+    the minimum over every exemplar neighbourhood and turn, bit for bit
+    (``tests/test_neighbourhood.py`` compares it with every pairing).
+
+    Parameters
+    ----------
+    p_t : (m, k, 2) texture neighbourhoods, spacings (NaN: absent)
+    k_t : (m, k) int kinds of the neighbours; c_t : (m,) kinds of the centres
+    p_e : (n_e, ke, 2) exemplar neighbourhoods, spacings; k_e : (n_e, ke); c_e : (n_e,)
+    alpha : cost of a kind mismatch, squared spacings
+    rotate : try the turns of :func:`_turns`
+
+    Returns
+    -------
+    (m,) float, squared spacings
+    """
+    m, k, _ = p_t.shape
+    n_e, ke = k_e.shape
+    phi_t, phi_e = _turns(p_t, p_e, k, rotate)
+    r = phi_e.shape[1]
+    # The bound may sum its terms in another order than the pairing: a hair of slack keeps it
+    # a bound in floating point.
+    slack = 1 + 1e-9
+    best = np.full(m, np.inf)
+    batch = max(1, BLOCK // max(n_e * k * ke, 1))
+    # Exemplar neighbours, an absent one infinitely far; texture neighbourhoods all present
+    # (the texture has more than k motifs) need no test for absent ones.
+    p_far = np.nan_to_num(p_e, nan=np.inf)
+    q_x, q_y = p_far[None, :, None, :, 0], p_far[None, :, None, :, 1]
+    whole = not np.isnan(p_t).any()
+    for start in range(0, m, batch):
+        sl = slice(start, start + batch)
+        pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
+        b = len(pt)
+        if rotate:
+            low = _turning_bound(pt, kt, p_e, k_e, alpha)
+        else:  # (b, n_e, k, ke): each texture neighbour pays its cheapest partner or none
+            dx = pt[:, None, :, None, 0] - q_x
+            d = dx * dx
+            dx = pt[:, None, :, None, 1] - q_y
+            dx *= dx
+            d += dx
+            d += alpha * (kt[:, None, :, None] != k_e[None, :, None, :])
+            lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
+            low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
+            del d, dx, lone
+        low += alpha * (ct[:, None] != c_e[None, :])
+        low = np.repeat(low, r, axis=1)  # (b, n_e·r): every turn has its neighbourhood's bound
+        order = np.argsort(low, axis=1, kind="stable")
+        low = np.take_along_axis(low, order, axis=1)
+        top = np.full(b, np.inf)
+        step = ROUND * r
+        for pos in range(0, n_e * r, step):
+            live = low[:, pos : pos + step] <= top[:, None] * slack
+            if not live.any():
+                break
+            rows, cols = np.nonzero(live)
+            je, jr = np.divmod(order[rows, pos + cols], r)
+            pair = pt[rows]
+            if rotate:  # each texture neighbourhood turned for the exemplar one
+                turn = (phi_e[je, jr] - phi_t[start + rows])[:, None]
+                cos, sin = np.cos(turn), np.sin(turn)
+                x, y = pair[..., 0], pair[..., 1]
+                pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
+            cost = alpha * (ct[rows] != c_e[je])
+            q, kq = p_far[je], k_e[je]
+            d = _square_distances(pair, q, finite=whole)
+            if rotate:  # bound each turn by position before pairing
+                near = _bound(d, pair, kt[rows], kq, alpha) + cost <= top[rows] * slack
+                rows, pair, q, kq, d, cost = rows[near], pair[near], q[near], kq[near], d[near], cost[near]
+            cost += _greedy_costs(pair, kt[rows], q, kq, alpha, d=d)
+            np.minimum.at(top, rows, cost)
+        best[sl] = top
+    return best
 
 
 def neighbourhood_distance(
@@ -214,45 +405,7 @@ def neighbourhood_distance(
     p_e, k_e = neighbourhoods(exemplar_xy, exemplar_kind, EXEMPLAR_FACTOR * k, period=period)
     p_t = p_t / spacing
     p_e = p_e / spacing
-    c_t = texture_kind[centres]
-    c_e = exemplar_kind
-
-    n_e, ke = k_e.shape
-    if rotate:
-        # (c,) angle of the texture's nearest neighbour, (n_e, R) of the exemplar's k nearest.
-        phi_t = np.arctan2(p_t[:, 0, 1], p_t[:, 0, 0])
-        phi_e = np.arctan2(p_e[:, :k, 1], p_e[:, :k, 0])
-        phi_t = np.nan_to_num(phi_t)
-        phi_e = np.where(np.isnan(phi_e), phi_e[:, :1], phi_e)
-        phi_e = np.nan_to_num(phi_e)
-    else:
-        phi_e = np.zeros((n_e, 1))
-    r = phi_e.shape[1]
-    per_centre = n_e * r * k * ke
-    batch = max(1, BLOCK // max(per_centre, 1))
-    best = np.empty(len(centres))
-    for start in range(0, len(centres), batch):
-        sl = slice(start, start + batch)
-        pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
-        b = len(pt)
-        # (b, n_e, r, k, 2): every texture neighbourhood against every exemplar one and turn.
-        if rotate:
-            turn = phi_e[None, :, :] - phi_t[sl, None, None]
-            cos, sin = np.cos(turn)[..., None], np.sin(turn)[..., None]
-            x, y = pt[:, None, None, :, 0], pt[:, None, None, :, 1]
-            pr = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
-        else:
-            pr = np.broadcast_to(pt[:, None, None], (b, n_e, r, k, 2))
-        g = b * n_e * r
-        cost = _greedy_costs(
-            pr.reshape(g, k, 2),
-            np.broadcast_to(kt[:, None, None], (b, n_e, r, k)).reshape(g, k),
-            np.broadcast_to(p_e[None, :, None], (b, n_e, r, ke, 2)).reshape(g, ke, 2),
-            np.broadcast_to(k_e[None, :, None], (b, n_e, r, ke)).reshape(g, ke),
-            alpha,
-        ).reshape(b, n_e, r)
-        cost += alpha * (ct[:, None, None] != c_e[None, :, None])
-        best[sl] = cost.min(axis=(1, 2))
+    best = _nearest_costs(p_t, k_t, texture_kind[centres], p_e, k_e, exemplar_kind, alpha, rotate=rotate)
     return float(best.mean())
 
 

@@ -35,6 +35,8 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
     ("pair_correlation_distance", "structure: pair correlation", ".3f"),
     ("repetition", "repetition", ".3f"),
     ("coverage", "coverage (empty disc ratio)", ".2f"),
+    ("neighbourhood_distance", "neighbourhood distance", ".3f"),
+    ("likeness", "likeness L", ".2f"),
 )
 
 
@@ -117,6 +119,8 @@ def format_score(score: Score) -> str:
     lines = [f"measured on the {score.window} ({score.window_area:.6g} square units, "
              f"mean spacing s = {_cell(score.spacing, '.4g')})"]  # fmt: skip
     lines += [f"{lab:<{label}}  {_cell(getattr(score, key), spec):>9}" for key, lab, spec in FIGURES]
+    lines.append(f"{'  of tile · random':<{label}}  {_cell(score.neighbourhood_tile, '.3f'):>9}"
+                 f"  {_cell(score.neighbourhood_random, '.3f')}")  # fmt: skip
     pairs = [p for p in score.kind_pairs if p.gap_distance is not None or p.pair_correlation_distance is not None]
     if pairs:
         lines += ["", "structure per kind pair (gap W1, its sampling noise, pair correlation):"]

@@ -24,6 +24,8 @@ from svgtile.apps.load import check_motif_count
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.errors import ExemplarError, SvgtileError
+from svgtile.metrics.likeness import measure as measure_likeness
+from svgtile.metrics.window import in_window, interior
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.reader import parse_exemplar
 from svgtile.svg.writer import fmt, svg_document
@@ -41,8 +43,9 @@ SKIP = {"metadata", "title", "desc", "namedview", "script", "style"}
 
 @dataclass(frozen=True)
 class Swatch:
-    """One pattern on the sheet: ``motifs``/``kinds`` of the import and the texture's motif count,
-    or ``refused`` with the reason."""
+    """One pattern on the sheet: ``motifs``/``kinds`` of the import, the texture's motif count and
+    its likeness L (:mod:`svgtile.metrics.likeness`; None when undefined), or ``refused`` with
+    the reason."""
 
     path: Path
     label: str
@@ -50,6 +53,7 @@ class Swatch:
     kinds: int = 0
     texture: int = 0
     refused: str | None = None
+    likeness: float | None = None
 
 
 @dataclass(frozen=True)
@@ -138,6 +142,8 @@ def swatch_sheet(
         top = y + LABEL
         result = _swatch(path, label, swatch, tiles, seed, max_motifs)
         done.append(result[0])
+        if result[0].likeness is not None:  # the label keeps room for it
+            text.text = f"{_short(label, 50)}  L {result[0].likeness:.2f}"
         original, texture = result[1], result[2]
         if original is not None:
             cell.append(_nest(original, f"s{n + 1}o", x, top))
@@ -181,7 +187,10 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         reason = str(exc).removeprefix(f"{path}: ")
         return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
     texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}))
-    result = Swatch(path, label, len(imported), imported.kinds, len(arr))
+    # L on the swatch's interior (one tile in from each edge): few motifs, a rough figure
+    inside = in_window(arr, interior(exemplar, region))
+    found = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() else None
+    result = Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=found)
     return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
 
 

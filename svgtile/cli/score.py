@@ -37,6 +37,12 @@ def score(exemplar, texture, as_json):
       structure: pair correlation  neighbour distances up to 3 spacings         0
       repetition                   motifs repeating at one displacement         0 (tile: 1)
       coverage                     largest empty disc over the exemplar's       1
+      neighbourhood distance       each motif's 6 nearest neighbours (where,    0
+                                   which kind) against the most alike
+                                   exemplar neighbourhood (Ma et al. 2011);
+                                   printed with tile's and random's
+      likeness L                   that distance between the two baselines:     1 (or above)
+                                   1 = tile's (stamped copies), 0 = random's
 
     Read them against svgtile compare's tile and random columns; the README defines each.
     """

@@ -22,7 +22,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import RBFInterpolator
 from scipy.spatial import cKDTree
 
 from svgtile.errors import ParameterError
@@ -110,6 +109,9 @@ class FlowField:
         xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
         if len(self.points) < 2:  # one site: its tangent everywhere
             return self._nearest(xy)
+        # imported here: scipy.interpolate costs every svgtile command ~0.2 s to import
+        from scipy.interpolate import RBFInterpolator
+
         rbf = RBFInterpolator(self.points, self.tangents, kernel="linear", degree=0, smoothing=1e-3,
                               neighbors=min(_NEIGHBOURS, len(self.points)))  # fmt: skip
         v = rbf(xy) if len(xy) else np.zeros((0, 2))

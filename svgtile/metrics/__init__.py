@@ -10,8 +10,9 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 * :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
 * :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation, repetition;
 * :mod:`~svgtile.metrics.coverage` — the largest empty disc;
-* :mod:`~svgtile.analysis.neighbourhood` — the neighbourhood distance of Ma, Wei & Tong 2011
-  and :func:`likeness` between two baselines (not yet part of :func:`score`);
+* :mod:`~svgtile.metrics.likeness` — the neighbourhood distance of Ma, Wei & Tong 2011
+  (:mod:`svgtile.analysis.neighbourhood`) of the texture and of the ``tile`` and ``random``
+  baselines, and :func:`likeness` between them;
 * :mod:`~svgtile.metrics.scoring` — :class:`Score` and :func:`score`.
 """
 
@@ -20,6 +21,7 @@ from __future__ import annotations
 from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import largest_empty_disc
+from svgtile.metrics.likeness import Likeness, baseline_distances, texture_distance, turns_allowed
 from svgtile.metrics.pattern import (
     KindPair,
     Repetition,
@@ -37,9 +39,11 @@ from svgtile.metrics.window import interior, motif_sample, spacing
 __all__ = [
     "Conflicts",
     "KindPair",
+    "Likeness",
     "Repetition",
     "Score",
     "Structure",
+    "baseline_distances",
     "conflict_counts",
     "density",
     "interior",
@@ -56,6 +60,8 @@ __all__ = [
     "score",
     "spacing",
     "structure",
+    "texture_distance",
+    "turns_allowed",
     "wasserstein",
     "window_densities",
 ]

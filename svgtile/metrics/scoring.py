@@ -10,7 +10,9 @@ docstring of the function that computes it, in the module named after what it me
 * orientation — motifs outside their kind's arc (:mod:`svgtile.metrics.rules`);
 * structure and repetition — nearest footprint gaps and pair correlation per kind pair, and how
   strongly the arrangement repeats itself (:mod:`svgtile.metrics.pattern`);
-* coverage — the largest hole against the exemplar's (:mod:`svgtile.metrics.coverage`).
+* coverage — the largest hole against the exemplar's (:mod:`svgtile.metrics.coverage`);
+* likeness — the neighbourhood distance of Ma, Wei & Tong 2011 (§3.2, eq. 1) of the texture
+  and of two baselines, and where the texture lies between them (:mod:`svgtile.metrics.likeness`).
 
 Where and at what scale they are measured (the interior, the mean spacing, the sample of a
 large texture) is :mod:`svgtile.metrics.window`.
@@ -32,6 +34,7 @@ from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_STEP, largest_empty_disc
+from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import conflict_counts, orientation_outside
 from svgtile.metrics.window import finite_or_none, in_window, interior, spacing
@@ -108,6 +111,18 @@ class Score:
     coverage : float or None
         ``empty_disc_radius / exemplar_empty_disc_radius``: ≈ 1 or below is as well covered as
         the exemplar, ≫ 1 is a hole; lower is better.
+    neighbourhood_distance : float or None
+        ``E``: mean distance of the neighbourhoods of (a sample of) the motifs in ``I`` to their
+        most similar exemplar neighbourhood (ma2011 §3.2 eq. 1), squared spacings; 0 is the
+        exemplar's own order, lower is better.
+    neighbourhood_tile : float or None
+        ``E_tile``: the same for the ``tile`` engine's texture of the exemplar (the baseline of
+        :mod:`svgtile.metrics.likeness`, on a fixed region, not this texture's).
+    neighbourhood_random : float or None
+        ``E_random``: the same for the ``random`` engine's.
+    likeness : float or None
+        ``L = (E_random − E) / (E_random − E_tile)``: 1 keeps the exemplar's order as well as
+        stamping copies, 0 no better than dart throwing; higher is better.
     """
 
     window: str
@@ -136,6 +151,10 @@ class Score:
     empty_disc_radius: float
     exemplar_empty_disc_radius: float
     coverage: float | None
+    neighbourhood_distance: float | None
+    neighbourhood_tile: float | None
+    neighbourhood_random: float | None
+    likeness: float | None
 
     def to_dict(self) -> dict:
         """The figures as plain JSON-able data: a dict in field order, tuples as lists."""
@@ -187,6 +206,7 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
     r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)
     r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
+    order = measure_likeness(exemplar, stats, arr, inside)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
@@ -210,4 +230,8 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
         empty_disc_radius=r_tex,
         exemplar_empty_disc_radius=r_ex,
         coverage=finite_or_none(r_tex / r_ex) if r_ex > 0 else None,
+        neighbourhood_distance=order.distance,
+        neighbourhood_tile=order.tile,
+        neighbourhood_random=order.random,
+        likeness=order.likeness,
     )
