@@ -1,9 +1,14 @@
 """The ``optimize`` engine: a patch-copy start refined by discrete element texture optimisation.
 
-Ma, Wei & Tong 2011 §4.1 initialise by copying exemplar patches of the neighbourhood's size;
-the patch engine (:mod:`svgtile.engines.patch`, AlMeraj et al. 2013) does exactly that with
-integral motifs, conflicts resolved and density repaired, so it is the start, and the solver
+Ma, Wei & Tong 2011 §4.1 initialise by copying exemplar patches of the neighbourhood's size
+(:func:`.init.patch_start`, integral motifs, world-anchored cells), and the solver
 (:func:`.solver.refine`, Pseudocode 1) then minimises the neighbourhood energy.
+
+The patch engine's output (AlMeraj et al. 2013) is a valid start too — ``--engine patch --refine
+N`` — but not this engine's: its density repair decides window by window from what earlier
+rounds left, so about 1 % of its motifs change far from an edit of the region, and every
+iteration spreads each such change over its neighbourhood; small patches on fixed cells change
+only near the edit.
 """
 
 from __future__ import annotations
@@ -11,11 +16,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.base import Context, EngineParams, param
+from svgtile.engines.optimize.init import patch_start
 from svgtile.engines.optimize.solver import Settings, refine
-from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.errors import ParameterError
 
 
@@ -29,6 +36,10 @@ class OptimizeParams(EngineParams):
         Search-and-assignment iterations of the solver (§4, Pseudocode 1).
     neighbourhood : int in [2, 24]
         k, neighbours per neighbourhood (§3.2; 6 is the first ring of a lattice).
+    cell : float > 0
+        Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
+    overlap : float ≥ 0
+        How far each start patch reaches past its cell, a fraction of the cell.
     anchor, sweeps, similar, alpha : solver settings (:class:`.solver.Settings`)
     """
 
@@ -36,6 +47,8 @@ class OptimizeParams(EngineParams):
                         interval=(0, 100))
     neighbourhood: int = param(6, "Neighbours each motif's surroundings are compared by (2 to 24; 6 = one ring).",
                                interval=(2, 24))
+    cell: float = 5.0
+    overlap: float = 0.25
     anchor: float = 1.0
     sweeps: int = 3
     similar: int = 2
@@ -46,6 +59,8 @@ class OptimizeParams(EngineParams):
             raise ParameterError(f"--passes must be between 0 and 100, not {self.passes}")
         if not 2 <= self.neighbourhood <= 24:
             raise ParameterError(f"--neighbourhood must be between 2 and 24, not {self.neighbourhood}")
+        if not (self.cell > 0 and self.overlap >= 0):
+            raise ParameterError("cell must be positive and overlap at least 0")
         if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0):
             raise ParameterError("anchor must be positive, sweeps at least 1, similar and alpha at least 0")
 
@@ -63,15 +78,19 @@ class OptimizeEngine:
     controls = frozenset({"flow"})
 
     def place(self, ctx: Context, p: OptimizeParams) -> Arrangement:
-        """The patch engine's texture, refined by ``p.passes`` iterations (ma2011 §4)."""
-        arr = PATCH.place(ctx, PatchParams())
-        arr = arr.take(ctx.region.keep(arr, ctx.exemplar.prototypes, ctx.boundary))
+        """Exemplar patches (§4.1), refined by ``p.passes`` iterations (§4)."""
+        ex = ctx.exemplar
+        spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
+        ctx.progress("patches", 0.0)
+        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.cell * spacing,
+                          overlap=p.overlap)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=p.settings(), progress=ctx.progress)  # fmt: skip
         return arr
 
     def reach(self, exemplar: Exemplar, params: OptimizeParams) -> float:
-        """Not tile-exact: its start (the patch engine) is not."""
+        """Not exactly tile-exact: culling at the start's seams may chain (in practice a few
+        motifs), so it is run whole."""
         return math.inf
 
 
