@@ -36,9 +36,9 @@ class OptimizeParams(EngineParams):
         Search-and-assignment iterations of the solver (§4, Pseudocode 1).
     neighbourhood : int in [2, 24]
         k, neighbours per neighbourhood (§3.2; 6 is the first ring of a lattice).
-    cell : float > 0
+    start_cell : float > 0
         Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
-    overlap : float ≥ 0
+    start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
     anchor, sweeps, similar, alpha : solver settings (:class:`.solver.Settings`)
     """
@@ -47,8 +47,8 @@ class OptimizeParams(EngineParams):
                         interval=(0, 100))
     neighbourhood: int = param(6, "Neighbours each motif's surroundings are compared by (2 to 24; 6 = one ring).",
                                interval=(2, 24))
-    cell: float = 5.0
-    overlap: float = 0.25
+    start_cell: float = 5.0
+    start_overlap: float = 0.25
     anchor: float = 1.0
     sweeps: int = 3
     similar: int = 2
@@ -59,8 +59,8 @@ class OptimizeParams(EngineParams):
             raise ParameterError(f"--passes must be between 0 and 100, not {self.passes}")
         if not 2 <= self.neighbourhood <= 24:
             raise ParameterError(f"--neighbourhood must be between 2 and 24, not {self.neighbourhood}")
-        if not (self.cell > 0 and self.overlap >= 0):
-            raise ParameterError("cell must be positive and overlap at least 0")
+        if not (self.start_cell > 0 and self.start_overlap >= 0):
+            raise ParameterError("start_cell must be positive and start_overlap at least 0")
         if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0):
             raise ParameterError("anchor must be positive, sweeps at least 1, similar and alpha at least 0")
 
@@ -82,8 +82,8 @@ class OptimizeEngine:
         ex = ctx.exemplar
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
-        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.cell * spacing,
-                          overlap=p.overlap)  # fmt: skip
+        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
+                          overlap=p.start_overlap)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=p.settings(), progress=ctx.progress)  # fmt: skip
         return arr
