@@ -9,8 +9,9 @@
   paper's constrained selection for a non-repeating exemplar.
 * Non-penetration: the paper runs physics sub-steps; :func:`settle` instead relaxes each
   conflicting element halfway back to where it was, a few times, and finally returns whatever
-  still conflicts to its previous state.  The previous state had no conflict, so this ends
-  with none, keeps every motif, and the output keeps every invariant of every engine.
+  still conflicts to its previous state.  A conflict counts only if the previous state did not
+  have it, so this ends with no new one, keeps every motif, and an engine's output (which has
+  none) keeps every invariant of every engine.
 """
 
 from __future__ import annotations
@@ -35,48 +36,72 @@ def local_turn(flow: FlowField | None, xy: np.ndarray) -> np.ndarray:
     return flow.angle(xy)
 
 
-def _troubled(arr: Arrangement, moved: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region,
-              boundary: str) -> np.ndarray:  # fmt: skip
-    """(n,) bool: moved elements that conflict, or that the boundary mode would drop."""
-    bad = np.zeros(len(arr), dtype=bool)
-    if not moved.any():
-        return bad
+def conflict_codes(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:
+    """The conflicting pairs of ``arr``: codes ``i·n + j`` (``i < j``), (p,) int, and whether
+    each overlaps, (p,) bool."""
     c = find_conflicts(arr, exemplar.prototypes, stats.distance)
-    bad[c.i] = bad[c.j] = True
+    return c.i.astype(np.int64) * len(arr) + c.j, c.overlap
+
+
+def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> np.ndarray:
+    """(n,) bool: elements in a distance-rule violation (not an overlap) — a start that is not
+    an engine's output, such as a jittered lattice, whose elements must pass each other by."""
+    codes, overlap = conflict_codes(arr, exemplar, stats)
+    out = np.zeros(len(arr), dtype=bool)
+    out[codes[~overlap] // len(arr)] = out[codes[~overlap] % len(arr)] = True
+    return out
+
+
+def _troubled(arr: Arrangement, moved: np.ndarray, known: np.ndarray, lax: np.ndarray, exemplar: Exemplar,
+              stats: Stats, region: Region, boundary: str) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """(n,) bool: moved elements in a conflict the previous state did not have (``known``) —
+    bar a violation between two ``lax`` elements — or that the boundary mode would drop; and
+    the conflict codes of ``arr``."""
+    n = len(arr)
+    bad = np.zeros(n, dtype=bool)
+    if not moved.any():
+        return bad, known
+    codes, overlap = conflict_codes(arr, exemplar, stats)
+    i, j = codes // n, codes % n
+    new = ~np.isin(codes, known) & (overlap | ~(lax[i] & lax[j]))
+    bad[i[new]] = bad[j[new]] = True
     sel = np.flatnonzero(moved)
     bad[sel[~region.keep(arr.take(sel), exemplar.prototypes, boundary)]] = True
-    return bad & moved
+    return bad & moved, codes
 
 
 def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
-           boundary: str) -> tuple[Arrangement, int]:  # fmt: skip
-    """``new`` with no overlaps, no distance-rule violations and nothing the boundary drops.
+           boundary: str, known: np.ndarray, lax: np.ndarray) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
+    """``new`` with no conflict that ``prev`` did not have and nothing the boundary drops.
 
     Parameters
     ----------
-    prev : the previous arrangement, free of conflicts and kept by the boundary mode
+    prev : the previous arrangement, kept by the boundary mode
     new : the same elements after an assignment (same order)
+    known : (p,) int, the conflict codes of ``prev`` (:func:`conflict_codes`; none for an
+        engine's output)
+    lax : (n,) bool, elements that may break the distance rule among themselves (:func:`flawed`
+        of the start; none for an engine's output)
 
     Returns
     -------
-    the settled arrangement, and how many elements were returned to their previous state
+    the settled arrangement, and its conflict codes (a subset of ``known``, with the pairs a move
+    has broken up removed)
     """
     cur = new
     same = lambda a: ((a.kind == prev.kind) & (a.xy == prev.xy).all(axis=1)  # noqa: E731
                       & (a.angle == prev.angle) & (a.scale == prev.scale))  # fmt: skip
     for _ in range(RELAX_STEPS):
-        bad = _troubled(cur, ~same(cur), exemplar, stats, region, boundary)
+        bad, codes = _troubled(cur, ~same(cur), known, lax, exemplar, stats, region, boundary)
         if not bad.any():
-            return cur, 0
+            return cur, codes
         xy = cur.xy.copy()
         xy[bad] = (cur.xy[bad] + prev.xy[bad]) / 2
         cur = Arrangement(cur.kind, np.round(xy, DECIMALS), cur.angle, cur.scale)
-    back = 0
     while True:
-        bad = _troubled(cur, ~same(cur), exemplar, stats, region, boundary)
+        bad, codes = _troubled(cur, ~same(cur), known, lax, exemplar, stats, region, boundary)
         if not bad.any():
-            return cur, back
-        back += int(bad.sum())
+            return cur, codes
         kind, xy, angle, scale = cur.kind.copy(), cur.xy.copy(), cur.angle.copy(), cur.scale.copy()
         kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
         cur = Arrangement(kind, xy, angle, scale)

@@ -83,7 +83,7 @@ class OptimizeEngine:
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
         arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
-                          overlap=p.start_overlap)  # fmt: skip
+                          overlap=p.start_overlap, flow=ctx.controls.flow)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=p.settings(), progress=ctx.progress)  # fmt: skip
         return arr

@@ -23,7 +23,8 @@ from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
-from svgtile.core.footprint import motif_radius
+from svgtile.core.flow import FlowField
+from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
@@ -32,7 +33,7 @@ _THIN = 74
 
 
 def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
-                cell: float, overlap: float) -> Arrangement:  # fmt: skip
+                cell: float, overlap: float, flow: FlowField | None = None) -> Arrangement:  # fmt: skip
     """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
 
     Parameters
@@ -42,6 +43,8 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     key : the run's key
     cell : c, the cell side, user units
     overlap : σ ≥ 0, how far each patch's window reaches past its cell, as a fraction of ``c``
+    flow : a flow field, or None; each patch is then turned by the field's angle at its cell's
+        centre (§5, eq. (7)), motifs with it
 
     Returns
     -------
@@ -72,9 +75,14 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     # every motif of every window: (cells × motifs) masks, a cell's row at a time is small
     inside = (np.abs(pts[None, :, :] - source[:, None, :]) < win / 2).all(axis=-1)
     ci, mi = np.nonzero(inside)
-    xy = pts[mi] - source[ci] + centre[ci]
     e = src[mi]
-    arr = Arrangement(motifs.kind[e], xy, motifs.angle[e], motifs.scale[e]).quantized(DECIMALS)
+    if flow is None:
+        xy, angle = pts[mi] - source[ci] + centre[ci], motifs.angle[e]
+    else:
+        theta = flow.angle(centre)
+        xy = np.einsum("nij,nj->ni", rotation(theta[ci]), pts[mi] - source[ci]) + centre[ci]
+        angle = (motifs.angle[e] + theta[ci] + 180.0) % 360.0 - 180.0
+    arr = Arrangement(motifs.kind[e], xy, angle, motifs.scale[e]).quantized(DECIMALS)
     near = region.keep(arr, protos, boundary)
     arr, ci, e = arr.take(near), ci[near], e[near]
     # the motif farther from its own cell's centre leaves first; ties by a hash of its cell and source

@@ -26,7 +26,7 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import predictions, solve_positions, vote
-from svgtile.engines.optimize.controls import local_turn, settle
+from svgtile.engines.optimize.controls import conflict_codes, flawed, local_turn, settle
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
     coherent_candidates,
@@ -87,6 +87,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
     turn = local_turn(flow, arr.xy)
     match = None
+    known = conflict_codes(arr, exemplar, stats)[0]  # none for an engine's output
+    lax = flawed(arr, exemplar, stats)
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
         hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
@@ -102,7 +104,7 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         take = vote(samples, match, dst, predicted, len(arr))
         angle = samples.angle[take] if flow is None else (samples.angle[take] + turn + 180.0) % 360.0 - 180.0
         new = Arrangement(samples.kind[take], xy, angle, samples.scale[take]).quantized(DECIMALS)
-        arr, _ = settle(arr, new, exemplar, stats, region, boundary)
+        arr, known = settle(arr, new, exemplar, stats, region, boundary, known, lax)
         if flow is not None:
             turn = local_turn(flow, arr.xy)
     return arr, energies
