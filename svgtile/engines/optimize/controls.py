@@ -17,12 +17,14 @@
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import find_conflicts
+from svgtile.core.conflicts import find_conflicts, slack
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
+from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
 
 #: Halfway-back relaxation sub-steps before conflicting elements are returned to their place.
@@ -52,27 +54,33 @@ def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> np.ndarray:
     return out
 
 
-def _troubled(arr: Arrangement, moved: np.ndarray, known: np.ndarray, lax: np.ndarray, exemplar: Exemplar,
-              stats: Stats, region: Region, boundary: str) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
-    """(n,) bool: moved elements in a conflict the previous state did not have (``known``) —
-    bar a violation between two ``lax`` elements — or that the boundary mode would drop; and
-    the conflict codes of ``arr``."""
+def _local_update(arr: Arrangement, changed: np.ndarray, codes: np.ndarray, overlap: np.ndarray,
+                  exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """The conflicts of ``arr`` from those before ``changed`` (n,) bool elements changed: pairs
+    touching a changed element are searched again among it and its neighbours only."""
     n = len(arr)
-    bad = np.zeros(n, dtype=bool)
-    if not moved.any():
-        return bad, known
-    codes, overlap = conflict_codes(arr, exemplar, stats)
-    i, j = codes // n, codes % n
-    new = ~np.isin(codes, known) & (overlap | ~(lax[i] & lax[j]))
-    bad[i[new]] = bad[j[new]] = True
-    sel = np.flatnonzero(moved)
-    bad[sel[~region.keep(arr.take(sel), exemplar.prototypes, boundary)]] = True
-    return bad & moved, codes
+    protos = exemplar.prototypes
+    reach = 2 * float(motif_radius(arr, protos).max()) + float(stats.distance.max()) + 2 * slack(protos)
+    idx = np.flatnonzero(changed)
+    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(cKDTree(arr.xy), reach, output_type="ndarray")
+    sub = np.unique(np.r_[idx, pairs["j"].astype(np.int64)])
+    c = find_conflicts(arr.take(sub), protos, stats.distance)
+    i, j = sub[c.i], sub[c.j]
+    touch = changed[i] | changed[j]
+    lo, hi = np.minimum(i, j)[touch], np.maximum(i, j)[touch]
+    old_i, old_j = codes // n, codes % n
+    keep = ~(changed[old_i] | changed[old_j])
+    return np.r_[codes[keep], lo * n + hi], np.r_[overlap[keep], c.overlap[touch]]
 
 
 def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
            boundary: str, known: np.ndarray, lax: np.ndarray) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
     """``new`` with no conflict that ``prev`` did not have and nothing the boundary drops.
+
+    A moved element is *troubled* when it is in a conflict ``prev`` did not have (bar a
+    violation between two ``lax`` elements) or the boundary mode would drop it.  Troubled
+    elements go halfway back :data:`RELAX_STEPS` times, then all the way back until none is
+    left; after the first round, conflicts are searched again only around what changed.
 
     Parameters
     ----------
@@ -85,23 +93,33 @@ def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats
 
     Returns
     -------
-    the settled arrangement, and its conflict codes (a subset of ``known``, with the pairs a move
-    has broken up removed)
+    the settled arrangement, and its conflict codes
     """
+    n = len(new)
     cur = new
-    same = lambda a: ((a.kind == prev.kind) & (a.xy == prev.xy).all(axis=1)  # noqa: E731
-                      & (a.angle == prev.angle) & (a.scale == prev.scale))  # fmt: skip
-    for _ in range(RELAX_STEPS):
-        bad, codes = _troubled(cur, ~same(cur), known, lax, exemplar, stats, region, boundary)
-        if not bad.any():
-            return cur, codes
-        xy = cur.xy.copy()
-        xy[bad] = (cur.xy[bad] + prev.xy[bad]) / 2
-        cur = Arrangement(cur.kind, np.round(xy, DECIMALS), cur.angle, cur.scale)
+    codes, overlap = conflict_codes(cur, exemplar, stats)
+    dropped = np.zeros(n, dtype=bool)
+    changed = np.ones(n, dtype=bool)
+    step = 0
     while True:
-        bad, codes = _troubled(cur, ~same(cur), known, lax, exemplar, stats, region, boundary)
+        moved = ((cur.kind != prev.kind) | (cur.xy != prev.xy).any(axis=1) | (cur.angle != prev.angle)
+                 | (cur.scale != prev.scale))  # fmt: skip
+        check = np.flatnonzero(changed & moved)
+        dropped[changed] = False
+        dropped[check[~region.keep(cur.take(check), exemplar.prototypes, boundary)]] = True
+        i, j = codes // n, codes % n
+        new_pair = ~np.isin(codes, known) & (overlap | ~(lax[i] & lax[j]))
+        bad = dropped.copy()
+        bad[i[new_pair]] = bad[j[new_pair]] = True
+        bad &= moved
         if not bad.any():
-            return cur, codes
+            return cur, np.sort(codes)
         kind, xy, angle, scale = cur.kind.copy(), cur.xy.copy(), cur.angle.copy(), cur.scale.copy()
-        kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
+        if step < RELAX_STEPS:
+            xy[bad] = np.round((cur.xy[bad] + prev.xy[bad]) / 2, DECIMALS)
+        else:
+            kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
         cur = Arrangement(kind, xy, angle, scale)
+        changed = bad
+        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats)
+        step += 1

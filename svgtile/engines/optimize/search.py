@@ -22,7 +22,7 @@ from scipy.spatial import cKDTree
 
 from svgtile.core import cellrng
 from svgtile.core.footprint import rotation
-from svgtile.engines.optimize.match import candidate_costs, pairings
+from svgtile.engines.optimize.match import best_candidates, pairings
 from svgtile.engines.optimize.samples import Samples
 
 #: Samples tried per element by the first search (§4.1's initial assignment).
@@ -118,9 +118,7 @@ def search(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, candidates
     slots : (n, k) int, the exemplar neighbour slot paired with each output neighbour, −1 unpaired
     """
     cand = np.ascontiguousarray(candidates, dtype=np.int64)
-    costs = candidate_costs(hoods.rel, hoods.kind, kind, cand, samples.rel, samples.nkind, samples.kind, alpha)
-    best = costs.argmin(axis=1)
-    rows = np.arange(len(cand))
-    match = cand[rows, best]
+    best, cost = best_candidates(hoods.rel, hoods.kind, kind, cand, samples.rel, samples.nkind, samples.kind, alpha)
+    match = cand[np.arange(len(cand)), best]
     slots = pairings(hoods.rel, hoods.kind, match, samples.rel, samples.nkind, alpha)
-    return match, costs[rows, best], slots
+    return match, cost, slots
