@@ -28,7 +28,7 @@ from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
 
 #: Halfway-back relaxation sub-steps before conflicting elements are returned to their place.
-RELAX_STEPS = 2
+RELAX_STEPS = 1
 
 
 def local_turn(flow: FlowField | None, xy: np.ndarray) -> np.ndarray:

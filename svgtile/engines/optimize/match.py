@@ -131,9 +131,9 @@ def best_candidates(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alph
     best = np.empty(n, dtype=np.int64)
     cost = np.empty(n)
     k, ke = rel_o.shape[1], rel_e.shape[1]
-    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
-    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
     for i in range(n):
+        slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+        rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
         bi = 0
         bc = np.inf
         for j in range(c):
