@@ -179,3 +179,49 @@ def test_cli_refine_option(tmp_path, capsys):
     assert main(["synth", str(GRAVEL), "-o", str(bad), "--size", "120", "--engine", "optimize", "--passes", "0",
                  "--seed", "1"]) == 0  # fmt: skip
     assert 'passes="0"' in bad.read_text()
+
+
+def test_propagate_applies_an_edit_to_every_motif_alike(tmp_path, capsys):
+    """§6.3: one motif of a Tiling nudged; the motifs at the same place of the other copies (the
+    same neighbourhood) follow, the others stay, and the result keeps every invariant."""
+    from svgtile.cli.main import main
+    from svgtile.svg.texture import read_texture
+    from svgtile.svg.writer import svg_document
+
+    ex = read_exemplar(GRAVEL)
+    stats = analyze(ex)
+    x0, y0, x1, y1 = ex.region.bounds
+    region = Region.rectangle(4 * (x1 - x0), 4 * (y1 - y0))
+    res = synthesize(ex, region, "tile", seed=1, stats=stats, boundary="centroid")
+    arr = res.arrangement
+    centre = np.array([2 * (x1 - x0) + 0.5 * (x1 - x0), 2 * (y1 - y0) + 0.5 * (y1 - y0)])
+    i = int(np.argmin(np.hypot(*(arr.xy - centre).T)))
+    for t in np.radians(np.arange(0, 360, 45)):  # a nudge that keeps the distance rule
+        shift = 0.3 * np.array([np.cos(t), np.sin(t)])
+        xy = arr.xy.copy()
+        xy[i] += shift
+        edited = Arrangement(arr.kind, xy, arr.angle, arr.scale)
+        if brute_force_conflicts(edited, ex, stats) == (0, 0):
+            break
+    paths = {}
+    for name, a in (("tex", arr), ("edit", edited)):
+        paths[name] = tmp_path / f"{name}.svg"
+        paths[name].write_text(svg_document(ex, a, region, boundary="none", params={}))
+    out = tmp_path / "out.svg"
+    assert main(["propagate", str(GRAVEL), str(paths["tex"]), str(paths["edit"]), "-o", str(out)]) == 0
+    assert "1 motifs edited" in capsys.readouterr().err
+    got, _ = read_texture(out, ex)
+    moved = np.hypot(*(got.xy - arr.xy).T) > 1e-6
+    same_shift = np.allclose(got.xy[moved] - arr.xy[moved], shift, atol=2e-4)
+    period = np.array([x1 - x0, y1 - y0])
+    off = np.mod(arr.xy - arr.xy[i] + period / 2, period) - period / 2
+    copies = (np.abs(off) < 1e-3).all(axis=1) & (arr.kind == arr.kind[i])
+    assert same_shift and moved.sum() >= 0.75 * copies.sum() and copies.sum() >= 9, (same_shift, moved.sum(), copies.sum(), (got.xy[moved] - arr.xy[moved])[:5])
+    assert not (moved & ~copies).any()
+    assert brute_force_conflicts(got, ex, stats) == (0, 0)
+    # an edit that adds a motif is refused in one line
+    (tmp_path / "more.svg").write_text(svg_document(ex, arr.take(np.r_[np.arange(len(arr)), 0]), region,
+                                                    boundary="none", params={}))  # fmt: skip
+    assert main(["propagate", str(GRAVEL), str(paths["tex"]), str(tmp_path / "more.svg"), "-o", str(tmp_path / "x.svg")]) == 1
+    err = capsys.readouterr().err
+    assert "add or remove none" in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "x.svg").exists()

@@ -19,6 +19,7 @@ from svgtile.cli.common import Stderr, one_line, showwarning
 from svgtile.cli.compare import compare
 from svgtile.cli.inkscape import inkscape
 from svgtile.cli.map import map_cmd
+from svgtile.cli.propagate import propagate_cmd
 from svgtile.cli.score import score
 from svgtile.cli.synth import synth
 from svgtile.cli.tiles import import_cmd, swatches_cmd
@@ -34,7 +35,7 @@ def cli() -> None:
     """Fill any region with small vector motifs so it looks like a small exemplar you drew."""
 
 
-for _command in (synth, analyze_cmd, compare, import_cmd, inkscape, map_cmd, score, swatches_cmd):
+for _command in (synth, analyze_cmd, compare, import_cmd, inkscape, map_cmd, propagate_cmd, score, swatches_cmd):
     cli.add_command(_command)
 
 
