@@ -16,7 +16,7 @@ from svgtile.engines import synthesize
 from svgtile.metrics import score
 from svgtile.metrics.window import in_window, interior, spacing
 
-SAMPLE = 600
+SAMPLE = 300
 
 
 @dataclass(frozen=True)
