@@ -225,3 +225,14 @@ def test_propagate_applies_an_edit_to_every_motif_alike(tmp_path, capsys):
     assert main(["propagate", str(GRAVEL), str(paths["tex"]), str(tmp_path / "more.svg"), "-o", str(tmp_path / "x.svg")]) == 1
     err = capsys.readouterr().err
     assert "add or remove none" in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "x.svg").exists()
+
+
+def test_styles_refine_key():
+    from svgtile.apps.mapfill import parse_styles
+
+    styles = parse_styles({"refine": 3, "classes": {"a": {"exemplar": "x.svg"},
+                                                    "b": {"exemplar": "x.svg", "refine": 0}}})  # fmt: skip
+    assert styles.classes["a"].refine == 3 and styles.classes["b"].refine == 0
+    assert parse_styles({"classes": {"a": {"exemplar": "x.svg"}}}).classes["a"].refine is None
+    with pytest.raises(ParameterError, match="refine must be an integer >= 0"):
+        parse_styles({"classes": {"a": {"exemplar": "x.svg", "refine": -1}}})
