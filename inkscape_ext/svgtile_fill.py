@@ -126,7 +126,7 @@ def find_python():
 
 #: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
 #: against the .inx and svgtile's engine parameter classes).
-ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation")
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "passes", "neighbourhood")
 
 
 class FillWithTexture(inkex.EffectExtension):
@@ -134,12 +134,14 @@ class FillWithTexture(inkex.EffectExtension):
 
     def add_arguments(self, pars):
         pars.add_argument("--tab", default="options")
-        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random"])
+        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "optimize"])
         pars.add_argument("--grid", default="square", choices=["square", "hex"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--junction", type=float, default=0.6)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
+        pars.add_argument("--passes", type=int, default=5)
+        pars.add_argument("--neighbourhood", type=int, default=6)
         pars.add_argument("--boundary", default="clip", choices=["clip", "inside", "centroid", "none"])
         pars.add_argument("--seed", type=int, default=0)
 

@@ -19,6 +19,7 @@ A *styles file* (TOML) maps classes to exemplars and parameters::
     vary_orientation = false
     boundary = "inside"
     unit = 1.0                          # map units per exemplar user unit
+    refine = 5                          # optimisation iterations after the engine (any engine)
 
 Each region is synthesized on its own (:func:`fill_region`) in a pool of processes; a region that
 fails is reported and the others are kept.  All regions of a run share one seed, and the engines
@@ -64,7 +65,7 @@ else:  # pragma: no cover - Python 3.10
 PARAM_KEYS = tuple(public_params())
 ENGINE_KEYS = (*PARAM_KEYS, "boundary")
 #: Every key a class table (or the defaults) may have.
-CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit")
+CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit", "refine")
 #: Keys only the top level may have.
 RUN_KEYS = ("avoid", "avoid_margin", "class_attribute", "class_property", "classes")
 
@@ -85,6 +86,8 @@ class Style:
     boundary : how motifs meet the unit's edges and holes
     seed : int or None (the run's seed)
     unit : map units per exemplar user unit
+    refine : iterations of optimisation run on the engine's output (``refine = N``, any engine);
+        None when the styles do not say (``svgtile map --refine`` then applies, else 0)
     """
 
     cls: str
@@ -94,6 +97,7 @@ class Style:
     seed: int | None = None
     unit: float = 1.0
     boundary: str = "clip"
+    refine: int | None = None
 
 
 @dataclass(frozen=True)
@@ -190,7 +194,10 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
     unit = t.get("unit", 1.0)
     if not isinstance(unit, (int, float)) or isinstance(unit, bool) or not (unit > 0 and math.isfinite(unit)):
         raise ParameterError(f"{where}: unit must be a positive number", source=source)
-    return Style(name, folder / t["exemplar"], engine, params, seed, float(unit), boundary)
+    refine = t.get("refine")
+    if refine is not None and (not isinstance(refine, int) or isinstance(refine, bool) or refine < 0):
+        raise ParameterError(f"{where}: refine must be an integer >= 0", source=source)
+    return Style(name, folder / t["exemplar"], engine, params, seed, float(unit), boundary, refine)
 
 
 # ----------------------------------------------------------------------------- one region
@@ -217,7 +224,7 @@ def fill_region(
                       hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     seed = style.seed if style.seed is not None else seed
     arr = synthesize(ex, region, style.engine, seed=seed, stats=stats, boundary=style.boundary,
-                     params=style.params).arrangement  # fmt: skip
+                     params=style.params, refine=style.refine or 0).arrangement  # fmt: skip
     if unit != 1.0:
         arr = Arrangement(arr.kind, arr.xy * unit, arr.angle, arr.scale * unit)
     return arr

@@ -20,6 +20,7 @@ from svgtile.cli.compare import compare
 from svgtile.cli.inkscape import inkscape
 from svgtile.cli.map import map_cmd
 from svgtile.cli.qgis import qgis
+from svgtile.cli.propagate import propagate_cmd
 from svgtile.cli.score import score
 from svgtile.cli.symbols import symbols_cmd
 from svgtile.cli.synth import synth
@@ -36,7 +37,8 @@ def cli() -> None:
     """Fill any region with small vector motifs so it looks like a small exemplar you drew."""
 
 
-for _command in (synth, analyze_cmd, compare, import_cmd, inkscape, map_cmd, qgis, score, swatches_cmd, symbols_cmd):
+for _command in (synth, analyze_cmd, compare, import_cmd, inkscape, map_cmd, propagate_cmd, qgis, score, swatches_cmd,
+                 symbols_cmd):
     cli.add_command(_command)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import secrets
 import sys
@@ -41,8 +42,10 @@ def _with_params(f):
               help="Random seed shared by every region (a class's own seed wins, and a top-level seed in the styles file is every class's). Without it one is chosen and printed.")
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="Regions filled at once, in separate processes [default: the usable cores].")
+@click.option("--refine", type=click.IntRange(min=0), default=None, metavar="N",
+              help="Improve every class's texture by N iterations of optimisation (Ma, Wei & Tong 2011) after its engine; a class's own refine key wins.")
 @_with_params
-def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
+def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, refine):
     """Fill every unit of MAP (SVG, or a GIS layer: .gpkg, .shp, .fgb, .geojson) whose class the styles file knows.
 
     A unit's class is its class attribute (or the attribute the styles file names) or its
@@ -57,6 +60,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
       seed = 7                this class's seed (else the run's)
       unit = 1.0              map units per exemplar user unit
       boundary = "clip"       inside, centroid, clip or none (default: clip; inside for GIS points)
+      refine = 0              optimisation iterations after the engine (any engine)
     and any parameter of its engine, as in svgtile synth with _ for -.
     Keys at the top level are defaults for every class (an engine parameter only for the
     classes whose engine has it; a seed there is every class's), plus:
@@ -72,6 +76,9 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
     styles = read_styles(styles_file, boundary=default_boundary(kind, None))
     crs = common_crs(map_file, [a for a in (*styles.avoid, *avoid) if is_gis(a)])
+    if refine is not None:
+        styles = dataclasses.replace(styles, classes={c: s if s.refine is not None else dataclasses.replace(s, refine=refine)
+                                                      for c, s in styles.classes.items()})  # fmt: skip
     inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")

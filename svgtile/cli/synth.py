@@ -48,14 +48,16 @@ from svgtile.svg.writer import fmt, result_document
               help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out. [default: clip; inside for GIS point outputs, whose markers cannot be cut]")
 @click.option("--with-style", is_flag=True,
               help="With a GIS output: also write OUT.qml (a QGIS style QGIS loads with the layer) and OUT-symbols/ (each kind as an SVG), so QGIS draws the texture at once.")
+@click.option("--refine", type=click.IntRange(min=0), default=0, show_default=True, metavar="N",
+              help="Then improve any engine's texture by N iterations of optimisation (Ma, Wei & Tong 2011): every motif's surroundings pulled towards the exemplar's.")
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 @click.pass_context
-def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, with_style, seed, force,
-          as_tile, **values):  # fmt: skip
+def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, with_style, refine, seed,
+          force, as_tile, **values):  # fmt: skip
     """Synthesize a texture like EXEMPLAR and write it (SVG, PNG or GIS points, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -80,7 +82,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
-                        params=params)  # fmt: skip
+                        params=params, refine=refine)  # fmt: skip
     Stderr.clear()
     if len(result) == 0:
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")

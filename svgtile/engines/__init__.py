@@ -4,7 +4,8 @@ Built in:
 
 * ``patch`` — patch-based synthesis (AlMeraj, Kaplan & Asente 2013), the default;
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
-* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline).
+* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline);
+* ``optimize`` — discrete element texture optimisation (Ma, Wei & Tong 2011) from a patch start.
 
 Other packages add engines through the ``svgtile.engines`` entry-point group (the ecosystem's
 plug-in convention, as vpype's): an entry point ``NAME = module:ENGINE`` naming an object that
@@ -37,6 +38,8 @@ from svgtile.engines.base import (
     honoured,
     reading_order,
 )
+from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
+from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
@@ -48,13 +51,13 @@ ENTRY_POINT_GROUP = "svgtile.engines"
 
 #: Names a plug-in parameter may not take: they are options of every command or styles keys.
 RESERVED = frozenset({"seed", "boundary", "size", "region", "engine", "unit", "exemplar", "output", "avoid",
-                      "avoid_margin", "force", "jobs", "styles"})
+                      "avoid_margin", "force", "jobs", "styles", "refine"})
 #: Plug-ins found but not registered, name -> why (``svgtile.engines.get_engine`` names them).
 REFUSED: dict[str, str] = {}
 
 
 def _registry() -> dict[str, Engine]:
-    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM)}
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, OPTIMIZE)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines:
@@ -151,6 +154,7 @@ def synthesize(
     progress: Progress | None = None,
     params: Mapping[str, object] | EngineParams | None = None,
     controls: Controls | None = None,
+    refine: int = 0,
 ) -> Result:
     """Fill ``region`` with a texture like ``exemplar``, with one engine.
 
@@ -168,6 +172,9 @@ def synthesize(
     params : the engine's parameters (see :func:`make_params`)
     controls : flow field, barriers, growth area (:class:`~svgtile.engines.base.Controls`); each
         must be one the engine honours
+    refine : N ≥ 0, iterations of discrete element texture optimisation (Ma, Wei & Tong 2011,
+        :func:`svgtile.engines.optimize.solver.refine`) run on the engine's output, after the
+        boundary mode; 0 (the default) leaves the engine's output as it is
 
     Returns
     -------
@@ -190,11 +197,17 @@ def synthesize(
     report = progress or (lambda stage, fraction: None)
     key = cellrng.root_key(np.random.default_rng(seed) if rng is None else rng)
     ctx = Context(exemplar, stats, region, boundary, key, report, controls)
+    if not (isinstance(refine, int) and not isinstance(refine, bool) and refine >= 0):
+        raise ParameterError(f"--refine must be a whole number of iterations, at least 0, not {refine!r}")
     arr = engine.place(ctx, p)
-    arr = reading_order(arr.take(region.keep(arr, exemplar.prototypes, boundary)))
+    arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
+    if refine:
+        arr, _ = _refine(arr, exemplar, stats, region, boundary, iterations=refine, key=ctx.key,
+                         flow=controls.flow, progress=report)  # fmt: skip
+    arr = reading_order(arr)
     report("done", 1.0)
-    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
+    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine)
 
 
-__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
+__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams",
            "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

@@ -213,6 +213,8 @@ class Result:
     params : the engine's parameters, all resolved
     seed : the seed the run was made with (None when the caller passed a generator; the metadata
         then records none)
+    refine : iterations of optimisation run on the engine's output (``--refine``; recorded when
+        not 0)
     """
 
     arrangement: Arrangement
@@ -223,6 +225,7 @@ class Result:
     engine: str
     params: EngineParams
     seed: int | None
+    refine: int = 0
 
     def __len__(self) -> int:
         return len(self.arrangement)
@@ -231,7 +234,8 @@ class Result:
         """What a texture records of its run: engine, seed, ``where`` (exemplar, region …), the
         public parameters, the boundary mode and the motif count."""
         run = {"engine": self.engine, **({} if self.seed is None else {"seed": self.seed})}
-        own = {**self.params.public_values(), "boundary": self.boundary, "motifs": len(self.arrangement)}
+        own = {**self.params.public_values(), **({"refine": self.refine} if self.refine else {}),
+               "boundary": self.boundary, "motifs": len(self.arrangement)}
         clash = (set(where) & set(own)) | (set(where) & set(run))
         if clash:
             raise ValueError(f"metadata keys {sorted(clash)} are the run's own")

@@ -1,0 +1,109 @@
+"""The assignment step (Ma, Wei & Tong 2011 §4.3): positions by least squares, kinds by voting.
+
+Every output element ``s_o`` matched to ``s_i`` predicts where each of its paired neighbours
+should stand: ``p(s'_o) − p(s_o) ≈ R(θ)(p(s'_i) − p(s_i))`` (eq. (3), turned by the local
+orientation of eq. (7)).  All predictions together are a sparse linear least-squares problem in
+the positions (eq. (4)): ``min Σ |p_j − p_i − d_ij|² + λ Σ |p_i − p_i⁰|²`` whose normal
+equations ``(λI + BᵀB) p = λp⁰ + Bᵀd`` are assembled with scipy.sparse (``B`` the edge–element
+incidence matrix).  The ``λ`` term anchors the solution where the predictions leave it free (a
+translation) and makes the step a proximal one.
+
+The system is solved by a few Jacobi sweeps from the current positions, not exactly: the exact
+solution moves every element a little for a change anywhere, while ``S`` sweeps move only
+elements within ``S`` neighbourhood hops of it, which keeps a texture stable under an edit of its
+region far away (the engine contract) and the cost per iteration O(n).  Successive iterations
+carry on the descent.
+
+Kinds are voted (eq. (5)): each element's own match and every neighbour's prediction cast a vote;
+the most voted kind wins, ties going to the own match.  Angle and scale come with the winning
+vote (the own match's, else the lowest-numbered neighbour's), turned by the local orientation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from svgtile.core.footprint import rotation
+from svgtile.engines.optimize.samples import Samples
+from svgtile.engines.optimize.search import Neighbourhoods
+
+
+def predictions(samples: Samples, hoods: Neighbourhoods, match: np.ndarray, slots: np.ndarray):
+    """The relative positions every match predicts (eq. (3)).
+
+    Returns
+    -------
+    src, dst : (e,) int — output element pairs ``(s_o, s'_o)``
+    d : (e, 2) float, user units — predicted ``p(s'_o) − p(s_o)``
+    sample : (e,) int — the exemplar sample predicted at ``s'_o``
+    """
+    n, k = slots.shape
+    ok = (slots >= 0) & (hoods.index >= 0)
+    src = np.repeat(np.arange(n), k)[ok.ravel()]
+    slot = slots[ok]
+    dst = hoods.index[ok]
+    rel = samples.rel[match[src], slot] * samples.spacing
+    turn = rotation(hoods.turn[src])
+    d = np.einsum("eij,ej->ei", turn, rel)
+    return src, dst, d, samples.nindex[match[src], slot]
+
+
+def solve_positions(xy: np.ndarray, src: np.ndarray, dst: np.ndarray, d: np.ndarray, *,
+                    anchor: float, sweeps: int) -> np.ndarray:  # fmt: skip
+    """Least squares of eq. (4) by ``sweeps`` Jacobi sweeps from ``xy`` (see the module notes).
+
+    Parameters
+    ----------
+    xy : (n, 2) float, user units, the current positions (also the anchor ``p⁰``)
+    src, dst : (e,) int; d : (e, 2) float, user units — ``p_dst − p_src ≈ d``
+    anchor : λ, weight of staying put against one prediction
+    sweeps : S
+
+    Returns
+    -------
+    (n, 2) float, user units
+    """
+    n, e = len(xy), len(src)
+    if e == 0:
+        return xy.copy()
+    rows = np.arange(e)
+    b = sp.csr_matrix((np.r_[-np.ones(e), np.ones(e)], (np.r_[rows, rows], np.r_[src, dst])), shape=(e, n))
+    a = (sp.identity(n, format="csr") * anchor + b.T @ b).tocsr()
+    rhs = anchor * xy + b.T @ d
+    diag = a.diagonal()[:, None]
+    p = xy.copy()
+    for _ in range(sweeps):
+        p = p + (rhs - a @ p) / diag
+    return p
+
+
+def vote(samples: Samples, match: np.ndarray, dst: np.ndarray, predicted: np.ndarray, n: int):
+    """Kind, angle and scale of every element by voting (eq. (5)).
+
+    Parameters
+    ----------
+    match : (n,) int, each element's own sample
+    dst : (e,) int, the element each prediction is about; predicted : (e,) int, its sample
+
+    Returns
+    -------
+    sample : (n,) int — the sample whose kind, angle and scale each element takes
+    """
+    nk = int(samples.kind.max()) + 1
+    votes = np.zeros((n, nk))
+    np.add.at(votes, (dst, samples.kind[predicted]), 1.0)
+    votes[np.arange(n), samples.kind[match]] += 1.5  # its own vote, and ties to it
+    won = votes.argmax(axis=1)
+    out = match.copy()
+    other = np.flatnonzero(won != samples.kind[match])
+    if len(other):
+        # the first prediction (lowest source element) of the winning kind
+        hit = samples.kind[predicted] == won[dst]
+        sel = np.flatnonzero(hit)
+        first = np.full(n, -1)
+        order = sel[np.argsort(dst[sel], kind="stable")]
+        uniq, at = np.unique(dst[order], return_index=True)
+        first[uniq] = predicted[order[at]]
+        out[other] = first[other]
+    return out

@@ -1,0 +1,125 @@
+"""Controls (Ma, Wei & Tong 2011 §5) and the interleaved non-penetration step.
+
+* Local orientation (§5, eq. (7)): with a flow field, each output neighbourhood is turned into
+  the exemplar's frame by the field's angle at its element before it is compared, predictions are
+  turned back, and motifs take their sample's angle plus the field's (:func:`local_turn`).
+* Domain shape (§5, eq. (6)): the region is a hard constraint here — an element that would leave
+  what the boundary mode keeps is moved back (see :func:`settle`); output neighbourhoods at the
+  region's edge are one-sided and so match exemplar samples at the exemplar's edge, which is the
+  paper's constrained selection for a non-repeating exemplar.
+* Non-penetration: the paper runs physics sub-steps; :func:`settle` instead relaxes each
+  conflicting element halfway back to where it was, a few times, and finally returns whatever
+  still conflicts to its previous state.  A conflict counts only if the previous state did not
+  have it, so this ends with no new one, keeps every motif, and an engine's output (which has
+  none) keeps every invariant of every engine.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import Stats
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import find_conflicts, slack
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.flow import FlowField
+from svgtile.core.footprint import motif_radius
+from svgtile.core.region import Region
+
+#: Halfway-back relaxation sub-steps before conflicting elements are returned to their place.
+RELAX_STEPS = 1
+
+
+def local_turn(flow: FlowField | None, xy: np.ndarray) -> np.ndarray:
+    """(n,) degrees: θ of eq. (7), the field's direction at each element (0 without a field)."""
+    if flow is None or len(xy) == 0:
+        return np.zeros(len(xy))
+    return flow.angle(xy)
+
+
+def conflict_codes(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:
+    """The conflicting pairs of ``arr``: codes ``i·n + j`` (``i < j``), (p,) int, and whether
+    each overlaps, (p,) bool."""
+    c = find_conflicts(arr, exemplar.prototypes, stats.distance)
+    return c.i.astype(np.int64) * len(arr) + c.j, c.overlap
+
+
+def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> np.ndarray:
+    """(n,) bool: elements in a distance-rule violation (not an overlap) — a start that is not
+    an engine's output, such as a jittered lattice, whose elements must pass each other by."""
+    codes, overlap = conflict_codes(arr, exemplar, stats)
+    out = np.zeros(len(arr), dtype=bool)
+    out[codes[~overlap] // len(arr)] = out[codes[~overlap] % len(arr)] = True
+    return out
+
+
+def _local_update(arr: Arrangement, changed: np.ndarray, codes: np.ndarray, overlap: np.ndarray,
+                  exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """The conflicts of ``arr`` from those before ``changed`` (n,) bool elements changed: pairs
+    touching a changed element are searched again among it and its neighbours only."""
+    n = len(arr)
+    protos = exemplar.prototypes
+    reach = 2 * float(motif_radius(arr, protos).max()) + float(stats.distance.max()) + 2 * slack(protos)
+    idx = np.flatnonzero(changed)
+    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(cKDTree(arr.xy), reach, output_type="ndarray")
+    sub = np.unique(np.r_[idx, pairs["j"].astype(np.int64)])
+    c = find_conflicts(arr.take(sub), protos, stats.distance)
+    i, j = sub[c.i], sub[c.j]
+    touch = changed[i] | changed[j]
+    lo, hi = np.minimum(i, j)[touch], np.maximum(i, j)[touch]
+    old_i, old_j = codes // n, codes % n
+    keep = ~(changed[old_i] | changed[old_j])
+    return np.r_[codes[keep], lo * n + hi], np.r_[overlap[keep], c.overlap[touch]]
+
+
+def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
+           boundary: str, known: np.ndarray, lax: np.ndarray) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
+    """``new`` with no conflict that ``prev`` did not have and nothing the boundary drops.
+
+    A moved element is *troubled* when it is in a conflict ``prev`` did not have (bar a
+    violation between two ``lax`` elements) or the boundary mode would drop it.  Troubled
+    elements go halfway back :data:`RELAX_STEPS` times, then all the way back until none is
+    left; after the first round, conflicts are searched again only around what changed.
+
+    Parameters
+    ----------
+    prev : the previous arrangement, kept by the boundary mode
+    new : the same elements after an assignment (same order)
+    known : (p,) int, the conflict codes of ``prev`` (:func:`conflict_codes`; none for an
+        engine's output)
+    lax : (n,) bool, elements that may break the distance rule among themselves (:func:`flawed`
+        of the start; none for an engine's output)
+
+    Returns
+    -------
+    the settled arrangement, and its conflict codes
+    """
+    n = len(new)
+    cur = new
+    codes, overlap = conflict_codes(cur, exemplar, stats)
+    dropped = np.zeros(n, dtype=bool)
+    changed = np.ones(n, dtype=bool)
+    step = 0
+    while True:
+        moved = ((cur.kind != prev.kind) | (cur.xy != prev.xy).any(axis=1) | (cur.angle != prev.angle)
+                 | (cur.scale != prev.scale))  # fmt: skip
+        check = np.flatnonzero(changed & moved)
+        dropped[changed] = False
+        dropped[check[~region.keep(cur.take(check), exemplar.prototypes, boundary)]] = True
+        i, j = codes // n, codes % n
+        new_pair = ~np.isin(codes, known) & (overlap | ~(lax[i] & lax[j]))
+        bad = dropped.copy()
+        bad[i[new_pair]] = bad[j[new_pair]] = True
+        bad &= moved
+        if not bad.any():
+            return cur, np.sort(codes)
+        kind, xy, angle, scale = cur.kind.copy(), cur.xy.copy(), cur.angle.copy(), cur.scale.copy()
+        if step < RELAX_STEPS:
+            xy[bad] = np.round((cur.xy[bad] + prev.xy[bad]) / 2, DECIMALS)
+        else:
+            kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
+        cur = Arrangement(kind, xy, angle, scale)
+        changed = bad
+        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats)
+        step += 1

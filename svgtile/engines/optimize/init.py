@@ -1,0 +1,129 @@
+"""The initialisation of Ma, Wei & Tong 2011 §4.1: exemplar patches of the neighbourhood's size.
+
+The plane is cut into world-anchored square cells of side ``c`` (a few exemplar spacings, the
+neighbourhood's extent).  Cell ``(a, b)`` receives the exemplar's motifs from a window of side
+``c(1 + σ)`` centred at a point of the exemplar drawn by a hash of the run's key and ``(a, b)``,
+translated onto the cell's centre; on a repeating tile the window may straddle its edges.
+Where neighbouring patches meet, overlapping or rule-breaking pairs are culled
+(:func:`svgtile.core.conflicts.cull`), the motif farther from its own cell's centre leaving
+first.  Every choice depends on the cell and its neighbours only, so the start at a place does
+not depend on how far the region extends — and neither, after a few local iterations, does the
+optimised texture (the engine contract's edit stability).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+from svgtile.analysis.stats import Stats, footprint_areas
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.flow import FlowField
+from svgtile.core.footprint import motif_radius, rotation
+from svgtile.core.region import Region
+
+_SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
+_TIE = 73
+_THIN = 74
+
+
+def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
+                cell: float, overlap: float, flow: FlowField | None = None) -> Arrangement:  # fmt: skip
+    """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
+
+    Parameters
+    ----------
+    exemplar, stats : the exemplar and its analysis
+    region, boundary : the output region and how its edge is treated
+    key : the run's key
+    cell : c, the cell side, user units
+    overlap : σ ≥ 0, how far each patch's window reaches past its cell, as a fraction of ``c``
+    flow : a flow field, or None; each patch is then turned by the field's angle at its cell's
+        centre (§5, eq. (7)), motifs with it
+
+    Returns
+    -------
+    Arrangement with no conflicts, kept by the boundary mode.
+    """
+    motifs, protos = exemplar.motifs, exemplar.prototypes
+    period = getattr(exemplar, "period", None)
+    x0, y0, x1, y1 = exemplar.region.bounds
+    win = cell * (1.0 + overlap)
+    pts, src = motifs.xy, np.arange(len(motifs))
+    if period is not None:
+        reps = max(1, math.ceil(win / min(period)))
+        sh = np.array([(i, j) for i in range(-reps, reps + 1) for j in range(-reps, reps + 1)], float) * period
+        pts = (motifs.xy[None] + sh[:, None]).reshape(-1, 2)
+        src = np.tile(src, len(sh))
+        lo, hi = np.array([x0, y0]), np.array([x0, y0]) + period
+    else:
+        half = np.minimum(win / 2, np.array([x1 - x0, y1 - y0]) / 2)
+        lo, hi = np.array([x0, y0]) + half, np.array([x1, y1]) - half
+    r = float(motif_radius(motifs, protos).max())
+    X0, Y0, X1, Y1 = region.bounds
+    a = np.arange(math.floor((X0 - r) / cell), math.floor((X1 + r) / cell) + 1)
+    b = np.arange(math.floor((Y0 - r) / cell), math.floor((Y1 + r) / cell) + 1)
+    A, B = (v.ravel() for v in np.meshgrid(a, b))
+    centre = (np.stack([A, B], -1) + 0.5) * cell
+    u = np.stack([cellrng.uniform(key, _SOURCE, A, B, 0), cellrng.uniform(key, _SOURCE, A, B, 1)], -1)
+    source = lo + u * (hi - lo)  # (c, 2) window centres in the exemplar
+    # every motif of every window: (cells × motifs) masks, a cell's row at a time is small
+    inside = (np.abs(pts[None, :, :] - source[:, None, :]) < win / 2).all(axis=-1)
+    ci, mi = np.nonzero(inside)
+    e = src[mi]
+    if flow is None:
+        xy, angle = pts[mi] - source[ci] + centre[ci], motifs.angle[e]
+    else:
+        theta = flow.angle(centre)
+        xy = np.einsum("nij,nj->ni", rotation(theta[ci]), pts[mi] - source[ci]) + centre[ci]
+        angle = (motifs.angle[e] + theta[ci] + 180.0) % 360.0 - 180.0
+    arr = Arrangement(motifs.kind[e], xy, angle, motifs.scale[e]).quantized(DECIMALS)
+    near = region.keep(arr, protos, boundary)
+    arr, ci, e = arr.take(near), ci[near], e[near]
+    # the motif farther from its own cell's centre leaves first; ties by a hash of its cell and source
+    off = np.abs(arr.xy - centre[ci]).max(axis=1) / cell
+    tie = cellrng.uniform(key, _TIE, A[ci], B[ci], e)
+    keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), off + 1e-3 * tie)
+    arr = arr.take(keep)
+    return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
+
+
+def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, key: int,
+         window: float) -> np.ndarray:  # fmt: skip
+    """(n,) bool: motifs kept so that no world-anchored window covers more than ρ of its area.
+
+    Patches overlap by σ so that their seams, once culled, are not sparser than the exemplar;
+    where they are denser, motifs leave in the order of a hash of the run's key and their
+    position until the window's footprint area is ρ times its area in the region (§3.4 of
+    almeraj2013's density, by removal only).
+
+    Parameters
+    ----------
+    window : side of the windows, user units
+    """
+    n = len(arr)
+    if n == 0:
+        return np.zeros(0, dtype=bool)
+    cell = np.floor(arr.xy / window).astype(np.int64)
+    ids, which = np.unique(cell, axis=0, return_inverse=True)
+    which = which.ravel()
+    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
+    target = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
+    area = footprint_areas(arr, exemplar.prototypes)
+    q = np.round(arr.xy * 1e3).astype(np.int64)
+    priority = cellrng.uniform(key, _THIN, q[:, 0], q[:, 1])
+    order = np.lexsort((-priority, which))  # by window, highest priority first
+    w, a = which[order], area[order]
+    start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
+    before = np.cumsum(a) - a  # area removed before this one, if all before it leave
+    before -= np.repeat(before[start], np.diff(np.r_[start, n]))
+    total = np.bincount(which, weights=area, minlength=len(ids))
+    leave = total[w] - before > target[w]
+    keep = np.ones(n, dtype=bool)
+    keep[order[leave]] = False
+    return keep

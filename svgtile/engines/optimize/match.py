@@ -1,0 +1,155 @@
+"""Eq. (1) of Ma, Wei & Tong 2011 with the greedy pairing of §3.2, returning the pairing.
+
+:func:`svgtile.analysis.neighbourhood.neighbourhood_distance` computes the same distance for the
+likeness figure, in bulk numpy over every exemplar neighbourhood; the solver needs something
+else: the cost of a handful of *candidate* exemplar samples per output element (k-coherence,
+§4.2) and, for the chosen one, which exemplar neighbour each output neighbour was paired with
+(the predictions of §4.3).  The pairing is sequential — take the closest pair, strike its row and
+column, repeat — so it is a tight numba loop over (element, candidate), compiled once and cached.
+
+The cost is exactly :func:`svgtile.analysis.neighbourhood._greedy_costs` plus the centre's kind
+term: ``α·[q(s_o) ≠ q(s_i)] + Σ |p̂(s'_o) − p̂(s'_i)|² + α·[q(s'_o) ≠ q(s'_i)]``, a texture
+neighbour left without partner costing ``|p̂|² + α`` (tested against the shared implementation).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def _pair(po, ko, pe, kee, alpha, slots, d, used, rowmin, rowarg, start=0.0, bound=np.inf):  # pragma: no cover
+    """Greedy eq. (1) of one output neighbourhood ``po`` (k, 2) against one exemplar ``pe``
+    (ke, 2); ``slots`` (k,) receives the exemplar slot paired with each output neighbour (−1).
+
+    The cost starts at ``start`` and only grows, so the pairing stops, returning infinity, as
+    soon as it reaches ``bound`` (the best candidate's so far: branch and bound).  ``d``
+    (k, ke), ``used`` (ke,), ``rowmin`` (k,), ``rowarg`` (k,) are work buffers (no allocation
+    in the inner loop)."""
+    k = po.shape[0]
+    ke = pe.shape[0]
+    for a in range(k):
+        slots[a] = -1
+        for b in range(ke):
+            dx = po[a, 0] - pe[b, 0]
+            dy = po[a, 1] - pe[b, 1]
+            v = dx * dx + dy * dy
+            d[a, b] = v if v == v else np.inf  # NaN (an absent neighbour) never pairs
+    # each row's smallest distance to a free exemplar neighbour: a pass picks the smallest row
+    # minimum (ties: lowest row, then lowest column, as a scan of the whole matrix would) and
+    # only rows whose minimum was the taken column look again
+    used[:] = False
+    for a in range(k):
+        m = np.inf
+        arg = -1
+        for b in range(ke):
+            if d[a, b] < m:
+                m = d[a, b]
+                arg = b
+        rowmin[a] = m
+        rowarg[a] = arg
+    cost = start
+    for _ in range(k):
+        best = np.inf
+        ba = -1
+        for a in range(k):
+            if slots[a] < 0 and rowmin[a] < best:
+                best = rowmin[a]
+                ba = a
+        if ba < 0:
+            break
+        bb = rowarg[ba]
+        slots[ba] = bb
+        used[bb] = True
+        cost += best + (alpha if ko[ba] != kee[bb] else 0.0)
+        if cost >= bound:
+            return np.inf
+        for a in range(k):
+            if slots[a] < 0 and rowarg[a] == bb:
+                m = np.inf
+                arg = -1
+                for b in range(ke):
+                    if not used[b] and d[a, b] < m:
+                        m = d[a, b]
+                        arg = b
+                rowmin[a] = m
+                rowarg[a] = arg
+    for a in range(k):
+        if slots[a] < 0 and po[a, 0] == po[a, 0]:
+            cost += po[a, 0] * po[a, 0] + po[a, 1] * po[a, 1] + alpha
+    return cost if cost < bound else np.inf
+
+
+@numba.njit(cache=True)
+def candidate_costs(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alpha):  # pragma: no cover
+    """(n, C) float: eq. (1) between each output neighbourhood and each of its candidates.
+
+    Parameters
+    ----------
+    rel_o : (n, k, 2) float, spacings, in the exemplar's frame; NaN rows are absent neighbours
+    kind_o : (n, k) int
+    centre_o : (n,) int, each output element's kind
+    cand : (n, C) int, candidate exemplar samples
+    rel_e : (m, ke, 2) float, spacings; kind_e : (m, ke) int; centre_e : (m,) int
+    alpha : kind mismatch cost, squared spacings
+    """
+    n, c = cand.shape
+    out = np.empty((n, c))
+    k, ke = rel_o.shape[1], rel_e.shape[1]
+    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
+    for i in range(n):
+        for j in range(c):
+            e = cand[i, j]
+            cost = _pair(rel_o[i], kind_o[i], rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg)
+            out[i, j] = cost + (alpha if centre_o[i] != centre_e[e] else 0.0)
+    return out
+
+
+@numba.njit(cache=True)
+def pairings(rel_o, kind_o, chosen, rel_e, kind_e, alpha):  # pragma: no cover - compiled
+    """(n, k) int: the exemplar slot each output neighbour is paired with by the greedy pairing
+    against the chosen sample ``chosen`` (n,), −1 where unpaired."""
+    n, k = kind_o.shape
+    ke = rel_e.shape[1]
+    out = np.empty((n, k), dtype=np.int64)
+    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
+    for i in range(n):
+        _pair(rel_o[i], kind_o[i], rel_e[chosen[i]], kind_e[chosen[i]], alpha, slots, d, used, rowmin, rowarg)
+        out[i] = slots
+    return out
+
+
+@numba.njit(cache=True)
+def best_candidates(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alpha):  # pragma: no cover
+    """The best of each element's candidates by eq. (1): (n,) index into ``cand``'s row (the first
+    of equal costs) and (n,) its cost.  Arguments as :func:`candidate_costs`; a candidate met
+    again in a row is skipped, and one whose partial cost reaches the best so far is abandoned."""
+    n, c = cand.shape
+    best = np.empty(n, dtype=np.int64)
+    cost = np.empty(n)
+    k, ke = rel_o.shape[1], rel_e.shape[1]
+    for i in range(n):
+        slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+        rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
+        bi = 0
+        bc = np.inf
+        for j in range(c):
+            e = cand[i, j]
+            seen = False
+            for t in range(j):
+                if cand[i, t] == e:
+                    seen = True
+                    break
+            if seen:
+                continue
+            start = alpha if centre_o[i] != centre_e[e] else 0.0
+            v = _pair(rel_o[i], kind_o[i], rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg, start, bc)
+            if v < bc:
+                bc = v
+                bi = j
+        best[i] = bi
+        cost[i] = bc
+    return best, cost

@@ -1,0 +1,110 @@
+"""The solver of Ma, Wei & Tong 2011 §4, Pseudocode 1: search and assignment, alternated.
+
+::
+
+    for each iteration:
+        search      — each output element's best exemplar sample (§4.2, k-coherence)
+        assignment  — positions by sparse least squares, kinds by voting (§4.3)
+        settle      — the interleaved non-penetration step (:func:`.controls.settle`)
+
+The energy ``E = Σ_o min_i |n(s_o) − n(s_i)|²`` (§3.2–§4), reported per iteration as its mean
+per element (squared exemplar spacings), is that of the search of each iteration, i.e. of the
+positions the previous iteration left.  The element count is kept (as in the paper): density is
+that of the start.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from svgtile.analysis.stats import Stats
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.flow import FlowField
+from svgtile.core.region import Region
+from svgtile.engines.optimize.assign import predictions, solve_positions, vote
+from svgtile.engines.optimize.controls import conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
+from svgtile.engines.optimize.search import (
+    coherent_candidates,
+    first_candidates,
+    output_neighbourhoods,
+    search,
+)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How the solver runs.
+
+    Attributes
+    ----------
+    neighbours : k, output neighbourhood size (6: the first ring of a lattice; the paper's 1–3 rings)
+    alpha : kind mismatch cost, squared spacings (eq. (1))
+    similar : K, the k-coherence similarity set size (§4.2)
+    anchor : λ of the least squares, against one prediction (:mod:`.assign`)
+    sweeps : Jacobi sweeps per assignment (:mod:`.assign`)
+    """
+
+    neighbours: int = 6
+    alpha: float = 1.0
+    similar: int = 2
+    anchor: float = 1.0
+    sweeps: int = 3
+
+
+def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
+           iterations: int, key: int, flow: FlowField | None = None, settings: Settings = Settings(),
+           progress: Callable[[str, float], None] | None = None,
+           samples: Samples | None = None) -> tuple[Arrangement, list[float]]:  # fmt: skip
+    """``iterations`` of Pseudocode 1 starting from ``arr``.
+
+    Parameters
+    ----------
+    arr : the start, with no conflicts and kept by ``boundary`` in ``region``
+    exemplar, stats : the exemplar and its analysis
+    region, boundary : where the texture lies and how its edge is treated
+    iterations : how many search/assignment iterations
+    key : the run's key (only the first search draws from it)
+    flow : the local orientation field (§5, eq. (7)), or None
+    settings : solver settings
+    progress : called as ``progress(stage, fraction)`` each iteration, the stage naming the energy
+
+    Returns
+    -------
+    the refined arrangement (same motif count, rounded to the output precision, no conflicts),
+    and the mean energy per element at each iteration's search (squared spacings)
+    """
+    energies: list[float] = []
+    if iterations <= 0 or len(arr) < 2 or len(exemplar.motifs) < 2:
+        return arr, energies
+    s = settings
+    # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
+    arr = arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
+    samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
+    turn = local_turn(flow, arr.xy)
+    match = None
+    known = conflict_codes(arr, exemplar, stats)[0]  # none for an engine's output
+    lax = flawed(arr, exemplar, stats)
+    report = progress or (lambda stage, fraction: None)
+    for it in range(iterations):
+        hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
+        if match is None:
+            cand = first_candidates(samples, arr.xy, arr.kind, key=key)
+        else:
+            cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
+        match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
+        energies.append(float(cost.mean()))
+        report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
+        src, dst, d, predicted = predictions(samples, hoods, match, slots)
+        xy = solve_positions(arr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
+        take = vote(samples, match, dst, predicted, len(arr))
+        angle = samples.angle[take] if flow is None else (samples.angle[take] + turn + 180.0) % 360.0 - 180.0
+        new = Arrangement(samples.kind[take], xy, angle, samples.scale[take]).quantized(DECIMALS)
+        arr, known = settle(arr, new, exemplar, stats, region, boundary, known, lax)
+        if flow is not None:
+            turn = local_turn(flow, arr.xy)
+    return arr, energies

@@ -1,0 +1,238 @@
+"""The optimize engine and ``--refine`` (Ma, Wei & Tong 2011, issue 14): unit tests and invariants.
+
+The engine contract (no overlaps, no violators, every boundary mode, seeds, edit stability) is
+tests/test_engines_contract.py's, which the engine joins by being registered; the likeness of
+whole data sets is tests/test_optimize_sets.py's.
+"""
+
+from __future__ import annotations
+
+import itertools
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from test_baselines import brute_force_conflicts
+
+from svgtile import analyze, read_exemplar
+from svgtile.analysis.neighbourhood import _greedy_costs, neighbourhood_distance
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.flow import FlowField
+from svgtile.core.region import Region
+from svgtile.engines import Controls, synthesize
+from svgtile.engines.optimize.match import candidate_costs, pairings
+from svgtile.engines.optimize.samples import exemplar_samples
+from svgtile.engines.optimize.solver import refine
+from svgtile.errors import ParameterError
+from svgtile.svg.reader import parse_exemplar
+from svgtile.svg.writer import result_document
+
+REPO = Path(__file__).resolve().parents[1]
+GRAVEL = REPO / "exemplars" / "gravel.svg"
+STEP = 10.0  # lattice step, user units
+TILE = 6  # lattice exemplar: TILE × TILE dots, a repeating tile
+
+
+def lattice_exemplar() -> str:
+    dots = "".join(f'<use href="#dot" x="{(i + 0.5) * STEP}" y="{(j + 0.5) * STEP}"/>'
+                   for i in range(TILE) for j in range(TILE))  # fmt: skip
+    side = TILE * STEP
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:svgtile="urn:svgtile:run:1" viewBox="0 0 {side} {side}">'
+            f'<defs><symbol id="dot" overflow="visible"><circle r="1.5"/></symbol></defs>'
+            f'<rect id="region" x="0" y="0" width="{side}" height="{side}" fill="none" svgtile:period="{side} {side}"/>'
+            f"{dots}</svg>")  # fmt: skip
+
+
+def test_the_pairing_cost_is_the_shared_metric():
+    """The solver's eq. (1) (numba) equals svgtile.analysis.neighbourhood's, which score uses."""
+    rng = np.random.default_rng(4)
+    po, ko = rng.normal(size=(40, 6, 2)), rng.integers(0, 3, (40, 6))
+    pe, ke = rng.normal(size=(9, 12, 2)), rng.integers(0, 3, (9, 12))
+    pe[2, 7:] = np.nan  # a small exemplar neighbourhood
+    po[3, 4:] = np.nan
+    ko[3, 4:] = -1
+    cand = np.tile(np.arange(9), (40, 1))
+    got = candidate_costs(po, ko, np.zeros(40, np.int64), cand, pe, ke, np.ones(9, np.int64), 0.7)
+    want = _greedy_costs(np.repeat(po, 9, 0), np.repeat(ko, 9, 0), np.tile(pe, (40, 1, 1)), np.tile(ke, (40, 1)), 0.7)
+    assert np.allclose(got, want.reshape(40, 9) + 0.7)  # + the centre's kind term
+    slots = pairings(po, ko, np.zeros(40, np.int64), pe, ke, 0.7)
+    assert ((slots >= 0).sum(axis=1) == (~np.isnan(po[:, :, 0])).sum(axis=1)).all()
+    for row in slots:  # each exemplar neighbour is used once
+        used = row[row >= 0]
+        assert len(np.unique(used)) == len(used)
+
+
+def test_similarity_sets_start_with_the_sample_itself():
+    ex = parse_exemplar(lattice_exemplar())
+    s = exemplar_samples(ex, 6)
+    assert (s.similar[:, 0] == np.arange(len(s))).all()
+    # on a repeating lattice every sample's neighbourhood is every other's: all at distance 0
+    a, b = (np.round(s.rel[i, :4], 9) for i in (0, 7))
+    assert np.array_equal(a[np.lexsort(a.T)], b[np.lexsort(b.T)])
+    assert np.allclose(s.rel[0, :4] ** 2 @ [1, 1], 1.0)  # the first ring, one step (one spacing) away
+
+
+def test_energy_decreases_over_iterations():
+    ex = read_exemplar(GRAVEL)
+    stats = analyze(ex)
+    region = Region.rectangle(240, 180)
+    start = synthesize(ex, region, "patch", seed=2, stats=stats).arrangement
+    arr, energies = refine(start, ex, stats, region, "clip", iterations=6, key=9)
+    assert len(energies) == 6
+    # the non-penetration step and the vote may cost a little: never more than 1 % in an iteration
+    assert all(b <= 1.01 * a for a, b in itertools.pairwise(energies)), energies
+    assert energies[-1] < 0.85 * energies[0], energies
+    assert len(arr) == len(start) and brute_force_conflicts(arr, ex, stats) == (0, 0)
+
+
+def test_a_jittered_lattice_is_recovered():
+    """Known answer: a lattice jittered by ±0.15 steps returns to a lattice (neighbour distances
+    STEP within 1 % for 90 % of the interior, 5 % for all; energy under 0.4 of the start) and keeps every motif."""
+    ex = parse_exemplar(lattice_exemplar())
+    stats = analyze(ex)
+    side = 16 * STEP
+    region = Region.rectangle(side, side)
+    g = (np.arange(16) + 0.5) * STEP
+    xy = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+    jitter = np.random.default_rng(1).uniform(-0.15, 0.15, xy.shape) * STEP
+    n = len(xy)
+    start = Arrangement(np.zeros(n, int), xy + jitter, np.zeros(n), np.ones(n)).quantized(DECIMALS)
+    overlaps, violators = brute_force_conflicts(start, ex, stats)
+    assert violators > 50  # a lattice's gap is its distance rule: any squeeze breaks it
+    arr, energies = refine(start, ex, stats, region, "centroid", iterations=15, key=3)
+    after = brute_force_conflicts(arr, ex, stats)
+    assert len(arr) == n and after[0] == overlaps == 0 and after[1] < violators
+    inner = shapely.contains_xy(shapely.box(3 * STEP, 3 * STEP, side - 3 * STEP, side - 3 * STEP), *arr.xy.T)
+    d = np.array([np.sort(np.hypot(*(arr.xy - p).T))[1:5] for p in arr.xy[inner]])
+    before = np.array([np.sort(np.hypot(*(start.xy - p).T))[1:5] for p in start.xy[inner]])
+    err, was = np.abs(d - STEP), np.abs(before - STEP)
+    assert np.percentile(err, 90) < 0.01 * STEP < 0.1 * STEP < np.percentile(was, 90)
+    assert err.max() < 0.05 * STEP
+    assert energies[-1] < 0.4 * energies[0]  # 0.30 measured: the region's edge keeps its one-sided cost
+
+
+def test_refine_zero_is_the_engine_itself_and_refine_is_recorded():
+    ex = read_exemplar(GRAVEL)
+    stats = analyze(ex)
+    region = Region.rectangle(200, 150)
+    plain = synthesize(ex, region, "patch", seed=4, stats=stats)
+    zero = synthesize(ex, region, "patch", seed=4, stats=stats, refine=0)
+    assert result_document(plain) == result_document(zero) and "refine" not in plain.metadata()
+    two = synthesize(ex, region, "patch", seed=4, stats=stats, refine=2)
+    assert two.metadata()["refine"] == 2 and len(two) == len(plain)
+    assert not np.array_equal(two.arrangement.xy, plain.arrangement.xy)
+    assert brute_force_conflicts(two.arrangement, ex, stats) == (0, 0)
+    again = synthesize(ex, region, "patch", seed=4, stats=stats, refine=2)
+    assert result_document(two) == result_document(again)
+    with pytest.raises(ParameterError, match="--refine must be"):
+        synthesize(ex, region, "patch", seed=4, stats=stats, refine=-1)
+
+
+def test_refine_works_for_every_engine_and_the_likeness_rises():
+    ex = read_exemplar(GRAVEL)
+    stats = analyze(ex)
+    region = Region.rectangle(300, 300)
+    from svgtile.metrics.window import spacing
+
+    def e(arr):
+        return neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=spacing(stats),
+                                      sample=None)  # fmt: skip
+
+    for engine in ("patch", "random", "tile"):
+        base = synthesize(ex, region, engine, seed=1, stats=stats).arrangement
+        done = synthesize(ex, region, engine, seed=1, stats=stats, refine=4).arrangement
+        assert brute_force_conflicts(done, ex, stats) == (0, 0)
+        if engine != "tile":  # the Tiling is the exemplar already
+            assert e(done) < 0.9 * e(base), engine
+
+
+def test_flow_turns_the_texture():
+    """--flow (eq. 7): motifs take their sample's angle plus the field's; ≥ 90 % within 15°."""
+    bars = "".join(f'<use href="#bar" x="{x}" y="{y}"/>' for x in (3, 13, 23, 33) for y in (4, 14, 24, 34))
+    ex = parse_exemplar('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 40 40">'
+                        '<defs><symbol id="bar" overflow="visible"><rect x="0" y="0" width="5" height="1.2"/></symbol></defs>'
+                        f"{bars}</svg>")  # fmt: skip
+    stats = analyze(ex)
+    t = np.linspace(0, np.pi / 2, 30)
+    stroke = np.c_[40 + 160 * np.sin(t), 40 + 160 * (1 - np.cos(t))]
+    flow = FlowField.from_strokes([stroke])
+    region = Region.rectangle(240, 240)
+    arr = synthesize(ex, region, "optimize", seed=1, stats=stats, controls=Controls(flow=flow)).arrangement
+    want = flow.angle(arr.xy)
+    off = np.abs((arr.angle - want + 90) % 180 - 90)  # a bar turned by 180° is the same bar
+    assert len(arr) > 100 and (off <= 15).mean() >= 0.9, (off <= 15).mean()
+    assert brute_force_conflicts(arr, ex, stats) == (0, 0)
+    with pytest.raises(ParameterError, match="cannot honour --flow"):
+        synthesize(ex, region, "patch", seed=1, stats=stats, controls=Controls(flow=flow))
+
+
+def test_cli_refine_option(tmp_path, capsys):
+    from svgtile.cli.main import main
+
+    out = tmp_path / "o.svg"
+    assert main(["synth", str(GRAVEL), "-o", str(out), "--size", "120", "--seed", "1", "--refine", "2"]) == 0
+    assert 'refine="2"' in out.read_text()
+    bad = tmp_path / "bad.svg"
+    assert main(["synth", str(GRAVEL), "-o", str(bad), "--size", "120", "--refine", "-2"]) == 2
+    assert not bad.exists()
+    assert main(["synth", str(GRAVEL), "-o", str(bad), "--size", "120", "--engine", "optimize", "--passes", "0",
+                 "--seed", "1"]) == 0  # fmt: skip
+    assert 'passes="0"' in bad.read_text()
+
+
+def test_propagate_applies_an_edit_to_every_motif_alike(tmp_path, capsys):
+    """§6.3: one motif of a Tiling nudged; the motifs at the same place of the other copies (the
+    same neighbourhood) follow, the others stay, and the result keeps every invariant."""
+    from svgtile.cli.main import main
+    from svgtile.svg.texture import read_texture
+    from svgtile.svg.writer import svg_document
+
+    ex = read_exemplar(GRAVEL)
+    stats = analyze(ex)
+    x0, y0, x1, y1 = ex.region.bounds
+    region = Region.rectangle(4 * (x1 - x0), 4 * (y1 - y0))
+    res = synthesize(ex, region, "tile", seed=1, stats=stats, boundary="centroid")
+    arr = res.arrangement
+    centre = np.array([2 * (x1 - x0) + 0.5 * (x1 - x0), 2 * (y1 - y0) + 0.5 * (y1 - y0)])
+    i = int(np.argmin(np.hypot(*(arr.xy - centre).T)))
+    for t in np.radians(np.arange(0, 360, 45)):  # a nudge that keeps the distance rule
+        shift = 0.3 * np.array([np.cos(t), np.sin(t)])
+        xy = arr.xy.copy()
+        xy[i] += shift
+        edited = Arrangement(arr.kind, xy, arr.angle, arr.scale)
+        if brute_force_conflicts(edited, ex, stats) == (0, 0):
+            break
+    paths = {}
+    for name, a in (("tex", arr), ("edit", edited)):
+        paths[name] = tmp_path / f"{name}.svg"
+        paths[name].write_text(svg_document(ex, a, region, boundary="none", params={}))
+    out = tmp_path / "out.svg"
+    assert main(["propagate", str(GRAVEL), str(paths["tex"]), str(paths["edit"]), "-o", str(out)]) == 0
+    assert "1 motifs edited" in capsys.readouterr().err
+    got, _ = read_texture(out, ex)
+    moved = np.hypot(*(got.xy - arr.xy).T) > 1e-6
+    same_shift = np.allclose(got.xy[moved] - arr.xy[moved], shift, atol=2e-4)
+    period = np.array([x1 - x0, y1 - y0])
+    off = np.mod(arr.xy - arr.xy[i] + period / 2, period) - period / 2
+    copies = (np.abs(off) < 1e-3).all(axis=1) & (arr.kind == arr.kind[i])
+    assert same_shift and moved.sum() >= 0.75 * copies.sum() and copies.sum() >= 9, (same_shift, moved.sum(), copies.sum(), (got.xy[moved] - arr.xy[moved])[:5])
+    assert not (moved & ~copies).any()
+    assert brute_force_conflicts(got, ex, stats) == (0, 0)
+    # an edit that adds a motif is refused in one line
+    (tmp_path / "more.svg").write_text(svg_document(ex, arr.take(np.r_[np.arange(len(arr)), 0]), region,
+                                                    boundary="none", params={}))  # fmt: skip
+    assert main(["propagate", str(GRAVEL), str(paths["tex"]), str(tmp_path / "more.svg"), "-o", str(tmp_path / "x.svg")]) == 1
+    err = capsys.readouterr().err
+    assert "add or remove none" in err and len(err.strip().splitlines()) == 1 and not (tmp_path / "x.svg").exists()
+
+
+def test_styles_refine_key():
+    from svgtile.apps.mapfill import parse_styles
+
+    styles = parse_styles({"refine": 3, "classes": {"a": {"exemplar": "x.svg"},
+                                                    "b": {"exemplar": "x.svg", "refine": 0}}})  # fmt: skip
+    assert styles.classes["a"].refine == 3 and styles.classes["b"].refine == 0
+    assert parse_styles({"classes": {"a": {"exemplar": "x.svg"}}}).classes["a"].refine is None
+    with pytest.raises(ParameterError, match="refine must be an integer >= 0"):
+        parse_styles({"classes": {"a": {"exemplar": "x.svg", "refine": -1}}})
