@@ -19,8 +19,8 @@ from svgtile.cli.common import Stderr, one_line, showwarning
 from svgtile.cli.compare import compare
 from svgtile.cli.inkscape import inkscape
 from svgtile.cli.map import map_cmd
-from svgtile.cli.qgis import qgis
 from svgtile.cli.propagate import propagate_cmd
+from svgtile.cli.qgis import qgis
 from svgtile.cli.score import score
 from svgtile.cli.symbols import symbols_cmd
 from svgtile.cli.synth import synth
