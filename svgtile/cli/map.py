@@ -105,8 +105,9 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, scheduler, tile_si
                       "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
             write_map_svg(output, result, bands, params, protect=inputs)
     if result.errors:
-        raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} regions failed (see the warnings); "
-                           f"the others were written", source=str(output))  # fmt: skip
+        tiles = any(ident not in {r.ident for r in result.regions} for ident in result.errors)
+        what = f"{len(result.errors)} regions or tiles" if tiles else f"{len(result.errors)} of {len(result.regions)} regions"
+        raise SvgtileError(f"{what} failed (see the warnings); the others were written", source=str(output))
 
 
 def _sink(bands: BandWriter, kind: str, styles):

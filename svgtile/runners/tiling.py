@@ -64,14 +64,15 @@ class Tile:
 
 WHOLE = Tile(0, 0, (-math.inf, -math.inf, math.inf, math.inf), 0.0)
 
+#: Added to every halo, user units: far above the output precision (1e-4), so rounding can never
+#: put a motif the boundary mode looks at on the wrong side of a cut.
+HALO_SLACK = 1.0
+
 
 def motif_size(exemplar: Exemplar) -> float:
-    """The extent of a motif for halos and cell selection, user units: the diameter of the
-    largest motif's bounding disc, at least the exemplar region's larger side (what the engine
-    contract test adds to the reach)."""
-    x0, y0, x1, y1 = exemplar.region.bounds
-    diameter = 2.0 * float(motif_radius(exemplar.motifs, exemplar.prototypes).max())
-    return max(x1 - x0, y1 - y0, diameter)
+    """The diameter of the largest motif's bounding disc, user units: how far a boundary mode
+    looks around a motif's anchor (:meth:`svgtile.core.region.Region.keep`)."""
+    return 2.0 * float(motif_radius(exemplar.motifs, exemplar.prototypes).max())
 
 
 def halo(engine: Engine | str, exemplar: Exemplar, params: EngineParams | dict | None = None) -> float:
@@ -79,7 +80,7 @@ def halo(engine: Engine | str, exemplar: Exemplar, params: EngineParams | dict |
     (``math.inf``: the engine is not tile-exact)."""
     engine = get_engine(engine) if isinstance(engine, str) else engine
     reach = float(engine.reach(exemplar, make_params(engine, params)))
-    return reach + motif_size(exemplar) if math.isfinite(reach) else math.inf
+    return reach + motif_size(exemplar) + HALO_SLACK if math.isfinite(reach) else math.inf
 
 
 def plan(region: Region, exemplar: Exemplar, engine: Engine | str, tile_size: float | None, *,
