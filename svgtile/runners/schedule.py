@@ -19,6 +19,7 @@ calling process, and are dropped by the scheduler once handed over: nothing hold
 from __future__ import annotations
 
 import contextlib
+import logging
 import sys
 import uuid
 from collections.abc import Callable, Sequence
@@ -136,8 +137,9 @@ def _run_distributed(units: Sequence[Unit], on_done: Done, scheduler: str, worke
         raise ParameterError(f"--scheduler {scheduler} needs Dask's distributed scheduler: "
                              "pip install 'svgtile[cluster]'") from None  # fmt: skip
     if scheduler == "processes":
+        # Dask's own log lines (workers starting, stopping) would break svgtile's one-line output
         cluster = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
-                               dashboard_address=None)  # fmt: skip
+                               dashboard_address=None, silence_logs=logging.CRITICAL)  # fmt: skip
         client = Client(cluster)
     else:
         cluster = None
@@ -149,9 +151,15 @@ def _run_distributed(units: Sequence[Unit], on_done: Done, scheduler: str, worke
     try:
         consume(client, units, on_done, progress=progress, as_completed=as_completed)
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        quiet = logging.getLogger("distributed")
+        level = quiet.level
+        quiet.setLevel(logging.CRITICAL)
+        try:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+        finally:
+            quiet.setLevel(level)
 
 
 def consume(client, units: Sequence[Unit], on_done: Done, *, progress: bool = False, as_completed=None,
