@@ -92,7 +92,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, scheduler, tile_si
         bands = BandWriter(spool, kind)
         sink = _sink(bands, kind, styles)
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
-                          scheduler=scheduler, tile_size=tile_size, sink=sink, bar=sys.stderr.isatty())  # fmt: skip
+                          scheduler=scheduler, tile_size=tile_size, sink=sink, bar=sys.stderr.isatty() and output != "-")  # fmt: skip
         Stderr.clear()
         for message in result.warnings:
             warn(message)

@@ -115,7 +115,7 @@ def _tiled(output, kind, ex, stats, region, engine, *, seed, boundary, params, t
 
     run = synthesize_to_file(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params,
                              tile_size=tile_size, where={"exemplar": Path(exemplar_path).name, **where_meta},
-                             scheduler=scheduler, workers=jobs or default_jobs(), bar=sys.stderr.isatty(),
+                             scheduler=scheduler, workers=jobs or default_jobs(), bar=sys.stderr.isatty() and output != "-",
                              protect=(Path(exemplar_path),), on_plan=on_plan)  # fmt: skip
     Stderr.clear()
     for tile, message in run.errors.items():

@@ -190,8 +190,12 @@ def consume(client, units: Sequence[Unit], on_done: Done, *, progress: bool = Fa
 
 
 def _cluster_bar(client, futures) -> None:
-    """distributed's text progress bar, in a thread of its own (it blocks while it draws)."""
+    """distributed's text progress bar, in a thread of its own (it blocks while it draws); it
+    draws on standard output, so only when that is a terminal."""
     import threading
+
+    if not sys.stdout.isatty():
+        return
 
     from distributed.diagnostics.progressbar import TextProgressBar
 
