@@ -389,3 +389,13 @@ def test_a_texture_document_is_head_lines_tail():
 
     head, tail = svg_document_parts(ex, result.region, boundary="clip", params=result.metadata())
     assert result_document(result) == head + "\n".join(use_elements(result.arrangement, ex.kinds)) + tail
+
+
+def test_a_failing_writer_is_raised_not_blamed_on_the_units():
+    def on_done(n, value, error):
+        if n == 2:
+            raise OSError("disk full")
+
+    for workers in (1, 2):
+        with pytest.raises(OSError, match="disk full"):
+            schedule.run([Unit("sq", pow, (n, 2)) for n in range(5)], on_done, workers=workers)

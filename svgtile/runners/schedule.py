@@ -86,18 +86,24 @@ def run(units: Sequence[Unit], on_done: Done, *, scheduler: str = "local", worke
 
 
 class _Handover(dict):
-    """The local scheduler's store of results: a unit's result goes to ``on_done`` the moment
-    the scheduler stores it, and only a placeholder is kept (no unit depends on another)."""
+    """The local scheduler's store of results (the ``cache`` of :func:`dask.local.get_async`):
+    a unit's result goes to ``on_done`` the moment the scheduler stores it, and only a
+    placeholder is kept (no unit depends on another, so nothing reads it back)."""
 
     def __init__(self, index: dict[str, int], on_done: Done) -> None:
         super().__init__()
         self.index, self.on_done, self.handed = index, on_done, set()
+        self.failure: BaseException | None = None  # raised by on_done itself (the writer's)
 
     def __setitem__(self, key, value) -> None:
         n = self.index.get(key)
         if n is not None and n not in self.handed:
             self.handed.add(n)
-            self.on_done(n, *value)
+            try:
+                self.on_done(n, *value)
+            except BaseException as exc:
+                self.failure = exc
+                raise
             value = None
         super().__setitem__(key, value)
 
@@ -118,6 +124,8 @@ def _run_local(units: Sequence[Unit], on_done: Done, workers: int, progress: boo
         with dask.config.set({"multiprocessing.context": context}), bar or contextlib.nullcontext():
             dask.compute(*tasks, cache=store, optimize_graph=False, **how)
     except Exception as exc:  # the pool itself broke (a worker killed): the units not done fail
+        if store.failure is not None:  # not the pool: the caller's writer failed
+            raise store.failure from None
         for n in range(len(units)):
             if n not in store.handed:
                 store.handed.add(n)
