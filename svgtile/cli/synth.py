@@ -53,7 +53,7 @@ from svgtile.svg.writer import fmt, result_document
 @click.option("--scheduler", default=None, metavar="local|processes|ADDRESS",
               help="Run the region as tiles on Dask: local = Dask's local scheduler, processes = a LocalCluster of --jobs workers, or a cluster's address (tcp://host:8786). The output is the same as without it.")
 @click.option("--tile-size", type=click.FloatRange(min=0, min_open=True), default=None, metavar="SIZE",
-              help="With --scheduler: the tiles' side, user units [default: the whole region as one unit]. An engine that is not tile-exact (patch, random) runs whole.")
+              help="Cut the region into world-anchored tiles of this side, user units, run on Dask (--scheduler, default local); the output is the same. An engine that is not tile-exact (patch, random) runs whole.")
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="With --scheduler local or processes: worker processes [default: the usable cores].")
 @click.option("--import", "as_tile", is_flag=True,
