@@ -7,11 +7,14 @@ makes XML text, this module puts text or bytes on disk.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import sys
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
+from typing import BinaryIO
 
 from svgtile.errors import OutputError
 
@@ -134,3 +137,57 @@ def _file_mode(out: Path) -> int:
         umask = os.umask(0o022)
         os.umask(umask)
         return 0o666 & ~umask
+
+
+@contextlib.contextmanager
+def atomic_output(out: str | Path, *, protect: tuple[str | Path, ...] = ()) -> Iterator[BinaryIO]:
+    """A binary file to write ``out`` piece by piece, put in place only if the block succeeds.
+
+    The streaming counterpart of :func:`write_file`, with its guarantees: the pieces go to a
+    temporary file in the target folder, flushed to disk and renamed into place when the block
+    ends; on any failure (or an interrupt) the temporary file is removed and a file that was at
+    ``out`` stays untouched.  ``-`` is standard output, written as the pieces come.
+
+    Raises
+    ------
+    OutputError
+        The path is protected or unusable, or writing failed.
+    """
+    if str(out) == "-":
+        stream = sys.stdout
+        yield getattr(stream, "buffer", stream)
+        stream.flush()
+        return
+    check_output(out, protect=protect)
+    out = Path(out)
+    try:
+        special = not stat.S_ISREG(os.stat(out).st_mode)
+    except OSError:
+        special = False
+    if special:  # a device or FIFO is written into, never replaced (as write_file does)
+        try:
+            with open(out, "wb") as fh:
+                yield fh
+        except OSError as exc:
+            raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+        return
+    if out.is_symlink():  # replace the file the link points to, not the link
+        out = Path(os.path.realpath(out))
+    mode = _file_mode(out)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
+    except OSError as exc:
+        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
+        os.replace(tmp, out)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise

@@ -18,7 +18,7 @@ STAGES = [
      "svgtile.svg.mapdoc", "svgtile.svg.texture"),
     ("svgtile.analysis", "svgtile.tiles"),
     ("svgtile.engines",),
-    ("svgtile.svg.writer", "svgtile.gis", "svgtile.metrics"),
+    ("svgtile.svg.writer", "svgtile.gis", "svgtile.metrics", "svgtile.runners"),
     ("svgtile.apps",),
     ("svgtile.cli", "svgtile.__main__"),
 ]

@@ -21,15 +21,16 @@ A *styles file* (TOML) maps classes to exemplars and parameters::
     unit = 1.0                          # map units per exemplar user unit
     refine = 5                          # optimisation iterations after the engine (any engine)
 
-Each region is synthesized on its own (:func:`fill_region`) in a pool of processes; a region that
-fails is reported and the others are kept.  All regions of a run share one seed, and the engines
+Each region is synthesized on its own (:func:`fill_region`), or cut into world-anchored tiles
+(:mod:`svgtile.runners.tiling`) when a tile size is given and its engine is tile-exact; regions
+and tiles run on Dask (:mod:`svgtile.runners.schedule`); a region or tile that fails is reported
+and the others are kept.  All regions of a run share one seed, and the engines
 anchor randomness in world coordinates, so two touching units of one class continue each other's
 texture, and editing one unit leaves the others byte-identical.
 """
 
 from __future__ import annotations
 
-import concurrent.futures
 import math
 import os
 import sys
@@ -51,9 +52,11 @@ from svgtile.apps.mapread import (
 )
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import BOUNDARY_MODES, Region
-from svgtile.engines import ENGINES, engines_with, make_params, public_params, synthesize
+from svgtile.engines import ENGINES, engines_with, make_params, public_params
 from svgtile.errors import ParameterError, RegionError, SvgtileError
 from svgtile.gis import geojson, layers
+from svgtile.runners.schedule import Unit, run
+from svgtile.runners.tiling import WHOLE, Bands, Tile, plan, synthesize_tile, tile_region
 from svgtile.svg.mapdoc import SvgShapes
 
 if sys.version_info >= (3, 11):
@@ -70,6 +73,8 @@ CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit", "refine")
 RUN_KEYS = ("avoid", "avoid_margin", "class_attribute", "class_property", "classes")
 
 Progress = Callable[[int, int, str, "str | None"], None]
+#: ``sink(index, region, band, motifs)``: one complete band of a region, map units, in any order.
+Sink = Callable[[int, MapRegion, int, Arrangement], None]
 
 
 @dataclass(frozen=True)
@@ -204,9 +209,10 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
 
 
 def fill_region(
-    shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int, max_motifs: float = math.inf
-) -> Arrangement:
-    """Synthesize one region with its style; motifs in map units (the region's frame).
+    shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int, max_motifs: float = math.inf,
+    tile: Tile = WHOLE,
+) -> Arrangement:  # fmt: skip
+    """Synthesize one region (or one tile of it) with its style; motifs in map units.
 
     Parameters
     ----------
@@ -214,34 +220,52 @@ def fill_region(
     avoid : the avoid zones near it, map units, or None
     style : its class's style
     seed : the run's seed (the style's own wins)
-    max_motifs : refuse a region whose estimated motif count is larger
+    max_motifs : refuse a region (a tile) whose estimated motif count is larger
+    tile : the tile to fill, in the exemplar's units (:func:`plan_region`); the whole region by
+        default
     """
+    return to_map_units(fill_working(shape, avoid, style, seed, max_motifs, tile), style)
+
+
+def fill_working(
+    shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int, max_motifs: float = math.inf,
+    tile: Tile = WHOLE,
+) -> Arrangement:  # fmt: skip
+    """:func:`fill_region` in the exemplar's units (the frame tiles are merged in)."""
     ex, stats = load_exemplar(str(style.exemplar))
-    unit = style.unit
-    region = Region.from_geometry(geojson.to_working(shape, unit),
-                                  avoid=None if avoid is None else geojson.to_working(avoid, unit))  # fmt: skip
-    check_motif_count(ex, stats, region, "the region", limit=max_motifs,
+    region = working_region(shape, avoid, style)
+    part = tile_region(region, tile)
+    if part is None:
+        return Arrangement.empty()
+    where = "the region" if tile.whole else f"tile {tile.i},{tile.j} of the region"
+    check_motif_count(ex, stats, part, where, limit=max_motifs,
                       hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     seed = style.seed if style.seed is not None else seed
-    arr = synthesize(ex, region, style.engine, seed=seed, stats=stats, boundary=style.boundary,
-                     params=style.params, refine=style.refine or 0).arrangement  # fmt: skip
-    if unit != 1.0:
-        arr = Arrangement(arr.kind, arr.xy * unit, arr.angle, arr.scale * unit)
-    return arr
+    return synthesize_tile(ex, region, style.engine, tile, seed=seed, stats=stats, boundary=style.boundary,
+                           params=style.params, refine=style.refine or 0)  # fmt: skip
 
 
-def _task(
-    ident: str, shape, avoid, style: Style, seed: int, max_motifs: float = math.inf
-) -> tuple[str, Arrangement | None, str | None]:
-    """A worker's job: never raises, so one region's failure cannot take the pool down."""
-    try:
-        return ident, fill_region(shape, avoid, style, seed, max_motifs), None
-    except SvgtileError as exc:
-        return ident, None, " ".join(str(exc).split())
-    except MemoryError:
-        return ident, None, "out of memory"
-    except Exception as exc:  # a bug in one region must not lose the others
-        return ident, None, f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())}"
+def working_region(shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style) -> Region:
+    """The region in the exemplar's units (map units divided by the style's ``unit``)."""
+    return Region.from_geometry(geojson.to_working(shape, style.unit),
+                                avoid=None if avoid is None else geojson.to_working(avoid, style.unit))  # fmt: skip
+
+
+def to_map_units(arr: Arrangement, style: Style) -> Arrangement:
+    """Motifs from the exemplar's units to map units."""
+    unit = style.unit
+    return arr if unit == 1.0 else Arrangement(arr.kind, arr.xy * unit, arr.angle, arr.scale * unit)
+
+
+def plan_region(shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style,
+                tile_size: float | None) -> list[Tile]:  # fmt: skip
+    """The tiles of one region for a tile size in map units (``[WHOLE]`` for None, or when the
+    class's engine is not tile-exact)."""
+    if tile_size is None:
+        return [WHOLE]
+    ex, _ = load_exemplar(str(style.exemplar))
+    return plan(working_region(shape, avoid, style), ex, style.engine, tile_size / style.unit, params=style.params,
+                refine=style.refine or 0)
 
 
 # ----------------------------------------------------------------------------- the whole map
@@ -259,6 +283,8 @@ class MapFill:
     doc : the parsed SVG map (None for GeoJSON input)
     warnings : non-fatal problems (classes of the styles file the map does not use …)
     styles : the styles used
+    filled : (len(regions),) bool, the regions written (all their motifs or, where a tile
+        failed, the others); with a ``sink`` the motifs went there and ``results`` holds None
     """
 
     regions: list[MapRegion]
@@ -267,6 +293,7 @@ class MapFill:
     doc: SvgShapes | None
     warnings: list[str]
     styles: Styles
+    filled: list[bool] = field(default_factory=list)
 
 
 def read_map(path: str | Path, styles: Styles) -> tuple[list[MapRegion], SvgShapes | None]:
@@ -320,7 +347,8 @@ def default_jobs() -> int:
 
 def fill_map(
     path: str | Path, styles: Styles, *, seed: int, avoid: tuple[str, ...] = (), jobs: int | None = None,
-    progress: Progress | None = None, max_motifs: float = math.inf,
+    progress: Progress | None = None, max_motifs: float = math.inf, scheduler: str = "local",
+    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False,
 ) -> MapFill:  # fmt: skip
     """Fill every classed region of a map with its class's style.
 
@@ -332,39 +360,80 @@ def fill_map(
     avoid : more avoid specs (added to the styles file's)
     jobs : worker processes (default: the usable cores; 1 runs in this process)
     progress : called as ``progress(done, total, ident, error_or_None)`` after each region
-    max_motifs : a region whose estimated motif count is larger fails (and the others are filled)
+    max_motifs : a region (a tile) whose estimated motif count is larger fails, and the others
+        are filled
+    scheduler : ``local``, ``processes`` or a Dask scheduler address
+        (:mod:`svgtile.runners.schedule`)
+    tile_size : cut each region whose engine is tile-exact into tiles this large, map units
+        (None: every region whole); the output is the same
+    sink : called as ``sink(index, region, band, motifs)`` (map units) for each band of each region as
+        soon as it is complete, instead of keeping the motifs in the result; a region run whole
+        is one band
+    bar : show Dask's progress bar
 
     Returns
     -------
-    MapFill; regions that failed have ``None`` results and an entry in ``errors``.
+    MapFill; regions that failed have ``None`` results and an entry in ``errors``; so has each
+    failed tile, under ``"ID tile I,J"``, its region written without it.
     """
     regions, doc = read_map(path, styles)
     zone = avoid_zone(path, doc, styles.avoid + tuple(avoid), styles.avoid_margin)
     used = {r.cls for r in regions}
     warnings = [f"{styles.source}: class {c!r} matches no region of {path}" for c in sorted(set(styles.classes) - used)]
     results: list[Arrangement | None] = [None] * len(regions)
+    filled = [False] * len(regions)
     errors: dict[str, str] = {}
-    index = {r.ident: n for n, r in enumerate(regions)}
-    tasks = [(r.ident, r.shape, zone, styles.classes[r.cls], seed, max_motifs) for r in regions]
-    jobs = min(jobs or default_jobs(), len(tasks))
+    units: list[Unit] = []
+    owner: list[tuple[int, int]] = []  # unit -> (region, tile of the region)
+    collect: list[Bands | None] = [None] * len(regions)
+    kept: list[dict[int, Arrangement]] = [{} for _ in regions]  # band -> motifs, when there is no sink
+    failed_tiles = [0] * len(regions)
+    finished = 0
 
-    def done(ident: str, arr: Arrangement | None, error: str | None, count: int) -> None:
-        if error is not None:
-            errors[ident] = error
-        else:
-            results[index[ident]] = arr
+    def region_done(n: int) -> None:
+        nonlocal finished
+        finished += 1
         if progress is not None:
-            progress(count, len(tasks), ident, error)
+            progress(finished, len(regions), regions[n].ident, errors.get(regions[n].ident))
 
-    if jobs <= 1:
-        for count, task in enumerate(tasks, 1):
-            done(*_task(*task), count)
-    else:
-        with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = {pool.submit(_task, *task): task[0] for task in tasks}
-            for count, future in enumerate(concurrent.futures.as_completed(futures), 1):
-                try:
-                    done(*future.result(), count)
-                except Exception as exc:  # the worker itself died (killed, out of memory)
-                    done(futures[future], None, f"worker failed: {type(exc).__name__}", count)
-    return MapFill(regions, results, errors, doc, warnings, styles)
+    for n, r in enumerate(regions):
+        style = styles.classes[r.cls]
+        try:
+            tiles = plan_region(r.shape, zone, style, tile_size)
+        except SvgtileError as exc:
+            errors[r.ident] = " ".join(str(exc).split())
+            region_done(n)
+            continue
+
+        def on_band(b: int, arr: Arrangement, n=n, style=style) -> None:
+            arr = to_map_units(arr, style)
+            if sink is None:
+                kept[n][b] = arr
+            else:
+                sink(n, regions[n], b, arr)
+
+        collect[n] = Bands(tiles, on_band)
+        for t, tile in enumerate(tiles):
+            name = r.ident if tile.whole else f"{r.ident} tile {tile.i},{tile.j}"
+            units.append(Unit(f"svgtile-{name}", fill_working, (r.shape, zone, style, seed, max_motifs, tile)))
+            owner.append((n, t))
+
+    def done(k: int, arr: Arrangement | None, error: str | None) -> None:
+        n, t = owner[k]
+        tiles = collect[n]
+        if error is not None:
+            failed_tiles[n] += 1
+            tile = units[k].args[-1]
+            errors[regions[n].ident if tile.whole else f"{regions[n].ident} tile {tile.i},{tile.j}"] = error
+        tiles.add(t, arr)
+        if tiles.done:
+            if failed_tiles[n] < len(tiles.band_of):
+                filled[n] = True
+                if sink is None:
+                    results[n] = Arrangement.concat([kept[n][b] for b in sorted(kept[n])])
+                    kept[n] = {}
+            collect[n] = None
+            region_done(n)
+
+    run(units, done, scheduler=scheduler, workers=min(jobs or default_jobs(), max(len(units), 1)), progress=bar)
+    return MapFill(regions, results, errors, doc, warnings, styles, filled)

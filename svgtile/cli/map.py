@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import re
 import secrets
 import sys
 from pathlib import Path
@@ -12,13 +11,16 @@ import click
 
 from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
-from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
+from svgtile.apps.mapfill import default_jobs, fill_map, read_styles
+from svgtile.apps.mapwrite import BandWriter, class_prefix, write_map_svg
 from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
-from svgtile.files import check_output, same_file, write_file
+from svgtile.files import check_output, same_file
 from svgtile.gis.layers import common_crs, is_gis
-from svgtile.svg.writer import MapLayer, map_document, prefixed_defs
+from svgtile.runners.schedule import check_scheduler
+from svgtile.runners.spool import Spool
+from svgtile.svg.writer import prefixed_defs
 
 
 def _with_params(f):
@@ -41,11 +43,15 @@ def _with_params(f):
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed shared by every region (a class's own seed wins, and a top-level seed in the styles file is every class's). Without it one is chosen and printed.")
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
-              help="Regions filled at once, in separate processes [default: the usable cores].")
+              help="Worker processes filling regions (or tiles) at once with --scheduler local or processes [default: the usable cores].")
+@click.option("--scheduler", default="local", show_default=True, metavar="local|processes|ADDRESS",
+              help="Where the work runs: local = Dask's local scheduler on this machine; processes = a Dask LocalCluster of --jobs worker processes; an address such as tcp://host:8786 = that Dask cluster (its workers must see the exemplars at the same paths).")
+@click.option("--tile-size", type=click.FloatRange(min=0, min_open=True), default=None, metavar="SIZE",
+              help="Cut each region into world-anchored tiles SIZE map units wide, run as separate units; the output is the same. Regions whose engine is not tile-exact (patch, random) are run whole.")
 @click.option("--refine", type=click.IntRange(min=0), default=None, metavar="N",
               help="Improve every class's texture by N iterations of optimisation (Ma, Wei & Tong 2011) after its engine; a class's own refine key wins.")
 @_with_params
-def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, refine):
+def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, scheduler, tile_size, refine):
     """Fill every unit of MAP (SVG, or a GIS layer: .gpkg, .shp, .fgb, .geojson) whose class the styles file knows.
 
     A unit's class is its class attribute (or the attribute the styles file names) or its
@@ -94,54 +100,54 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, refine
     used_text = str(next(iter(used.values()))) if len(set(used.values())) == 1 else " ".join(f"{c}={v}" for c, v in used.items())
     if seed is None:
         seed = 0  # every class has its own seed: the run's is never used
-    result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), progress=_progress(),
-                      max_motifs=MAX_MOTIFS)  # fmt: skip
-    Stderr.clear()
-    for message in result.warnings:
-        warn(message)
-    for ident, message in result.errors.items():
-        warn(f"region {ident!r} not filled: {message}")
-    if kind in POINT_FORMATS:
+    check_scheduler(scheduler)
+    bar = sys.stderr.isatty() and output != "-"
+    if kind in POINT_FORMATS:  # GIS layers are written by GDAL at the end, from every region's motifs
+        result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
+                          scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
+        Stderr.clear()
+        _warn_about(result)
         write_placements(map_parts(result), output, crs=crs, protect=inputs)
         if with_style:
             used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
             write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)})
-    else:
-        params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
-                  "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
-        write_file(svg_map(result, params), output, protect=inputs)
+    else:  # an SVG map is streamed: each band spooled as it is done, the file assembled in world order
+        folder = None if output == "-" else str(Path(output).resolve().parent)
+        with Spool(folder) as spool:
+            bands = BandWriter(spool, kind)
+            result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(),
+                              max_motifs=MAX_MOTIFS, scheduler=scheduler, tile_size=tile_size,
+                              sink=_sink(bands, kind, styles), bar=bar)  # fmt: skip
+            Stderr.clear()
+            _warn_about(result)
+            params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
+                      "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
+            write_map_svg(output, result, bands, params, protect=inputs)
     if result.errors:
-        raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} regions failed (see the warnings); "
-                           f"the others were written", source=str(output))  # fmt: skip
+        tiles = any(ident not in {r.ident for r in result.regions} for ident in result.errors)
+        what = f"{len(result.errors)} regions or tiles" if tiles else f"{len(result.errors)} of {len(result.regions)} regions"
+        raise SvgtileError(f"{what} failed (see the warnings); the others were written", source=str(output))
 
 
-def _progress():
-    """``progress(done, total, ident, error)``: a self-erasing line on a terminal, else nothing."""
-    if not sys.stderr.isatty():
-        return None
+def _sink(bands: BandWriter, kind: str, styles):
+    """``sink(region, band, motifs)`` for :func:`fill_map`: each band formatted and spooled."""
+    kinds: dict[str, tuple] = {}
 
-    def report(done: int, total: int, ident: str, error: str | None) -> None:
-        click.echo(f"\rsvgtile: map {done}/{total} regions ({ident[:30]})\033[K", err=True, nl=False)
-        Stderr.progress_shown = True
+    def sink(n: int, r, b: int, arr) -> None:
+        ex, _ = load_exemplar(str(styles.classes[r.cls].exemplar))
+        if kind == "geojson":
+            bands.features(n, b, arr, ex, {"region": r.ident, "class": r.cls})
+        else:
+            if r.cls not in kinds:
+                kinds[r.cls] = prefixed_defs(ex, class_prefix(r.cls))[1]
+            bands.svg(n, b, arr, kinds[r.cls])
 
-    return report
+    return sink
 
 
-def svg_map(result: MapFill, params: dict) -> str:
-    """The filled map as SVG text (see :func:`svgtile.svg.writer.map_document`)."""
-    styles = result.styles
-    defs, kinds = [], {}
-    for cls in sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}):
-        prefix = "svgtile-" + re.sub(r"[^A-Za-z0-9_.-]+", "-", cls).strip("-") + "-"
-        ex, _ = load_exemplar(str(styles.classes[cls].exemplar))
-        style_defs, kinds[cls] = prefixed_defs(ex, prefix)
-        defs.extend(style_defs)
-    layers = [
-        MapLayer(r.ident, r.cls, r.shape, kinds[r.cls], arr, styles.classes[r.cls].boundary,
-                 r.element, r.matrix)
-        for r, arr in zip(result.regions, result.results, strict=True)
-        if arr is not None
-    ]  # fmt: skip
-    doc = result.doc
-    return map_document(None if doc is None else doc.root, defs, layers, params=params,
-                        namespaces=() if doc is None else doc.namespaces)  # fmt: skip
+def _warn_about(result) -> None:
+    """The fill's warnings and failed regions, a line each."""
+    for message in result.warnings:
+        warn(message)
+    for ident, message in result.errors.items():
+        warn(f"region {ident!r} not filled: {message}")

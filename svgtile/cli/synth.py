@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import secrets
+import sys
 from pathlib import Path
 
 import click
 
 from svgtile.apps.gisout import write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
+from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import synth_region
 from svgtile.apps.preview import render_png
+from svgtile.apps.tiled import synthesize_to_file
 from svgtile.cli.common import (
     POINT_FORMATS,
     Stderr,
@@ -26,9 +29,10 @@ from svgtile.cli.common import (
 )
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import synthesize
-from svgtile.errors import ParameterError
+from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.layers import common_crs, is_gis
+from svgtile.runners.schedule import check_scheduler
 from svgtile.svg.writer import fmt, result_document
 
 
@@ -53,11 +57,17 @@ from svgtile.svg.writer import fmt, result_document
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
 @click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
+@click.option("--scheduler", default=None, metavar="local|processes|ADDRESS",
+              help="Run the region as tiles on Dask: local = Dask's local scheduler, processes = a LocalCluster of --jobs workers, or a cluster's address (tcp://host:8786). The output is the same as without it.")
+@click.option("--tile-size", type=click.FloatRange(min=0, min_open=True), default=None, metavar="SIZE",
+              help="Cut the region into world-anchored tiles of this side, user units, run on Dask (--scheduler, default local); the output is the same. An engine that is not tile-exact (patch, random) runs whole.")
+@click.option("--jobs", type=click.IntRange(min=1), default=None,
+              help="With --scheduler local or processes: worker processes [default: the usable cores].")
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 @click.pass_context
 def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, with_style, refine, seed,
-          force, as_tile, **values):  # fmt: skip
+          force, scheduler, tile_size, jobs, as_tile, **values):  # fmt: skip
     """Synthesize a texture like EXEMPLAR and write it (SVG, PNG or GIS points, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -81,6 +91,11 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
+    if scheduler is not None or tile_size is not None:
+        _tiled(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params, refine=refine,
+               tile_size=tile_size, scheduler=scheduler or "local", jobs=jobs, where=where, region_spec=region_spec,
+               exemplar_path=exemplar, size=size, crs=crs, protect=inputs)  # fmt: skip
+        return
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
                         params=params, refine=refine)  # fmt: skip
     Stderr.clear()
@@ -97,3 +112,31 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if kind == "png":
         data = render_png(data, png_width(x1 - x0))
     write_file(data, output, protect=inputs)
+
+
+def _tiled(output, kind, ex, stats, region, engine, *, seed, boundary, params, refine, tile_size, scheduler, jobs,
+           where, region_spec, exemplar_path, size, crs, protect) -> None:  # fmt: skip
+    """``synth --scheduler``: the region's tiles on Dask, written as they finish (same bytes)."""
+    check_scheduler(scheduler)
+    if kind == "png" or (kind == "gis" and not str(output).lower().endswith(".geojson")) or crs is not None:
+        raise ParameterError(f"{output}: --scheduler writes .svg or .geojson without a CRS (write those, then convert)")
+    x0, y0, x1, y1 = region.bounds
+    where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+
+    def on_plan(tiles) -> None:
+        if tile_size is not None and len(tiles) == 1 and tiles[0].whole:
+            click.echo(f"svgtile: engine {engine!r} is not tile-exact (its reach is unbounded): running the region whole",
+                       err=True)  # fmt: skip
+
+    run = synthesize_to_file(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params,
+                             refine=refine, tile_size=tile_size, where={"exemplar": Path(exemplar_path).name, **where_meta},
+                             scheduler=scheduler, workers=jobs or default_jobs(), bar=sys.stderr.isatty() and output != "-",
+                             protect=protect, on_plan=on_plan)  # fmt: skip
+    Stderr.clear()
+    for tile, message in run.errors.items():
+        warn(f"{tile} not filled: {message}")
+    if run.motifs == 0 and not run.errors:
+        warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
+    if run.errors:
+        raise SvgtileError(f"{len(run.errors)} of {len(run.tiles)} tiles failed (see the warnings); the others were written",
+                           source=str(output))  # fmt: skip

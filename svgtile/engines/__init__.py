@@ -51,7 +51,7 @@ ENTRY_POINT_GROUP = "svgtile.engines"
 
 #: Names a plug-in parameter may not take: they are options of every command or styles keys.
 RESERVED = frozenset({"seed", "boundary", "size", "region", "engine", "unit", "exemplar", "output", "avoid",
-                      "avoid_margin", "force", "jobs", "styles", "refine"})
+                      "avoid_margin", "force", "jobs", "styles", "refine", "scheduler", "tile_size"})
 #: Plug-ins found but not registered, name -> why (``svgtile.engines.get_engine`` names them).
 REFUSED: dict[str, str] = {}
 

@@ -94,6 +94,17 @@ def svg_document(
     The motifs go in ``<g id="svgtile">`` and the clip path is ``svgtile-clip``; should the
     exemplar's copied defs already use such an id, a numbered suffix keeps ids unique.
     """
+    head, tail = svg_document_parts(exemplar, region, boundary=boundary, params=params)
+    body = "\n".join(use_elements(arr, exemplar.kinds))
+    return head + body + tail if body else head.rstrip(" ").removesuffix("\n") + tail
+
+
+def svg_document_parts(
+    exemplar: Exemplar, region: Region, *, boundary: str, params: dict[str, object]
+) -> tuple[str, str]:
+    """:func:`svg_document` without its motifs: the text before the first ``<use>`` line and
+    after the last, for a writer that streams the lines between (``head + "\\n".join(lines) +
+    tail``; with no line at all, ``head.rstrip(" ").removesuffix("\\n") + tail``)."""
     x0, y0, x1, y1 = region.bounds
     width, height, *box = fmt_array(np.array([x1 - x0, y1 - y0, x0, y0]))
     root = ET.Element(
@@ -118,13 +129,11 @@ def svg_document(
     head_end = text.index(">")
     if "xmlns:xlink=" not in text[:head_end]:  # the <use> lines below need it even if defs do not
         text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
-    body = "\n".join(use_elements(arr, exemplar.kinds))
-    # the group is the last element, so its marker is the last one in the text
+    # the group is the last element, so its marker is the last one in the text; the first
+    # line's indent is the marker's
     before, _, after = text.rpartition(f"<!--{USES_MARK}-->")
-    if not body:  # an empty group: no blank line inside it
-        before = before.rstrip(" ").removesuffix("\n")
-    text = before + body.lstrip() + after
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
+    indent = len(before) - len(before.rstrip(" "))
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + before[: len(before) - indent], after + "\n"
 
 
 def path_data(geom: shapely.Geometry) -> str:
@@ -240,6 +249,22 @@ def map_document(
     Each texture group carries the inverse of its anchor's parent's transform, so its motifs
     and clip path are in the root's user units wherever the anchor sits.
     """
+    parts = map_document_parts(root, defs, layers, params=params, namespaces=namespaces)
+    out = [parts[0]]
+    for layer, part in zip(layers, parts[1:], strict=True):
+        body = "\n".join(use_elements(layer.arr, layer.kinds))
+        out.append(("\n" + body + "\n" if body else "") + part)
+    return "".join(out)
+
+
+def map_document_parts(
+    root: ET.Element | None, defs: list[ET.Element], layers: list[MapLayer], *, params: dict[str, object],
+    namespaces: tuple[tuple[str, str], ...] | list = (),
+) -> list[str]:
+    """:func:`map_document` without its motifs: ``len(layers) + 1`` pieces of text, layer
+    ``n``'s ``<use>`` lines going between pieces ``n`` and ``n + 1`` (as ``"\\n" + lines +
+    "\\n"``, or nothing for no line), for a writer that streams them.  The layers' ``arr`` is
+    not read."""
     outlines: list[ET.Element | None] = [None] * len(layers)
     if root is None:
         root = _outline_document([layer.shape for layer in layers])
@@ -255,7 +280,6 @@ def map_document(
     root.insert(0, new_defs)
     root.insert(0, meta)
     parents = {c: p for p in root.iter() for c in p}
-    bodies = []
     for n, layer in enumerate(layers):
         safe = re.sub(r"[^A-Za-z0-9_.-]+", "-", layer.ident).strip("-") or str(n + 1)
         group = ET.Element(f"{{{SVG_NS}}}g", {"id": _unique_id(f"svgtile-{safe}", taken),
@@ -275,15 +299,17 @@ def map_document(
             root.append(group)
         else:
             parent.insert(list(parent).index(anchor) + 1, group)
-        bodies.append("\n".join(use_elements(layer.arr, layer.kinds)))
     ET.indent(new_defs, space="  ", level=1)
     text = ET.tostring(root, encoding="unicode")
     head_end = text.index(">")
     if "xmlns:xlink=" not in text[:head_end]:
         text = text.replace("<svg ", f'<svg xmlns:xlink="{XLINK_NS}" ', 1)
-    for n, body in enumerate(bodies):
-        text = text.replace(f"<!--{USES_MARK}-{n}-->", "\n" + body + "\n" if body else "", 1)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + ("" if text.endswith("\n") else "\n")
+    text = '<?xml version="1.0" encoding="UTF-8"?>\n' + text + ("" if text.endswith("\n") else "\n")
+    parts = []
+    for n in range(len(layers)):
+        before, _, text = text.partition(f"<!--{USES_MARK}-{n}-->")
+        parts.append(before)
+    return [*parts, text]
 
 
 def _outline_document(shapes: list[shapely.Geometry]) -> ET.Element:
