@@ -50,11 +50,11 @@ def main() -> None:
     samples = exemplar_samples(ex, Settings().neighbours)
     t2 = time.perf_counter()
     marks: list[float] = []
-    arr, energies = refine(start, ex, stats, region, "clip", iterations=args.iterations, key=1, samples=samples,
+    _arr, energies = refine(start, ex, stats, region, "clip", iterations=args.iterations, key=1, samples=samples,
                            progress=lambda stage, f: marks.append(time.perf_counter()))  # fmt: skip
     t3 = time.perf_counter()
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    steps = [b - a for a, b in zip(marks, marks[1:] + [t3], strict=True)]
+    steps = [b - a for a, b in zip(marks, [*marks[1:], t3], strict=True)]
     print(f"| {Path(args.exemplar).stem} | {len(start):,} | {t1 - t0:.1f} | {t2 - t1:.2f} | {t3 - t2:.1f} | "
           f"{min(steps):.1f}–{max(steps):.1f} | {peak:.0f} | {energies[0]:.3f} → {energies[-1]:.3f} |")
     print(f"({platform.machine()}, Python {sys.version.split()[0]}, {args.iterations} iterations)", file=sys.stderr)
