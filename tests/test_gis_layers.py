@@ -306,3 +306,20 @@ def test_qgis_fill_by_class_and_avoid_crs_check(tmp_path, tiny, capsys):
     assert rc == 1 and "is not the layer's" in err and "reproject" in err and not (tmp_path / "g.gpkg").exists()
     rc = main(["qgis", "fill", str(units), "--styles", str(tmp_path / "s.toml"), "--seed", "1", "-o", str(out)])
     assert rc == 1 and "needs --class-field" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["map", "qgis"])
+def test_an_avoid_layer_is_never_overwritten(tmp_path, tiny, capsys, command):
+    units = write_units(tmp_path / "units.gpkg")
+    roads = tmp_path / "roads.gpkg"
+    raw.write(roads, shapely.to_wkb(np.array([shapely.LineString([(90, 5), (130, 55)])])), [], [], layer="roads",
+              geometry_type="LineString", crs=CRS)  # fmt: skip
+    before = roads.read_bytes()
+    (tmp_path / "s.toml").write_text('class_property = "unit"\nseed = 4\n[classes.Qal]\nexemplar = "tiny.svg"\n')
+    args = (["map", str(units), "--styles", str(tmp_path / "s.toml")] if command == "map"
+            else ["qgis", "fill", str(units), "--exemplar", str(tiny), "--seed", "1"])  # fmt: skip
+    rc = main([*args, "--avoid", f"{roads}#roads", "-o", str(roads), "--jobs", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
+    assert roads.read_bytes() == before
+

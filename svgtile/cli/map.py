@@ -12,7 +12,14 @@ import click
 from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
-from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
+from svgtile.cli.common import (
+    POINT_FORMATS,
+    Stderr,
+    default_boundary,
+    output_format,
+    spec_files,
+    warn,
+)
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
@@ -72,7 +79,8 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
     styles = read_styles(styles_file, boundary=default_boundary(kind, None))
     crs = common_crs(map_file, [a for a in (*styles.avoid, *avoid) if is_gis(a)])
-    inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
+    inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()),
+              *spec_files((*styles.avoid, *avoid)))  # fmt: skip
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)

@@ -11,7 +11,7 @@ from svgtile.apps.gisout import map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import AVOID_MARGIN
-from svgtile.cli.common import POINT_FORMATS, engine_options, output_format, warn
+from svgtile.cli.common import POINT_FORMATS, engine_options, output_format, spec_files, warn
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import get_engine, make_params
 from svgtile.errors import ParameterError, SvgtileError
@@ -77,7 +77,7 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
         raise ParameterError(f"{output}: give a GIS file (.gpkg, .shp, .fgb, .geojson)")
     given = {k: v for k, v in values.items() if v is not None}
     params = make_params(get_engine(engine), given) if exemplar else None
-    inputs = tuple(Path(p) for p in (layer.partition("#")[0], exemplar, styles_file) if p)
+    inputs = (*(Path(p) for p in (exemplar, styles_file) if p), *spec_files((layer, *avoid)))
     check_output(output, protect=inputs)
     result, crs = qg.fill(layer, exemplar=exemplar, styles_file=styles_file, class_field=class_field, engine=engine,
                           params={} if params is None else {k: getattr(params, k) for k in given}, boundary=boundary,

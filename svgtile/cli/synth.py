@@ -22,6 +22,7 @@ from svgtile.cli.common import (
     parse_size,
     png_width,
     progress_line,
+    spec_files,
     warn,
 )
 from svgtile.core.region import BOUNDARY_MODES
@@ -72,7 +73,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     # every input file is protected: the exemplar, and the files of --region and --avoid
-    inputs = (Path(exemplar), *(Path(spec.partition("#")[0]) for spec in (region_spec or "", *avoid) if spec))
+    inputs = (Path(exemplar), *spec_files((region_spec or "", *avoid)))
     check_output(output, protect=inputs)  # fail before the work, not after
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
