@@ -323,3 +323,11 @@ def test_an_avoid_layer_is_never_overwritten(tmp_path, tiny, capsys, command):
     assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
     assert roads.read_bytes() == before
 
+
+def test_an_avoid_layer_in_another_crs_is_refused_before_it_cuts_the_region(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    other = write_units(tmp_path / "other.gpkg", crs="EPSG:4326")  # its unit 1 covers the region in numbers
+    out = tmp_path / "t.gpkg"
+    rc = main(["synth", str(tiny), "--region", f"{units}#units:1", "--avoid", f"{other}#units:1", "-o", str(out), "--seed", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and "its CRS (EPSG:4326) is not the layer's (EPSG:32633)" in err and not out.exists()

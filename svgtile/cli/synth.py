@@ -62,6 +62,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
     with id="region" (else the viewBox) is the area the motifs were drawn in.
     """
+    # before the region is cut by its avoid zones: an avoid layer in another CRS would mislead that
+    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     region = synth_region(parse_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
@@ -69,7 +71,6 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     boundary = default_boundary(kind, boundary)
     if with_style and (kind not in POINT_FORMATS or output == "-"):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
-    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     # every input file is protected: the exemplar, and the files of --region and --avoid
