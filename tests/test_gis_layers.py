@@ -331,3 +331,13 @@ def test_an_avoid_layer_in_another_crs_is_refused_before_it_cuts_the_region(tmp_
     rc = main(["synth", str(tiny), "--region", f"{units}#units:1", "--avoid", f"{other}#units:1", "-o", str(out), "--seed", "1"])
     err = capsys.readouterr().err
     assert rc == 1 and "its CRS (EPSG:4326) is not the layer's (EPSG:32633)" in err and not out.exists()
+
+
+def test_symbols_never_overwrite_the_exemplar(tmp_path, tiny, capsys):
+    exemplar = tmp_path / "dot.svg"  # holds a kind "dot": FOLDER/dot.svg would be the exemplar itself
+    exemplar.write_bytes(tiny.read_bytes())
+    before = exemplar.read_bytes()
+    rc = main(["symbols", str(exemplar), "-o", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
+    assert exemplar.read_bytes() == before and not (tmp_path / "bar.svg").exists()

@@ -106,7 +106,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
         write_placements(map_parts(result), output, crs=crs, protect=inputs)
         if with_style:
             used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
-            write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)})
+            write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)}, protect=inputs)
     else:
         params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip

@@ -91,7 +91,8 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
     if with_style:
         used = sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None})
         exemplars = {c: load_exemplar(str(result.styles.classes[c].exemplar))[0] for c in used}
-        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))} if exemplars else {})
+        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))} if exemplars else {},
+                    protect=inputs)
     if result.errors:
         raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} polygons failed (see the warnings); "
                            f"the others were written", source=str(output))  # fmt: skip

@@ -91,7 +91,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if kind in POINT_FORMATS:
         write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=inputs)
         if with_style:
-            write_style(output, {None: ex})
+            write_style(output, {None: ex}, protect=inputs)
         return
     data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
     if kind == "png":
