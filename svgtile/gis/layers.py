@@ -100,16 +100,11 @@ def parse_spec(spec: str | Path) -> Spec:
 
 def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[dict, np.ndarray, np.ndarray, list]:
     """(meta, fids, WKB geometries, field arrays) of the features ``spec`` selects."""
-    import pyogrio
     from pyogrio import raw
     from pyogrio.errors import DataLayerError, DataSourceError, FieldError, GeometryError
 
-    if not spec.path.is_file() and not spec.path.is_dir():
-        raise RegionError("no such file", source=source)
     try:
-        if spec.layer is not None and spec.layer not in [name for name, _ in pyogrio.list_layers(spec.path)]:
-            names = ", ".join(name for name, _ in pyogrio.list_layers(spec.path))
-            raise RegionError(f"no layer {spec.layer!r} (the file has {names})", source=source)
+        _check_layer(spec, source)
         meta, fids, geometry, fields = raw.read(
             spec.path, layer=spec.layer, where=spec.where, fids=None if spec.fid is None else [spec.fid],
             columns=columns, return_fids=True, force_2d=True,
@@ -127,6 +122,19 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
     if spec.fid is not None and len(fids) == 0:
         raise RegionError(f"no feature with id {spec.fid}", source=source)
     return meta, np.asarray(fids), np.asarray(geometry, dtype=object), list(fields)
+
+
+def _check_layer(spec: Spec, source: str) -> None:
+    """RegionError unless ``spec``'s file exists and has its layer (if it names one); GDAL's own
+    errors pass through."""
+    import pyogrio
+
+    if not spec.path.is_file() and not spec.path.is_dir():
+        raise RegionError("no such file", source=source)
+    if spec.layer is not None:
+        names = [name for name, _ in pyogrio.list_layers(spec.path)]
+        if spec.layer not in names:
+            raise RegionError(f"no layer {spec.layer!r} (the file has {', '.join(names)})", source=source)
 
 
 def _gdal_message(exc: BaseException) -> str:
@@ -148,7 +156,10 @@ def crs_of(spec: str | Path | None) -> str | None:
     import pyogrio
 
     try:
+        _check_layer(s, str(spec))
         return pyogrio.read_info(s.path, layer=s.layer).get("crs")
+    except RegionError:
+        raise
     except Exception as exc:
         raise RegionError(f"cannot read ({_gdal_message(exc)})", source=str(spec)) from None
 
