@@ -86,17 +86,21 @@ def write_style(out: str | Path, exemplars: dict[str | None, Exemplar], *, prote
 Part = tuple[Exemplar, Arrangement, "str | None", "str | None"]
 
 
-def map_parts(result: MapFill) -> list[Part]:
-    """The parts of a map fill: each filled region with its class's exemplar, in region order."""
-    exemplars: dict[str, Exemplar] = {}
-    parts = []
-    for r, arr in zip(result.regions, result.results, strict=True):
-        if arr is None:
-            continue
-        if r.cls not in exemplars:
-            exemplars[r.cls] = load_exemplar(str(result.styles.classes[r.cls].exemplar))[0]
-        parts.append((exemplars[r.cls], arr, r.ident, r.cls))
-    return parts
+def filled_exemplars(result: MapFill) -> dict[str, Exemplar]:
+    """The exemplar of each class at least one region of a map fill was filled with, by class
+    (sorted), each loaded once: what :func:`map_parts` and :func:`write_style` need."""
+    used = sorted({r.cls for r, arr in zip(result.regions, result.results, strict=True) if arr is not None})
+    return {cls: load_exemplar(str(result.styles.classes[cls].exemplar))[0] for cls in used}
+
+
+def map_parts(result: MapFill, exemplars: dict[str, Exemplar] | None = None) -> list[Part]:
+    """The parts of a map fill: each filled region with its class's exemplar, in region order.
+
+    ``exemplars`` is :func:`filled_exemplars` of ``result`` (loaded here if None).
+    """
+    exemplars = filled_exemplars(result) if exemplars is None else exemplars
+    return [(exemplars[r.cls], arr, r.ident, r.cls)
+            for r, arr in zip(result.regions, result.results, strict=True) if arr is not None]  # fmt: skip
 
 
 def collection(parts: list[Part]) -> dict:

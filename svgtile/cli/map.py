@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import map_parts, write_placements, write_style
+from svgtile.apps.gisout import filled_exemplars, map_parts, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import (
@@ -103,10 +103,10 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
     if kind in POINT_FORMATS:
-        write_placements(map_parts(result), output, crs=crs, protect=inputs)
+        exemplars = filled_exemplars(result)
+        write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
         if with_style:
-            used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
-            write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)}, protect=inputs)
+            write_style(output, exemplars, protect=inputs)
     else:
         params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
                   "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip

@@ -7,8 +7,8 @@ from pathlib import Path
 import click
 
 from svgtile.apps import qgis as qg
-from svgtile.apps.gisout import map_parts, write_placements, write_style
-from svgtile.apps.load import MAX_MOTIFS, load_exemplar
+from svgtile.apps.gisout import filled_exemplars, map_parts, write_placements, write_style
+from svgtile.apps.load import MAX_MOTIFS
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import AVOID_MARGIN
 from svgtile.cli.common import POINT_FORMATS, engine_options, output_format, spec_files, warn
@@ -87,12 +87,10 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
         warn(f"polygon {ident} not filled: {message}")
     if result.errors and len(result.errors) == len(result.regions):
         raise SvgtileError(f"no polygon was filled ({next(iter(result.errors.values()))}); nothing written", source=layer)
-    write_placements(map_parts(result), output, crs=crs, protect=inputs)
-    if with_style:
-        used = sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None})
-        exemplars = {c: load_exemplar(str(result.styles.classes[c].exemplar))[0] for c in used}
-        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))} if exemplars else {},
-                    protect=inputs)
+    exemplars = filled_exemplars(result)
+    write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
+    if with_style:  # one exemplar: one symbols folder, whatever the class field says
+        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))}, protect=inputs)
     if result.errors:
         raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} polygons failed (see the warnings); "
                            f"the others were written", source=str(output))  # fmt: skip
