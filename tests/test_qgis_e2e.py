@@ -150,3 +150,27 @@ def test_a_failure_is_reported_and_writes_nothing(tmp_path, qgis_env):
     assert done.returncode != 0
     assert f"svgtile: error: {bad}" in done.stdout + done.stderr
     assert not out.exists()
+
+
+PLUGIN_RUN = """
+import sys
+sys.path.insert(0, sys.argv[1])
+from qgis.core import QgsProcessingException, QgsProcessingFeedback
+from svgtile_qgis import algorithm
+warn = "import sys; sys.stderr.write('svgtile: warning: polygon 1 not filled: no motif fits\\\\n' * 5000)"
+algorithm.FillAlgorithm()._run([sys.executable, "-c", warn], QgsProcessingFeedback())
+try:
+    algorithm.FillAlgorithm()._run([sys.executable, "-c", warn + "; sys.exit('svgtile: error: x.gpkg: bad')"],
+                                   QgsProcessingFeedback())
+except QgsProcessingException as exc:
+    print("raised:", exc)
+"""
+
+
+def test_the_plugin_reads_any_amount_of_messages(tmp_path, qgis_env):
+    """svgtile's stderr is read while it runs: 300 kB of warnings (a layer of many unfilled
+    polygons) once filled the pipe and stalled the algorithm for ever."""
+    done = subprocess.run([SYSTEM_PYTHON, "-c", PLUGIN_RUN, str(RENDER.parents[1] / "qgis_ext")], env=qgis_env,
+                          capture_output=True, text=True, timeout=60)  # fmt: skip
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "raised: svgtile: error: x.gpkg: bad" in done.stdout
