@@ -341,3 +341,17 @@ def test_symbols_never_overwrite_the_exemplar(tmp_path, tiny, capsys):
     err = capsys.readouterr().err
     assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
     assert exemplar.read_bytes() == before and not (tmp_path / "bar.svg").exists()
+
+
+@pytest.mark.parametrize("blocker", ["t.qml/", "t-symbols"])
+def test_a_style_that_cannot_be_written_stops_before_the_layer(tmp_path, tiny, capsys, blocker):
+    """--with-style: OUT.qml a folder or OUT-symbols a file is one line, and no layer is written."""
+    units = write_units(tmp_path / "units.gpkg")
+    (tmp_path / blocker.rstrip("/")).mkdir() if blocker.endswith("/") else (tmp_path / blocker).write_text("")
+    out = tmp_path / "t.gpkg"
+    for args in (["synth", str(tiny), "--region", f"{units}#units:1", "--seed", "1"],
+                 ["qgis", "fill", str(units), "--exemplar", str(tiny), "--seed", "1", "--jobs", "1"]):  # fmt: skip
+        rc = main([*args, "-o", str(out), "--with-style"])
+        err = capsys.readouterr().err
+        assert rc == 1 and err.count("\n") == 1 and blocker.rstrip("/") in err
+        assert not out.exists()

@@ -38,6 +38,16 @@ def style_paths(out: str | Path) -> tuple[Path, Path]:
     return out.with_suffix(".qml"), out.with_name(out.stem + "-symbols")
 
 
+def check_style(out: str | Path, *, protect: tuple = ()) -> None:
+    """Raise :class:`OutputError` now, before the work, if :func:`write_style` could not write
+    ``OUT.qml`` and ``OUT-symbols/`` beside ``out`` (so a failing style never follows a written
+    layer)."""
+    qml, folder = style_paths(out)
+    check_output(qml, protect=protect)
+    if folder.exists() and not folder.is_dir():
+        raise OutputError("exists and is not a folder", source=str(folder))
+
+
 def write_symbols(exemplar: Exemplar, folder: str | Path, *, protect: tuple = ()) -> list[Path]:
     """Write each kind of ``exemplar`` as ``folder/KIND.svg`` (:func:`symbol_documents`); the folder is made.
 

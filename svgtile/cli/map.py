@@ -9,7 +9,13 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import filled_exemplars, map_parts, write_placements, write_style
+from svgtile.apps.gisout import (
+    check_style,
+    filled_exemplars,
+    map_parts,
+    write_placements,
+    write_style,
+)
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import MapFill, default_jobs, fill_map, read_styles
 from svgtile.cli.common import (
@@ -84,6 +90,8 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style):
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)
+    if with_style:
+        check_style(output, protect=inputs)
     own = {s.seed for s in styles.classes.values()}
     if seed is not None and None not in own:
         warn(f"--seed {seed} is not used: every class has a seed in {styles_file} (a top-level seed is every class's)")

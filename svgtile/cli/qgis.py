@@ -7,7 +7,13 @@ from pathlib import Path
 import click
 
 from svgtile.apps import qgis as qg
-from svgtile.apps.gisout import filled_exemplars, map_parts, write_placements, write_style
+from svgtile.apps.gisout import (
+    check_style,
+    filled_exemplars,
+    map_parts,
+    write_placements,
+    write_style,
+)
 from svgtile.apps.load import MAX_MOTIFS
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import AVOID_MARGIN
@@ -79,6 +85,8 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
     params = make_params(get_engine(engine), given) if exemplar else None
     inputs = (*(Path(p) for p in (exemplar, styles_file) if p), *spec_files((layer, *avoid)))
     check_output(output, protect=inputs)
+    if with_style:
+        check_style(output, protect=inputs)
     result, crs = qg.fill(layer, exemplar=exemplar, styles_file=styles_file, class_field=class_field, engine=engine,
                           params={} if params is None else {k: getattr(params, k) for k in given}, boundary=boundary,
                           unit=unit, seed=seed, avoid=avoid, avoid_margin=avoid_margin, jobs=jobs or default_jobs(),

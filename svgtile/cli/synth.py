@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import write_placements, write_style
+from svgtile.apps.gisout import check_style, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapread import synth_region
 from svgtile.apps.preview import render_png
@@ -76,6 +76,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     # every input file is protected: the exemplar, and the files of --region and --avoid
     inputs = (Path(exemplar), *spec_files((region_spec or "", *avoid)))
     check_output(output, protect=inputs)  # fail before the work, not after
+    if with_style:
+        check_style(output, protect=inputs)
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if seed is None:
