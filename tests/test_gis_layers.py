@@ -355,3 +355,13 @@ def test_a_style_that_cannot_be_written_stops_before_the_layer(tmp_path, tiny, c
         err = capsys.readouterr().err
         assert rc == 1 and err.count("\n") == 1 and blocker.rstrip("/") in err
         assert not out.exists()
+
+
+def test_qgis_install_keeps_a_latin1_ini_byte_for_byte(tmp_path, capsys):
+    profile = tmp_path / "profile"
+    (profile / "QGIS").mkdir(parents=True)
+    before = b"[General]\nname=caf\xe9\n\n[PythonPlugins]\nother=true\n"  # not UTF-8
+    (profile / "QGIS" / "QGIS3.ini").write_bytes(before)
+    assert main(["qgis", "install", "--profile", str(profile)]) == 0, capsys.readouterr().err
+    after = (profile / "QGIS" / "QGIS3.ini").read_bytes()
+    assert after == before.replace(b"[PythonPlugins]\n", b"[PythonPlugins]\nsvgtile_qgis=true\n")

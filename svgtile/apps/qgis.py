@@ -88,24 +88,25 @@ def plugin_config(python: str | None = None) -> dict:
 def enable_plugin(profile: Path) -> None:
     """Mark the plugin enabled in the profile's ``QGIS/QGIS3.ini`` (``[PythonPlugins] svgtile_qgis=true``).
 
-    Only that one line is added or changed; the rest of the file is kept as it is.
+    Only that one line is added or changed; the rest of the file is kept byte for byte (it is
+    handled as bytes: Qt writes it in whatever encoding the platform's settings used).
     """
     ini = profile / "QGIS" / "QGIS3.ini"
-    lines = ini.read_text(encoding="utf-8").splitlines() if ini.is_file() else []
-    entry = f"{PLUGIN}=true"
+    lines = ini.read_bytes().splitlines() if ini.is_file() else []
+    entry = f"{PLUGIN}=true".encode()
     try:
-        start = lines.index("[PythonPlugins]")
+        start = lines.index(b"[PythonPlugins]")
     except ValueError:
-        lines += ([""] if lines else []) + ["[PythonPlugins]", entry]
+        lines += ([b""] if lines else []) + [b"[PythonPlugins]", entry]
     else:
-        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("[")), len(lines))
-        mine = [i for i in range(start + 1, end) if lines[i].split("=", 1)[0].strip() == PLUGIN]
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith(b"[")), len(lines))
+        mine = [i for i in range(start + 1, end) if lines[i].split(b"=", 1)[0].strip() == PLUGIN.encode()]
         if mine:
             lines[mine[0]] = entry
         else:
             lines.insert(start + 1, entry)
     ini.parent.mkdir(parents=True, exist_ok=True)
-    write_file("\n".join(lines) + "\n", ini)
+    write_file(b"\n".join(lines) + b"\n", ini)
 
 
 def install(profile: str | Path | None = None, *, python: str | None = None) -> Path:
