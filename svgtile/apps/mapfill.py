@@ -335,6 +335,25 @@ def fill_map(
     zone = avoid_zone(path, doc, styles.avoid + tuple(avoid), styles.avoid_margin)
     used = {r.cls for r in regions}
     warnings = [f"{styles.source}: class {c!r} matches no region of {path}" for c in sorted(set(styles.classes) - used)]
+    results, errors = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, progress=progress, max_motifs=max_motifs)
+    return MapFill(regions, results, errors, doc, warnings, styles)
+
+
+def fill_regions(
+    regions: list[MapRegion], zone: shapely.Geometry | None, styles: Styles, *, seed: int, jobs: int | None = None,
+    progress: Progress | None = None, max_motifs: float = math.inf,
+) -> tuple[list[Arrangement | None], dict[str, str]]:  # fmt: skip
+    """Fill each region with its class's style, in worker processes (:func:`fill_map`'s work).
+
+    Parameters
+    ----------
+    regions : the regions, map units; ``zone`` the avoid zones (map units) or None
+    seed, jobs, progress, max_motifs : as for :func:`fill_map`
+
+    Returns
+    -------
+    The motifs of each region (None where it failed), and ``{ident: message}`` of the failures.
+    """
     results: list[Arrangement | None] = [None] * len(regions)
     errors: dict[str, str] = {}
     index = {r.ident: n for n, r in enumerate(regions)}
@@ -360,4 +379,4 @@ def fill_map(
                     done(*future.result(), count)
                 except Exception as exc:  # the worker itself died (killed, out of memory)
                     done(futures[future], None, f"worker failed: {type(exc).__name__}", count)
-    return MapFill(regions, results, errors, doc, warnings, styles)
+    return results, errors

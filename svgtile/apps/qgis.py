@@ -14,7 +14,6 @@ public parameters (:func:`plugin_config`), from which the plugin builds its dial
 
 from __future__ import annotations
 
-import concurrent.futures
 import json
 import math
 import os
@@ -24,7 +23,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from svgtile.apps.load import load_exemplar
-from svgtile.apps.mapfill import MapFill, Style, Styles, _task, read_styles
+from svgtile.apps.mapfill import MapFill, Style, Styles, fill_regions, read_styles
 from svgtile.apps.mapread import AVOID_MARGIN, MapRegion, read_avoid_shape
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import ENGINES, engines_with, public_params
@@ -204,12 +203,6 @@ def fill(
         import shapely
 
         zone = shapely.union_all([read_avoid_shape(a, avoid_margin) for a in avoid])
-    tasks = [(r.ident, r.shape, zone, styles.classes[r.cls], seed, max_motifs) for r in regions]
-    if jobs > 1 and len(tasks) > 1:
-        with concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(tasks))) as pool:
-            done = list(pool.map(_task, *zip(*tasks, strict=True)))
-    else:
-        done = [_task(*t) for t in tasks]
-    errors = {ident: err for ident, _, err in done if err is not None}
-    return MapFill(regions, [arr for _, arr, _ in done], errors, None, [], styles), crs
+    results, errors = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, max_motifs=max_motifs)
+    return MapFill(regions, results, errors, None, [], styles), crs
 
