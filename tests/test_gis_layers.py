@@ -365,3 +365,14 @@ def test_qgis_install_keeps_a_latin1_ini_byte_for_byte(tmp_path, capsys):
     assert main(["qgis", "install", "--profile", str(profile)]) == 0, capsys.readouterr().err
     after = (profile / "QGIS" / "QGIS3.ini").read_bytes()
     assert after == before.replace(b"[PythonPlugins]\n", b"[PythonPlugins]\nsvgtile_qgis=true\n")
+
+
+def test_kinds_sharing_a_symbol_file_name_are_refused(tmp_path, tiny, capsys):
+    """QGIS's style finds a kind's file by its name: 'a b' and 'a-b' cannot both be a-b.svg."""
+    text = tiny.read_text().replace('"dot"', '"a b"').replace('"#dot"', '"#a b"').replace('"bar"', '"a-b"')
+    exemplar = tmp_path / "clash.svg"
+    exemplar.write_text(text.replace('"#bar"', '"#a-b"'))
+    rc = main(["symbols", str(exemplar), "-o", str(tmp_path / "symbols")])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "would share the symbol file a-b.svg" in err
+    assert not (tmp_path / "symbols").exists() or not any((tmp_path / "symbols").iterdir())
