@@ -376,3 +376,12 @@ def test_kinds_sharing_a_symbol_file_name_are_refused(tmp_path, tiny, capsys):
     err = capsys.readouterr().err
     assert rc == 1 and err.count("\n") == 1 and "would share the symbol file a-b.svg" in err
     assert not (tmp_path / "symbols").exists() or not any((tmp_path / "symbols").iterdir())
+
+
+def test_qgis_fill_says_a_tables_avoid_is_not_used(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    (tmp_path / "s.toml").write_text('avoid = ["labels"]\n[classes.Qal]\nexemplar = "tiny.svg"\n')
+    rc = main(["qgis", "fill", str(units), "--styles", str(tmp_path / "s.toml"), "--class-field", "unit",
+               "--seed", "1", "-o", str(tmp_path / "f.gpkg"), "--jobs", "1"])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 0 and "avoid = ['labels'] is not used here; give those layers as --avoid" in err

@@ -172,8 +172,8 @@ def fill(
 
     Returns
     -------
-    The fill (regions that failed have ``None`` results and an entry in ``errors``), and the
-    layer's CRS.
+    The fill (regions that failed have ``None`` results and an entry in ``errors``; ``warnings``
+    names a table's ``avoid``, which is not used), and the layer's CRS.
 
     Raises
     ------
@@ -204,5 +204,8 @@ def fill(
 
         zone = shapely.union_all([read_avoid_shape(a, avoid_margin) for a in avoid])
     results, errors = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, max_motifs=max_motifs)
-    return MapFill(regions, results, errors, None, [], styles), crs
+    warnings = []
+    if styles_file is not None and styles.avoid:  # ids in a map, or files: the dialog gives layers
+        warnings.append(f"{styles_file}: its avoid = {list(styles.avoid)} is not used here; give those layers as --avoid")
+    return MapFill(regions, results, errors, None, warnings, styles), crs
 

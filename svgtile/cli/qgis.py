@@ -91,6 +91,8 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
                           params={} if params is None else {k: getattr(params, k) for k in given}, boundary=boundary,
                           unit=unit, seed=seed, avoid=avoid, avoid_margin=avoid_margin, jobs=jobs or default_jobs(),
                           max_motifs=MAX_MOTIFS)  # fmt: skip
+    for message in result.warnings:
+        warn(message)
     for ident, message in result.errors.items():
         warn(f"polygon {ident} not filled: {message}")
     if result.errors and len(result.errors) == len(result.regions):
