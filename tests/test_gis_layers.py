@@ -158,7 +158,7 @@ def test_an_input_without_crs_gives_an_output_without_crs(tmp_path, tiny, capsys
 @pytest.mark.parametrize(
     ("select", "message"),
     [("#nolayer", "no layer 'nolayer' (the file has units)"), ("#units:9", "no feature with id 9"),
-     ("#units?nofield=1", "cannot read"), ("#units?unit='none'", "no Polygon or MultiPolygon feature selected")],
+     ("#units?nofield=1", "cannot read"), ("#units?unit='none'", "no feature where unit='none'")],
 )  # fmt: skip
 def test_bad_layer_input_is_one_line_and_no_output(tmp_path, tiny, capsys, select, message):
     units = write_units(tmp_path / "units.gpkg")

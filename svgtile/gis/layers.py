@@ -121,6 +121,8 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
         raise RegionError(f"cannot read ({type(exc).__name__}: {' '.join(str(exc).split())})", source=source) from None
     if spec.fid is not None and len(fids) == 0:
         raise RegionError(f"no feature with id {spec.fid}", source=source)
+    if spec.where is not None and len(fids) == 0:
+        raise RegionError(f"no feature where {spec.where}", source=source)
     return meta, np.asarray(fids), np.asarray(geometry, dtype=object), list(fields)
 
 
