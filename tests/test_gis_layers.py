@@ -385,3 +385,14 @@ def test_qgis_fill_says_a_tables_avoid_is_not_used(tmp_path, tiny, capsys):
                "--seed", "1", "-o", str(tmp_path / "f.gpkg"), "--jobs", "1"])  # fmt: skip
     err = capsys.readouterr().err
     assert rc == 0 and "avoid = ['labels'] is not used here; give those layers as --avoid" in err
+
+
+def test_a_replaced_shapefile_loses_its_stale_spatial_index(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    out = tmp_path / "t.shp"
+    assert main(["synth", str(tiny), "--region", f"{units}#units:1", "-o", str(out), "--seed", "1"]) == 0
+    (tmp_path / "t.qix").write_bytes(b"an index of the old points")  # QGIS: Create Spatial Index
+    assert main(["synth", str(tiny), "--region", f"{units}#units:2", "-o", str(out), "--seed", "1"]) == 0
+    assert not (tmp_path / "t.qix").exists()
+    _, points, _ = read_points(out)
+    assert shapely.within(points, NEIGHBOUR).all()

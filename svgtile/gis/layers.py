@@ -44,6 +44,8 @@ from svgtile.gis.geojson import COORD_DECIMALS, VALUE_DECIMALS, Feature
 DRIVERS = {".gpkg": "GPKG", ".shp": "ESRI Shapefile", ".geojson": "GeoJSON", ".json": "GeoJSON", ".fgb": "FlatGeobuf"}
 #: Files a Shapefile is made of (written and replaced together).
 SHAPEFILE_PARTS = (".shp", ".shx", ".dbf", ".prj", ".cpg")
+#: Spatial indexes beside a Shapefile (QGIS's and ESRI's), stale once the Shapefile is replaced.
+SHAPEFILE_INDEXES = (".qix", ".sbn", ".sbx")
 #: The point layer's name in a GeoPackage output.
 POINTS_LAYER = "svgtile"
 
@@ -339,6 +341,8 @@ def write_points(points: Points, out: str | Path, *, crs: str | None) -> None:
                 os.replace(part, out.with_name(out.stem + part.name[len(target.stem):]))
             if crs is None:  # a .prj left from an earlier run would claim a CRS
                 out.with_suffix(".prj").unlink(missing_ok=True)
+            for index in SHAPEFILE_INDEXES:  # a spatial index of the old points would hide the new
+                out.with_suffix(index).unlink(missing_ok=True)
         else:
             os.replace(target, out)
     except OutputError:
