@@ -158,7 +158,7 @@ def test_an_input_without_crs_gives_an_output_without_crs(tmp_path, tiny, capsys
 @pytest.mark.parametrize(
     ("select", "message"),
     [("#nolayer", "no layer 'nolayer' (the file has units)"), ("#units:9", "no feature with id 9"),
-     ("#units?nofield=1", "cannot read"), ("#units?unit='none'", "no Polygon or MultiPolygon feature selected")],
+     ("#units?nofield=1", "cannot read"), ("#units?unit='none'", "no feature where unit='none'")],
 )  # fmt: skip
 def test_bad_layer_input_is_one_line_and_no_output(tmp_path, tiny, capsys, select, message):
     units = write_units(tmp_path / "units.gpkg")
@@ -306,3 +306,93 @@ def test_qgis_fill_by_class_and_avoid_crs_check(tmp_path, tiny, capsys):
     assert rc == 1 and "is not the layer's" in err and "reproject" in err and not (tmp_path / "g.gpkg").exists()
     rc = main(["qgis", "fill", str(units), "--styles", str(tmp_path / "s.toml"), "--seed", "1", "-o", str(out)])
     assert rc == 1 and "needs --class-field" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["map", "qgis"])
+def test_an_avoid_layer_is_never_overwritten(tmp_path, tiny, capsys, command):
+    units = write_units(tmp_path / "units.gpkg")
+    roads = tmp_path / "roads.gpkg"
+    raw.write(roads, shapely.to_wkb(np.array([shapely.LineString([(90, 5), (130, 55)])])), [], [], layer="roads",
+              geometry_type="LineString", crs=CRS)  # fmt: skip
+    before = roads.read_bytes()
+    (tmp_path / "s.toml").write_text('class_property = "unit"\nseed = 4\n[classes.Qal]\nexemplar = "tiny.svg"\n')
+    args = (["map", str(units), "--styles", str(tmp_path / "s.toml")] if command == "map"
+            else ["qgis", "fill", str(units), "--exemplar", str(tiny), "--seed", "1"])  # fmt: skip
+    rc = main([*args, "--avoid", f"{roads}#roads", "-o", str(roads), "--jobs", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
+    assert roads.read_bytes() == before
+
+
+def test_an_avoid_layer_in_another_crs_is_refused_before_it_cuts_the_region(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    other = write_units(tmp_path / "other.gpkg", crs="EPSG:4326")  # its unit 1 covers the region in numbers
+    out = tmp_path / "t.gpkg"
+    rc = main(["synth", str(tiny), "--region", f"{units}#units:1", "--avoid", f"{other}#units:1", "-o", str(out), "--seed", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1 and "its CRS (EPSG:4326) is not the layer's (EPSG:32633)" in err and not out.exists()
+
+
+def test_symbols_never_overwrite_the_exemplar(tmp_path, tiny, capsys):
+    exemplar = tmp_path / "dot.svg"  # holds a kind "dot": FOLDER/dot.svg would be the exemplar itself
+    exemplar.write_bytes(tiny.read_bytes())
+    before = exemplar.read_bytes()
+    rc = main(["symbols", str(exemplar), "-o", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "refusing to overwrite an input file" in err
+    assert exemplar.read_bytes() == before and not (tmp_path / "bar.svg").exists()
+
+
+@pytest.mark.parametrize("blocker", ["t.qml/", "t-symbols"])
+def test_a_style_that_cannot_be_written_stops_before_the_layer(tmp_path, tiny, capsys, blocker):
+    """--with-style: OUT.qml a folder or OUT-symbols a file is one line, and no layer is written."""
+    units = write_units(tmp_path / "units.gpkg")
+    (tmp_path / blocker.rstrip("/")).mkdir() if blocker.endswith("/") else (tmp_path / blocker).write_text("")
+    out = tmp_path / "t.gpkg"
+    for args in (["synth", str(tiny), "--region", f"{units}#units:1", "--seed", "1"],
+                 ["qgis", "fill", str(units), "--exemplar", str(tiny), "--seed", "1", "--jobs", "1"]):  # fmt: skip
+        rc = main([*args, "-o", str(out), "--with-style"])
+        err = capsys.readouterr().err
+        assert rc == 1 and err.count("\n") == 1 and blocker.rstrip("/") in err
+        assert not out.exists()
+
+
+def test_qgis_install_keeps_a_latin1_ini_byte_for_byte(tmp_path, capsys):
+    profile = tmp_path / "profile"
+    (profile / "QGIS").mkdir(parents=True)
+    before = b"[General]\nname=caf\xe9\n\n[PythonPlugins]\nother=true\n"  # not UTF-8
+    (profile / "QGIS" / "QGIS3.ini").write_bytes(before)
+    assert main(["qgis", "install", "--profile", str(profile)]) == 0, capsys.readouterr().err
+    after = (profile / "QGIS" / "QGIS3.ini").read_bytes()
+    assert after == before.replace(b"[PythonPlugins]\n", b"[PythonPlugins]\nsvgtile_qgis=true\n")
+
+
+def test_kinds_sharing_a_symbol_file_name_are_refused(tmp_path, tiny, capsys):
+    """QGIS's style finds a kind's file by its name: 'a b' and 'a-b' cannot both be a-b.svg."""
+    text = tiny.read_text().replace('"dot"', '"a b"').replace('"#dot"', '"#a b"').replace('"bar"', '"a-b"')
+    exemplar = tmp_path / "clash.svg"
+    exemplar.write_text(text.replace('"#bar"', '"#a-b"'))
+    rc = main(["symbols", str(exemplar), "-o", str(tmp_path / "symbols")])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1 and "would share the symbol file a-b.svg" in err
+    assert not (tmp_path / "symbols").exists() or not any((tmp_path / "symbols").iterdir())
+
+
+def test_qgis_fill_says_a_tables_avoid_is_not_used(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    (tmp_path / "s.toml").write_text('avoid = ["labels"]\n[classes.Qal]\nexemplar = "tiny.svg"\n')
+    rc = main(["qgis", "fill", str(units), "--styles", str(tmp_path / "s.toml"), "--class-field", "unit",
+               "--seed", "1", "-o", str(tmp_path / "f.gpkg"), "--jobs", "1"])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 0 and "avoid = ['labels'] is not used here; give those layers as --avoid" in err
+
+
+def test_a_replaced_shapefile_loses_its_stale_spatial_index(tmp_path, tiny, capsys):
+    units = write_units(tmp_path / "units.gpkg")
+    out = tmp_path / "t.shp"
+    assert main(["synth", str(tiny), "--region", f"{units}#units:1", "-o", str(out), "--seed", "1"]) == 0
+    (tmp_path / "t.qix").write_bytes(b"an index of the old points")  # QGIS: Create Spatial Index
+    assert main(["synth", str(tiny), "--region", f"{units}#units:2", "-o", str(out), "--seed", "1"]) == 0
+    assert not (tmp_path / "t.qix").exists()
+    _, points, _ = read_points(out)
+    assert shapely.within(points, NEIGHBOUR).all()

@@ -136,6 +136,14 @@ def test_fill_polygons_with_texture_in_qgis(tmp_path, tiny, qgis_env):
     assert not ink[hy0:hy1, hx0:hx1].any()  # the hole stays empty
     (ux0, uy0), (ux1, uy1) = pixel(85, 55), pixel(135, 5)
     assert ink[uy0:uy1, ux0:ux1].mean() > 0.02  # the plain unit is filled with drawn motifs
+    # drawn with the exported symbols, not QGIS's stand-in for an SVG it cannot find (which would
+    # also leave ink): without the symbols folder the picture changes
+    (tmp_path / "texture-symbols").rename(tmp_path / "moved-symbols")
+    again = subprocess.run([SYSTEM_PYTHON, str(RENDER), "--gray", str(gray), str(png), str(width), str(height),
+                            str(out), str(units)], env=qgis_env, capture_output=True, text=True, timeout=TIMEOUT)  # fmt: skip
+    assert again.returncode == 0, again.stderr[-2000:]
+    stand_in = np.frombuffer(gray.read_bytes(), np.uint8).reshape(height, width)
+    assert (stand_in != pixels)[uy0:uy1, ux0:ux1].mean() > 0.01
 
 
 def test_a_failure_is_reported_and_writes_nothing(tmp_path, qgis_env):
@@ -150,3 +158,27 @@ def test_a_failure_is_reported_and_writes_nothing(tmp_path, qgis_env):
     assert done.returncode != 0
     assert f"svgtile: error: {bad}" in done.stdout + done.stderr
     assert not out.exists()
+
+
+PLUGIN_RUN = """
+import sys
+sys.path.insert(0, sys.argv[1])
+from qgis.core import QgsProcessingException, QgsProcessingFeedback
+from svgtile_qgis import algorithm
+warn = "import sys; sys.stderr.write('svgtile: warning: polygon 1 not filled: no motif fits\\\\n' * 5000)"
+algorithm.FillAlgorithm()._run([sys.executable, "-c", warn], QgsProcessingFeedback())
+try:
+    algorithm.FillAlgorithm()._run([sys.executable, "-c", warn + "; sys.exit('svgtile: error: x.gpkg: bad')"],
+                                   QgsProcessingFeedback())
+except QgsProcessingException as exc:
+    print("raised:", exc)
+"""
+
+
+def test_the_plugin_reads_any_amount_of_messages(tmp_path, qgis_env):
+    """svgtile's stderr is read while it runs: 300 kB of warnings (a layer of many unfilled
+    polygons) once filled the pipe and stalled the algorithm for ever."""
+    done = subprocess.run([SYSTEM_PYTHON, "-c", PLUGIN_RUN, str(RENDER.parents[1] / "qgis_ext")], env=qgis_env,
+                          capture_output=True, text=True, timeout=60)  # fmt: skip
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "raised: svgtile: error: x.gpkg: bad" in done.stdout

@@ -17,7 +17,6 @@ QGIS loads as its default style; the post-processor below applies it explicitly 
 import json
 import os
 import subprocess
-import time
 
 from qgis.core import (
     Qgis,
@@ -46,6 +45,7 @@ FORMATS = ["gpkg", "shp", "geojson", "fgb"]
 #: Single-layer formats: their spec never names a layer (``FILE.geojson#X`` means feature X).
 SINGLE_LAYER = (".shp", ".geojson", ".json", ".fgb")
 _KEEP = []  # post-processors must outlive processAlgorithm
+POLL = 0.1  # seconds between looks at the cancel button
 
 
 def load_config():
@@ -227,17 +227,19 @@ class FillAlgorithm(QgsProcessingAlgorithm):
     def _run(self, cmd, feedback):
         env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
         try:
-            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
+            proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
                                     text=True, env=env)
         except OSError as exc:
             raise self._fail(f"cannot run svgtile ({exc}); {REINSTALL}") from None
-        while proc.poll() is None:
-            if feedback.isCanceled():
-                proc.kill()
-                proc.wait()
-                raise self._fail("canceled")
-            time.sleep(0.1)
-        _, err = proc.communicate()
+        while True:  # read stderr as it comes: a full pipe (many warnings) would stall svgtile for ever
+            try:
+                _, err = proc.communicate(timeout=POLL)
+                break
+            except subprocess.TimeoutExpired:  # retrying loses no output
+                if feedback.isCanceled():
+                    proc.kill()
+                    proc.communicate()
+                    raise self._fail("canceled") from None
         lines = [line for line in err.splitlines() if line.strip()]
         for line in lines:
             feedback.pushInfo(line)

@@ -24,7 +24,7 @@ from svgtile.apps.load import load_exemplar
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.errors import OutputError
-from svgtile.files import write_file
+from svgtile.files import check_output, write_file
 from svgtile.gis import geojson, layers
 from svgtile.gis.symbols import file_stem, qml_style, symbol_documents
 
@@ -38,8 +38,23 @@ def style_paths(out: str | Path) -> tuple[Path, Path]:
     return out.with_suffix(".qml"), out.with_name(out.stem + "-symbols")
 
 
-def write_symbols(exemplar: Exemplar, folder: str | Path) -> list[Path]:
-    """Write each kind of ``exemplar`` as ``folder/KIND.svg`` (:func:`symbol_documents`); the folder is made."""
+def check_style(out: str | Path, *, protect: tuple = ()) -> None:
+    """Raise :class:`OutputError` now, before the work, if :func:`write_style` could not write
+    ``OUT.qml`` and ``OUT-symbols/`` beside ``out`` (so a failing style never follows a written
+    layer)."""
+    qml, folder = style_paths(out)
+    check_output(qml, protect=protect)
+    if folder.exists() and not folder.is_dir():
+        raise OutputError("exists and is not a folder", source=str(folder))
+
+
+def write_symbols(exemplar: Exemplar, folder: str | Path, *, protect: tuple = ()) -> list[Path]:
+    """Write each kind of ``exemplar`` as ``folder/KIND.svg`` (:func:`symbol_documents`); the folder is made.
+
+    Every file is checked before the first is written, so a symbol named like an input (``protect``:
+    the exemplar ``dot.svg`` holding a kind ``dot``, written into its own folder) stops the run
+    with nothing written.
+    """
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise OutputError("exists and is not a folder", source=str(folder))
@@ -47,20 +62,22 @@ def write_symbols(exemplar: Exemplar, folder: str | Path) -> list[Path]:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise OutputError(f"cannot make the folder ({exc.strerror or exc})", source=str(folder)) from None
-    written = []
-    for name, text in symbol_documents(exemplar).items():
-        write_file(text, folder / name)
-        written.append(folder / name)
-    return written
+    documents = symbol_documents(exemplar)
+    for name in documents:
+        check_output(folder / name, protect=protect)
+    for name, text in documents.items():
+        write_file(text, folder / name, protect=protect)
+    return [folder / name for name in documents]
 
 
-def write_style(out: str | Path, exemplars: dict[str | None, Exemplar]) -> Path:
+def write_style(out: str | Path, exemplars: dict[str | None, Exemplar], *, protect: tuple = ()) -> Path:
     """The symbols and QGIS style of the placements file ``out`` (see the module docstring).
 
     Parameters
     ----------
     out : the placements file
     exemplars : ``{None: exemplar}`` for ``synth``; ``{class: exemplar}`` for ``map``
+    protect : the inputs, never overwritten
 
     Returns
     -------
@@ -69,8 +86,8 @@ def write_style(out: str | Path, exemplars: dict[str | None, Exemplar]) -> Path:
     qml, folder = style_paths(out)
     by_class = None not in exemplars
     for cls, ex in sorted(exemplars.items(), key=lambda item: str(item[0])):
-        write_symbols(ex, folder / file_stem(cls) if by_class else folder)
-    write_file(qml_style(str(folder.resolve()), by_class=by_class), qml)
+        write_symbols(ex, folder / file_stem(cls) if by_class else folder, protect=protect)
+    write_file(qml_style(str(folder.resolve()), by_class=by_class), qml, protect=protect)
     return qml
 
 
@@ -79,17 +96,21 @@ def write_style(out: str | Path, exemplars: dict[str | None, Exemplar]) -> Path:
 Part = tuple[Exemplar, Arrangement, "str | None", "str | None"]
 
 
-def map_parts(result: MapFill) -> list[Part]:
-    """The parts of a map fill: each filled region with its class's exemplar, in region order."""
-    exemplars: dict[str, Exemplar] = {}
-    parts = []
-    for r, arr in zip(result.regions, result.results, strict=True):
-        if arr is None:
-            continue
-        if r.cls not in exemplars:
-            exemplars[r.cls] = load_exemplar(str(result.styles.classes[r.cls].exemplar))[0]
-        parts.append((exemplars[r.cls], arr, r.ident, r.cls))
-    return parts
+def filled_exemplars(result: MapFill) -> dict[str, Exemplar]:
+    """The exemplar of each class at least one region of a map fill was filled with, by class
+    (sorted), each loaded once: what :func:`map_parts` and :func:`write_style` need."""
+    used = sorted({r.cls for r, arr in zip(result.regions, result.results, strict=True) if arr is not None})
+    return {cls: load_exemplar(str(result.styles.classes[cls].exemplar))[0] for cls in used}
+
+
+def map_parts(result: MapFill, exemplars: dict[str, Exemplar] | None = None) -> list[Part]:
+    """The parts of a map fill: each filled region with its class's exemplar, in region order.
+
+    ``exemplars`` is :func:`filled_exemplars` of ``result`` (loaded here if None).
+    """
+    exemplars = filled_exemplars(result) if exemplars is None else exemplars
+    return [(exemplars[r.cls], arr, r.ident, r.cls)
+            for r, arr in zip(result.regions, result.results, strict=True) if arr is not None]  # fmt: skip
 
 
 def collection(parts: list[Part]) -> dict:
@@ -139,7 +160,5 @@ def write_placements(parts: list[Part], out: str | Path, *, crs: str | None, pro
     if str(out) == "-" or (layers.DRIVERS.get(Path(out).suffix.lower()) == "GeoJSON" and crs is None):
         write_file(geojson.placements_text(collection(parts)), out, protect=protect)
         return
-    from svgtile.files import check_output
-
     check_output(out, protect=protect)
     layers.write_points(points(parts), out, crs=crs)

@@ -380,6 +380,30 @@ def fill_map(
     zone = avoid_zone(path, doc, styles.avoid + tuple(avoid), styles.avoid_margin)
     used = {r.cls for r in regions}
     warnings = [f"{styles.source}: class {c!r} matches no region of {path}" for c in sorted(set(styles.classes) - used)]
+    results, errors, filled = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, progress=progress,
+                                           max_motifs=max_motifs, scheduler=scheduler, tile_size=tile_size,
+                                           sink=sink, bar=bar)  # fmt: skip
+    return MapFill(regions, results, errors, doc, warnings, styles, filled)
+
+
+def fill_regions(
+    regions: list[MapRegion], zone: shapely.Geometry | None, styles: Styles, *, seed: int, jobs: int | None = None,
+    progress: Progress | None = None, max_motifs: float = math.inf, scheduler: str = "local",
+    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False,
+) -> tuple[list[Arrangement | None], dict[str, str], list[bool]]:  # fmt: skip
+    """Fill each region with its class's style, on Dask (:func:`fill_map`'s work).
+
+    Parameters
+    ----------
+    regions : the regions, map units; ``zone`` the avoid zones (map units) or None
+    seed, jobs, progress, max_motifs, scheduler, tile_size, sink, bar : as for :func:`fill_map`
+
+    Returns
+    -------
+    The motifs of each region (None where it failed, or where they went to ``sink``),
+    ``{ident: message}`` of the failures (regions, and tiles as ``"ID tile I,J"``), and which
+    regions were written (:attr:`MapFill.filled`).
+    """
     results: list[Arrangement | None] = [None] * len(regions)
     filled = [False] * len(regions)
     errors: dict[str, str] = {}
@@ -436,4 +460,4 @@ def fill_map(
             region_done(n)
 
     run(units, done, scheduler=scheduler, workers=min(jobs or default_jobs(), max(len(units), 1)), progress=bar)
-    return MapFill(regions, results, errors, doc, warnings, styles, filled)
+    return results, errors, filled

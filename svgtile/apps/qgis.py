@@ -14,7 +14,6 @@ public parameters (:func:`plugin_config`), from which the plugin builds its dial
 
 from __future__ import annotations
 
-import concurrent.futures
 import json
 import math
 import os
@@ -24,7 +23,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from svgtile.apps.load import load_exemplar
-from svgtile.apps.mapfill import MapFill, Style, Styles, _task, read_styles
+from svgtile.apps.mapfill import MapFill, Style, Styles, fill_regions, read_styles
 from svgtile.apps.mapread import AVOID_MARGIN, MapRegion, read_avoid_shape
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import ENGINES, engines_with, public_params
@@ -88,24 +87,25 @@ def plugin_config(python: str | None = None) -> dict:
 def enable_plugin(profile: Path) -> None:
     """Mark the plugin enabled in the profile's ``QGIS/QGIS3.ini`` (``[PythonPlugins] svgtile_qgis=true``).
 
-    Only that one line is added or changed; the rest of the file is kept as it is.
+    Only that one line is added or changed; the rest of the file is kept byte for byte (it is
+    handled as bytes: Qt writes it in whatever encoding the platform's settings used).
     """
     ini = profile / "QGIS" / "QGIS3.ini"
-    lines = ini.read_text(encoding="utf-8").splitlines() if ini.is_file() else []
-    entry = f"{PLUGIN}=true"
+    lines = ini.read_bytes().splitlines() if ini.is_file() else []
+    entry = f"{PLUGIN}=true".encode()
     try:
-        start = lines.index("[PythonPlugins]")
+        start = lines.index(b"[PythonPlugins]")
     except ValueError:
-        lines += ([""] if lines else []) + ["[PythonPlugins]", entry]
+        lines += ([b""] if lines else []) + [b"[PythonPlugins]", entry]
     else:
-        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("[")), len(lines))
-        mine = [i for i in range(start + 1, end) if lines[i].split("=", 1)[0].strip() == PLUGIN]
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith(b"[")), len(lines))
+        mine = [i for i in range(start + 1, end) if lines[i].split(b"=", 1)[0].strip() == PLUGIN.encode()]
         if mine:
             lines[mine[0]] = entry
         else:
             lines.insert(start + 1, entry)
     ini.parent.mkdir(parents=True, exist_ok=True)
-    write_file("\n".join(lines) + "\n", ini)
+    write_file(b"\n".join(lines) + b"\n", ini)
 
 
 def install(profile: str | Path | None = None, *, python: str | None = None) -> Path:
@@ -172,8 +172,8 @@ def fill(
 
     Returns
     -------
-    The fill (regions that failed have ``None`` results and an entry in ``errors``), and the
-    layer's CRS.
+    The fill (regions that failed have ``None`` results and an entry in ``errors``; ``warnings``
+    names a table's ``avoid``, which is not used), and the layer's CRS.
 
     Raises
     ------
@@ -203,12 +203,9 @@ def fill(
         import shapely
 
         zone = shapely.union_all([read_avoid_shape(a, avoid_margin) for a in avoid])
-    tasks = [(r.ident, r.shape, zone, styles.classes[r.cls], seed, max_motifs) for r in regions]
-    if jobs > 1 and len(tasks) > 1:
-        with concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(tasks))) as pool:
-            done = list(pool.map(_task, *zip(*tasks, strict=True)))
-    else:
-        done = [_task(*t) for t in tasks]
-    errors = {ident: err for ident, _, err in done if err is not None}
-    return MapFill(regions, [arr for _, arr, _ in done], errors, None, [], styles), crs
+    results, errors, filled = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, max_motifs=max_motifs)
+    warnings = []
+    if styles_file is not None and styles.avoid:  # ids in a map, or files: the dialog gives layers
+        warnings.append(f"{styles_file}: its avoid = {list(styles.avoid)} is not used here; give those layers as --avoid")
+    return MapFill(regions, results, errors, None, warnings, styles, filled), crs
 

@@ -18,6 +18,7 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
 from svgtile.engines.base import EngineParams
 from svgtile.errors import ParameterError
+from svgtile.gis.layers import is_gis
 
 
 def parse_size(text: str) -> tuple[float, float]:
@@ -118,6 +119,14 @@ def output_format(output: str, allowed: tuple[str, ...] = ("svg", "geojson", "pn
 
         require_renderer()
     return fmt
+
+
+def spec_files(specs) -> tuple[Path, ...]:
+    """The files that region, map or avoid specs read (``FILE#…`` -> ``FILE``), to protect as inputs.
+
+    A bare id (an element of ``svgtile map``'s own SVG map) names no file.
+    """
+    return tuple(Path(s.partition("#")[0]) for s in specs if s and ("#" in s or is_gis(s)))
 
 
 def default_boundary(kind: str, boundary: str | None) -> str:

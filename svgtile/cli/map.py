@@ -9,11 +9,24 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import map_parts, write_placements, write_style
+from svgtile.apps.gisout import (
+    check_style,
+    filled_exemplars,
+    map_parts,
+    write_placements,
+    write_style,
+)
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import default_jobs, fill_map, read_styles
 from svgtile.apps.mapwrite import BandWriter, class_prefix, write_map_svg
-from svgtile.cli.common import POINT_FORMATS, Stderr, default_boundary, output_format, warn
+from svgtile.cli.common import (
+    POINT_FORMATS,
+    Stderr,
+    default_boundary,
+    output_format,
+    spec_files,
+    warn,
+)
 from svgtile.engines import engines_with, public_params
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file
@@ -85,10 +98,13 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
     if refine is not None:
         styles = dataclasses.replace(styles, classes={c: s if s.refine is not None else dataclasses.replace(s, refine=refine)
                                                       for c, s in styles.classes.items()})  # fmt: skip
-    inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()))
+    inputs = (Path(map_file), Path(styles_file), *(s.exemplar for s in styles.classes.values()),
+              *spec_files((*styles.avoid, *avoid)))  # fmt: skip
     if output != "-" and any(same_file(output, p) for p in inputs):
         raise ParameterError(f"{output}: refusing to overwrite an input file")
     check_output(output, protect=inputs)
+    if with_style:
+        check_style(output, protect=inputs)
     own = {s.seed for s in styles.classes.values()}
     if seed is not None and None not in own:
         warn(f"--seed {seed} is not used: every class has a seed in {styles_file} (a top-level seed is every class's)")
@@ -107,10 +123,10 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
         _warn_about(result)
-        write_placements(map_parts(result), output, crs=crs, protect=inputs)
+        exemplars = filled_exemplars(result)
+        write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
         if with_style:
-            used = {r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None}
-            write_style(output, {c: load_exemplar(str(styles.classes[c].exemplar))[0] for c in sorted(used)})
+            write_style(output, exemplars, protect=inputs)
     else:  # an SVG map is streamed: each band spooled as it is done, the file assembled in world order
         folder = None if output == "-" else str(Path(output).resolve().parent)
         with Spool(folder) as spool:

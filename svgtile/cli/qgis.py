@@ -7,11 +7,17 @@ from pathlib import Path
 import click
 
 from svgtile.apps import qgis as qg
-from svgtile.apps.gisout import map_parts, write_placements, write_style
-from svgtile.apps.load import MAX_MOTIFS, load_exemplar
+from svgtile.apps.gisout import (
+    check_style,
+    filled_exemplars,
+    map_parts,
+    write_placements,
+    write_style,
+)
+from svgtile.apps.load import MAX_MOTIFS
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import AVOID_MARGIN
-from svgtile.cli.common import POINT_FORMATS, engine_options, output_format, warn
+from svgtile.cli.common import POINT_FORMATS, engine_options, output_format, spec_files, warn
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import get_engine, make_params
 from svgtile.errors import ParameterError, SvgtileError
@@ -77,21 +83,24 @@ def fill(layer, output, exemplar, styles_file, class_field, engine, boundary, un
         raise ParameterError(f"{output}: give a GIS file (.gpkg, .shp, .fgb, .geojson)")
     given = {k: v for k, v in values.items() if v is not None}
     params = make_params(get_engine(engine), given) if exemplar else None
-    inputs = tuple(Path(p) for p in (layer.partition("#")[0], exemplar, styles_file) if p)
+    inputs = (*(Path(p) for p in (exemplar, styles_file) if p), *spec_files((layer, *avoid)))
     check_output(output, protect=inputs)
+    if with_style:
+        check_style(output, protect=inputs)
     result, crs = qg.fill(layer, exemplar=exemplar, styles_file=styles_file, class_field=class_field, engine=engine,
                           params={} if params is None else {k: getattr(params, k) for k in given}, boundary=boundary,
                           unit=unit, seed=seed, avoid=avoid, avoid_margin=avoid_margin, jobs=jobs or default_jobs(),
                           max_motifs=MAX_MOTIFS)  # fmt: skip
+    for message in result.warnings:
+        warn(message)
     for ident, message in result.errors.items():
         warn(f"polygon {ident} not filled: {message}")
     if result.errors and len(result.errors) == len(result.regions):
         raise SvgtileError(f"no polygon was filled ({next(iter(result.errors.values()))}); nothing written", source=layer)
-    write_placements(map_parts(result), output, crs=crs, protect=inputs)
-    if with_style:
-        used = sorted({r.cls for r, a in zip(result.regions, result.results, strict=True) if a is not None})
-        exemplars = {c: load_exemplar(str(result.styles.classes[c].exemplar))[0] for c in used}
-        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))} if exemplars else {})
+    exemplars = filled_exemplars(result)
+    write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
+    if with_style:  # one exemplar: one symbols folder, whatever the class field says
+        write_style(output, exemplars if styles_file else {None: next(iter(exemplars.values()))}, protect=inputs)
     if result.errors:
         raise SvgtileError(f"{len(result.errors)} of {len(result.regions)} polygons failed (see the warnings); "
                            f"the others were written", source=str(output))  # fmt: skip

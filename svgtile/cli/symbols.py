@@ -29,6 +29,6 @@ def symbols_cmd(exemplar, folder, as_tile):
     file is FOLDER/KIND.svg, its size the 'size' field in map units, its rotation 'angle'.
     """
     ex, _ = load(exemplar, as_tile=as_tile)
-    written = write_symbols(ex, folder)
-    write_file(qml_style(str(Path(folder).resolve())), Path(folder) / STYLE_NAME)
+    written = write_symbols(ex, folder, protect=(exemplar,))
+    write_file(qml_style(str(Path(folder).resolve())), Path(folder) / STYLE_NAME, protect=(exemplar,))
     click.echo(f"svgtile: wrote {len(written)} symbols and {STYLE_NAME} in {folder}", err=True)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from svgtile.apps.gisout import write_placements, write_style
+from svgtile.apps.gisout import check_style, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import synth_region
@@ -25,6 +25,7 @@ from svgtile.cli.common import (
     parse_size,
     png_width,
     progress_line,
+    spec_files,
     warn,
 )
 from svgtile.core.region import BOUNDARY_MODES
@@ -73,6 +74,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
     with id="region" (else the viewBox) is the area the motifs were drawn in.
     """
+    # before the region is cut by its avoid zones: an avoid layer in another CRS would mislead that
+    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     region = synth_region(parse_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
@@ -80,12 +83,13 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     boundary = default_boundary(kind, boundary)
     if with_style and (kind not in POINT_FORMATS or output == "-"):
         raise ParameterError("--with-style goes with a GIS output file (.gpkg, .shp, .fgb, .geojson)")
-    crs = common_crs(region_spec, [a for a in avoid if is_gis(a)])  # checked for any output
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
     # every input file is protected: the exemplar, and the files of --region and --avoid
-    inputs = (Path(exemplar), *(Path(spec.partition("#")[0]) for spec in (region_spec or "", *avoid) if spec))
+    inputs = (Path(exemplar), *spec_files((region_spec or "", *avoid)))
     check_output(output, protect=inputs)  # fail before the work, not after
+    if with_style:
+        check_style(output, protect=inputs)
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if seed is None:
@@ -106,7 +110,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if kind in POINT_FORMATS:
         write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=inputs)
         if with_style:
-            write_style(output, {None: ex})
+            write_style(output, {None: ex}, protect=inputs)
         return
     data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
     if kind == "png":

@@ -44,6 +44,8 @@ from svgtile.gis.geojson import COORD_DECIMALS, VALUE_DECIMALS, Feature
 DRIVERS = {".gpkg": "GPKG", ".shp": "ESRI Shapefile", ".geojson": "GeoJSON", ".json": "GeoJSON", ".fgb": "FlatGeobuf"}
 #: Files a Shapefile is made of (written and replaced together).
 SHAPEFILE_PARTS = (".shp", ".shx", ".dbf", ".prj", ".cpg")
+#: Spatial indexes beside a Shapefile (QGIS's and ESRI's), stale once the Shapefile is replaced.
+SHAPEFILE_INDEXES = (".qix", ".sbn", ".sbx")
 #: The point layer's name in a GeoPackage output.
 POINTS_LAYER = "svgtile"
 
@@ -100,16 +102,11 @@ def parse_spec(spec: str | Path) -> Spec:
 
 def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[dict, np.ndarray, np.ndarray, list]:
     """(meta, fids, WKB geometries, field arrays) of the features ``spec`` selects."""
-    import pyogrio
     from pyogrio import raw
     from pyogrio.errors import DataLayerError, DataSourceError, FieldError, GeometryError
 
-    if not spec.path.is_file() and not spec.path.is_dir():
-        raise RegionError("no such file", source=source)
     try:
-        if spec.layer is not None and spec.layer not in [name for name, _ in pyogrio.list_layers(spec.path)]:
-            names = ", ".join(name for name, _ in pyogrio.list_layers(spec.path))
-            raise RegionError(f"no layer {spec.layer!r} (the file has {names})", source=source)
+        _check_layer(spec, source)
         meta, fids, geometry, fields = raw.read(
             spec.path, layer=spec.layer, where=spec.where, fids=None if spec.fid is None else [spec.fid],
             columns=columns, return_fids=True, force_2d=True,
@@ -126,7 +123,22 @@ def _read(spec: Spec, source: str, columns: list[str] | None = None) -> tuple[di
         raise RegionError(f"cannot read ({type(exc).__name__}: {' '.join(str(exc).split())})", source=source) from None
     if spec.fid is not None and len(fids) == 0:
         raise RegionError(f"no feature with id {spec.fid}", source=source)
+    if spec.where is not None and len(fids) == 0:
+        raise RegionError(f"no feature where {spec.where}", source=source)
     return meta, np.asarray(fids), np.asarray(geometry, dtype=object), list(fields)
+
+
+def _check_layer(spec: Spec, source: str) -> None:
+    """RegionError unless ``spec``'s file exists and has its layer (if it names one); GDAL's own
+    errors pass through."""
+    import pyogrio
+
+    if not spec.path.is_file() and not spec.path.is_dir():
+        raise RegionError("no such file", source=source)
+    if spec.layer is not None:
+        names = [name for name, _ in pyogrio.list_layers(spec.path)]
+        if spec.layer not in names:
+            raise RegionError(f"no layer {spec.layer!r} (the file has {', '.join(names)})", source=source)
 
 
 def _gdal_message(exc: BaseException) -> str:
@@ -148,7 +160,10 @@ def crs_of(spec: str | Path | None) -> str | None:
     import pyogrio
 
     try:
+        _check_layer(s, str(spec))
         return pyogrio.read_info(s.path, layer=s.layer).get("crs")
+    except RegionError:
+        raise
     except Exception as exc:
         raise RegionError(f"cannot read ({_gdal_message(exc)})", source=str(spec)) from None
 
@@ -326,6 +341,8 @@ def write_points(points: Points, out: str | Path, *, crs: str | None) -> None:
                 os.replace(part, out.with_name(out.stem + part.name[len(target.stem):]))
             if crs is None:  # a .prj left from an earlier run would claim a CRS
                 out.with_suffix(".prj").unlink(missing_ok=True)
+            for index in SHAPEFILE_INDEXES:  # a spatial index of the old points would hide the new
+                out.with_suffix(index).unlink(missing_ok=True)
         else:
             os.replace(target, out)
     except OutputError:

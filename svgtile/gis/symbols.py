@@ -23,6 +23,7 @@ import numpy as np
 
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
+from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
 from svgtile.svg.numbers import fmt
 from svgtile.svg.writer import use_elements
@@ -61,8 +62,10 @@ def symbol_documents(exemplar: Exemplar) -> dict[str, str]:
         use = use_elements(one, exemplar.kinds, indent="  ")[0]
         defs_text = "".join(ET.tostring(el, encoding="unicode") for el in _as_groups(defs, kind))
         name = file_stem(kind.name) + ".svg"
-        if name in out:  # two kind names that differ only in unsafe characters
-            name = f"{file_stem(kind.name)}-{k}.svg"
+        if name in out:  # QGIS's expression finds a file by the kind's name: one file per name
+            other = next(j.name for j in exemplar.kinds if file_stem(j.name) + ".svg" == name)
+            raise ExemplarError(f"kinds {other!r} and {kind.name!r} would share the symbol file {name} "
+                                "(names differ only in characters a file name cannot hold); rename one", source=exemplar.source)  # fmt: skip
         out[name] = (
             '<?xml version="1.0" encoding="UTF-8"?>\n'
             f'<svg xmlns="{SVG_NS}" xmlns:xlink="{XLINK_NS}" width="{side}" height="{side}" '
