@@ -12,8 +12,9 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
 3. **group** — pieces are joined into motifs on a 3 × 3 block of tiles, so that motifs cut at
    an edge are reassembled: footprints that touch or overlap belong together, and so do two
    pieces closer than :data:`JOIN_RATIO` times the smaller one's size (729's pairs of parallel
-   lines), and subpaths of one element closer than :data:`ELEMENT_JOIN` times the pattern's
-   spacing (an icon drawn as one ``<path>`` stays whole); a group that reaches its own repeat is a continuous line or hatching, and the pattern
+   lines), and subpaths of one icon (an element spanning at most :data:`ICON_SPAN` of the tile)
+   closer than :data:`ELEMENT_JOIN` times the pattern's spacing (an icon drawn as one ``<path>``
+   stays whole); a group that reaches its own repeat is a continuous line or hatching, and the pattern
    is refused (:class:`TileRefused`);
 4. **pick** — each part of the periodic pattern is kept once (the copy whose lowest piece
    lies in the central tile) and moved by whole periods so its centroid is in the tile;
@@ -64,6 +65,8 @@ KIND_TOLERANCE = 0.08
 #: spacing, ``√(tile area / pieces)``, are one motif.  Icons measured 0.04–0.06; the dashes FGDC
 #: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.
 ELEMENT_JOIN = 0.15
+#: … when the element is an icon: its subpaths span at most this share of the tile each way.
+ICON_SPAN = 0.5
 #: Gaps below this share of the tile's size count as touching (coordinates are rounded in files).
 TOUCH = 2e-4
 #: … and so do gaps below this share of the smaller piece's size (the square root of its box's
@@ -168,7 +171,7 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     copy = np.repeat(np.arange(9), n)
     lines = _Lines.of(tile, idx, np.tile(shift, (9, 1)) + np.repeat(OFFSETS * period, n, axis=0), 9)
     # subpaths of one element (an icon drawn as one <path>) in one copy, and the spacing of pieces
-    element = tile.element[idx][base] * 9 + copy
+    element = np.where(_icons(tile, idx)[base], tile.element[idx][base] * 9 + copy, -1 - np.arange(len(base)))
     spacing = float(np.sqrt(w * h / n))
     comp = _components(block, lines, scale=float(max(w, h)), element=element, near=ELEMENT_JOIN * spacing)
     _refuse_continuous(tile, idx, comp, base, copy)
@@ -249,6 +252,22 @@ def _unique_pieces(tile: TilePieces, shift: np.ndarray) -> np.ndarray:
             seen.add(key)
             keep[i] = True
     return keep
+
+
+def _icons(tile: TilePieces, idx: np.ndarray) -> np.ndarray:
+    """(n,) bool for the pieces ``idx``: the piece is a subpath of an *icon*, an element whose
+    subpaths together span at most :data:`ICON_SPAN` of the tile each way.  A path that spans
+    the tile is a pattern drawn in one path (FGDC 305-K's dashes, osm-carto's flattened
+    jsdotpattern fills), whose subpaths are motifs of their own."""
+    bounds = shapely.bounds(tile.footprint)
+    el = tile.element
+    k = int(el.max(initial=-1)) + 1
+    lo = np.full((k, 2), np.inf)
+    hi = np.full((k, 2), -np.inf)
+    np.minimum.at(lo, el, bounds[:, :2])
+    np.maximum.at(hi, el, bounds[:, 2:])
+    span = (hi - lo) / np.array(tile.box[2:])
+    return (span <= ICON_SPAN).all(axis=1)[el[idx]]
 
 
 def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, element: np.ndarray | None = None,
