@@ -173,13 +173,14 @@ class PatchEngine:
         rules = [junction_distance(exemplar, stats, q, gaps) for q in steps]
         priority = p.coherence * _from_centre(exemplar)[cell[:, 2]] + (1 - p.coherence) * uniform_at(key, _PRIORITY, cell)
         copy = np.unique(cell[:, :2], axis=0, return_inverse=True)[1].ravel()
-        keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy, junction=rules[0])
+        # copies of a tile on its own period, unturned, are the pattern itself: its pairs across
+        # the seams are the pattern's own, which the junction rule (a gap quantile) would thin,
+        # and its density holds everywhere, which window-by-window repair would only disturb
+        exact = p.grid == "lattice" and exemplar.period is not None and p.max_rotation == 0 and not p.vary_orientation
+        keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy,
+                       junction=stats.distance if exact else rules[0])  # fmt: skip
         arr = arr.take(keep)
-
-        if p.grid == "lattice" and exemplar.period is not None and p.max_rotation == 0 and not p.vary_orientation:
-            # copies of a tile on its own period, unturned, are the pattern itself: its density
-            # holds everywhere, and window-by-window repair would only remove motifs from
-            # windows that cut the pattern's rows unevenly
+        if exact:
             return arr
         return adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
 
