@@ -135,7 +135,7 @@ class FillWithTexture(inkex.EffectExtension):
     def add_arguments(self, pars):
         pars.add_argument("--tab", default="options")
         pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "optimize"])
-        pars.add_argument("--grid", default="square", choices=["square", "hex"])
+        pars.add_argument("--grid", default="square", choices=["square", "hex", "lattice"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--junction", type=float, default=0.6)

@@ -421,3 +421,31 @@ def test_shape_blown_up_by_a_transform_is_refused():
            '<g transform="scale(1e150)"><circle r="1"/></g><circle cx="5" cy="5" r="1"/></svg>')  # fmt: skip
     with pytest.raises(ExemplarError, match="degenerate viewBox or transform"):
         parse_tile(svg, source="t.svg")
+
+
+# ----------------------------------------------------------------------------- whole icons (issue 12.5)
+
+
+def test_subpaths_of_one_path_stay_one_icon_unless_they_stand_apart():
+    """A paw drawn as one <path> of a pad and four toes is one motif; dashes drawn as one
+    <path> of subpaths a pattern spacing apart stay separate motifs."""
+    paw = ('<path d="M4 5 h2 v1.6 h-2 z M3.6 3.9 h0.6 v0.6 h-0.6 z M4.5 3.5 h0.6 v0.6 h-0.6 z '
+           'M5.4 3.5 h0.6 v0.6 h-0.6 z M6.3 3.9 h0.6 v0.6 h-0.6 z" fill="#000"/>')  # fmt: skip
+    t = tile(paw)
+    assert len(t.kind) == 1
+    dashes = '<path d="M1 2 h2 M6 2 h2 M1 7 h2 M6 7 h2" stroke="#000" stroke-width="0.3"/>'
+    assert len(tile(dashes).kind) == 4
+
+
+@needs_data
+@pytest.mark.parametrize(("name", "motifs", "kinds"), [("dog_park", 2, 1), ("grave_yard_muslim", 1, 1)])
+def test_osm_icons_are_imported_whole(name, motifs, kinds):
+    t = import_tile(DATA / "osm-carto" / "patterns" / f"{name}.svg")
+    assert (len(t.kind), int(t.kind.max()) + 1) == (motifs, kinds)
+
+
+@needs_data
+def test_fgdc_626_pieces_that_almost_touch_are_one_motif_and_nothing_overlaps():
+    t = import_tile(FGDC / "626.svg")
+    stats = analyze(parse_exemplar(t.text, source="626.svg"))
+    assert stats.overlaps == 0

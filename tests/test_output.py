@@ -386,8 +386,9 @@ def test_dash_reports_a_reader_that_left(monkeypatch):
 # ----------------------------------------------------------------------------- golden files
 
 GOLDEN_RUNS = {
-    "tiny-60x40-square-seed1.svg": ["--grid", "square", "--seed", "1"],
-    "tiny-60x40-hex-seed2.svg": ["--grid", "hex", "--seed", "2", "--max-rotation", "45"],
+    "tiny-60x40-square-seed1.svg": ["--engine", "patch", "--grid", "square", "--seed", "1"],
+    "tiny-60x40-hex-seed2.svg": ["--engine", "patch", "--grid", "hex", "--seed", "2", "--max-rotation", "45"],
+    "tiny-60x40-auto-seed3.svg": ["--seed", "3"],  # the default engine, auto (issue 12)
 }
 
 
@@ -398,7 +399,11 @@ def test_golden(tmp_path, capsys, update_golden, name):
     src.write_text(TINY)
     out = tmp_path / name
     assert main(["synth", str(src), "-o", str(out), "--size", "60x40", *GOLDEN_RUNS[name]]) == 0
-    assert capsys.readouterr().err == ""
+    err = capsys.readouterr().err
+    if "--engine" in GOLDEN_RUNS[name]:
+        assert err == ""
+    else:  # auto says what it chose, in one line
+        assert err.startswith("svgtile: auto: engine patch") and err.count("\n") == 1
     golden = GOLDEN / name
     if update_golden:
         golden.write_bytes(out.read_bytes())

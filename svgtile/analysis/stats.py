@@ -12,6 +12,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from svgtile.analysis.classes import pooled_distance, shape_classes
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import (
@@ -63,6 +64,9 @@ class Stats:
 def analyze(exemplar: Exemplar) -> Stats:
     """Compute :class:`Stats` for an exemplar.
 
+    Kinds drawn once each are pooled into shape classes for the distance rule
+    (:mod:`svgtile.analysis.classes`, issue 12.3).
+
     For a repeating tile (``exemplar.period`` set) distances and overlaps are measured across the
     tile's edges (:func:`periodic_distance_matrix`); the density needs no correction there, since
     the tile holds exactly one copy of every motif of the pattern.
@@ -74,10 +78,12 @@ def analyze(exemplar: Exemplar) -> Stats:
         distance, measured, overlaps = distance_matrix(motifs, protos)
     else:
         distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
+    counts = np.bincount(motifs.kind, minlength=k)
+    # kinds drawn once each keep the distances of their shape class, not of their one instance
+    distance, measured = pooled_distance(distance, measured, shape_classes(protos, counts))
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
     start, width = orientation_arcs(motifs.angle, motifs.kind, k)
-    counts = np.bincount(motifs.kind, minlength=k)
     return Stats(
         distance=distance,
         measured=measured,
@@ -420,7 +426,7 @@ def junction_distance(
     ``Q_ij(q)`` the q-quantile of the footprint distances from each exemplar motif of kind i to
     its nearest other motif of kind j (:func:`nearest_gaps`; across the tile's edges for a
     repeating tile).  Where only one direction has :data:`GAP_MIN_SAMPLES` gaps, its quantile is
-    taken; where neither has, ``d_ij`` is kept; ``quantile = 0`` gives ``d_ij`` everywhere.  ``J``
+    taken; where neither has, or either kind is drawn once, ``d_ij`` is kept; ``quantile = 0`` gives ``d_ij`` everywhere.  ``J``
     is symmetric and ``J ≥ d``, so an arrangement that keeps ``J`` keeps the distance rule.
     ``gaps`` are :func:`exemplar_gaps`, if already measured.
     """
@@ -434,6 +440,11 @@ def junction_distance(
         for j in range(k):
             if len(gaps[i][j]) >= GAP_MIN_SAMPLES:
                 q[i, j] = np.quantile(gaps[i][j], quantile)
+    # a kind drawn once has gaps to *that one motif* only (dots to one breccia fragment: as far as
+    # the exemplar put them); its class's distance rule stands for it (analysis.classes)
+    once = np.bincount(exemplar.motifs.kind, minlength=k) == 1
+    q[once, :] = np.nan
+    q[:, once] = np.nan
     pair = np.fmin(q, q.T)  # nan only where neither direction was measured
     return np.where(np.isnan(pair), d, np.maximum(d, pair))
 

@@ -1,7 +1,7 @@
 """A legend sheet of a pattern set: per pattern, the tile repeated beside a synthesized texture.
 
 This is how a map maker reviews a whole symbol set (``svgtile swatches``): every tile is imported
-(:mod:`svgtile.tiles.importer`), synthesized with the patch engine on the same area as the repeated
+(:mod:`svgtile.tiles.importer`), synthesized with the default engine (``auto``) on the same area as the repeated
 tile, and drawn side by side at the same scale; a refused tile shows the reason instead.
 
 The sheet is one SVG: the original tile is a ``<pattern>`` of its own elements (ids prefixed so
@@ -182,7 +182,7 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
         check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
-        arr = synthesize(exemplar, region, "patch", seed=seed, stats=stats).arrangement
+        arr = synthesize(exemplar, region, "auto", seed=seed, stats=stats).arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None

@@ -7,16 +7,21 @@ import json
 import click
 import numpy as np
 
+from svgtile.analysis.order import read_order
 from svgtile.analysis.stats import Stats
 from svgtile.cli.common import json_safe, load
 from svgtile.core.exemplar import Exemplar
+from svgtile.engines import ENGINES
+from svgtile.engines.choose import choose
 
 
 @click.command(name="analyze")
 @click.argument("exemplar", type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
 def analyze_cmd(exemplar, as_json):
-    """Print what synthesis reproduces from EXEMPLAR: kinds, density, distances, orientations."""
+    """Print what synthesis reproduces from EXEMPLAR: kinds, density, distances, orientations,
+    and its order (rows, lattice, period, anisotropy, clustering, banding) with the engine
+    ``--engine auto`` picks for it."""
     ex, stats = load(exemplar)
     report = stats_report(ex, stats)
     if as_json:
@@ -29,6 +34,8 @@ def stats_report(ex: Exemplar, stats: Stats) -> dict:
     """The analysis as plain data (what ``analyze --json`` prints)."""
     x0, y0, x1, y1 = ex.region.bounds
     counts = np.bincount(ex.motifs.kind, minlength=len(ex.kinds))
+    order = read_order(ex)
+    picked = choose(ex, stats, order=order, available=ENGINES)
     return {
         "exemplar": ex.source,
         "region": {"bounds": [x0, y0, x1, y1], "area": ex.region.area},
@@ -48,6 +55,8 @@ def stats_report(ex: Exemplar, stats: Stats) -> dict:
         "distance": stats.distance.tolist(),
         "distance_measured": stats.measured.tolist(),
         "overlapping_pairs": stats.overlaps,
+        "order": order.to_dict(),
+        "auto": {"engine": picked.engine, "params": dict(picked.params), "rule": picked.rule, "why": picked.why},
     }
 
 
@@ -80,6 +89,24 @@ def format_report(r: dict) -> str:
             f"{v:>11.3f}{' ' if r['distance_measured'][i][j] else '*'}" for j, v in enumerate(row)
         )
         lines.append(f"  {names[i]:<12}{cells}")
+    lines += ["", *format_order(r["order"]), f"auto          {r['auto']['why']} -> --engine {r['auto']['engine']}"
+              + "".join(f" --{k.replace('_', '-')} {v:g}" if isinstance(v, float) else f" --{k.replace('_', '-')} {v}"
+                        for k, v in r["auto"]["params"].items())]  # fmt: skip
     if r["overlapping_pairs"]:
         lines.append(f"\nwarning: {r['overlapping_pairs']} overlapping pair(s) in the exemplar")
     return "\n".join(lines)
+
+
+def format_order(o: dict) -> list[str]:
+    """The order lines of ``svgtile analyze`` (:func:`svgtile.analysis.order.read_order`)."""
+    steps = "; ".join(f"{s['length']:.4g} at {s['angle']:.1f}° (support {s['support']:.2f})" for s in o["steps"])
+    what = {"lattice": "a lattice", "rows": "rows", "scatter": "no rows or lattice"}[o["kind"]]
+    period = f"{o['period'][0]:g} x {o['period'][1]:g}" if o["period"] else "none (drawn, not a repeating tile)"
+    clustering = "n/a" if o["clustering"] != o["clustering"] else f"{o['clustering']:.2f}"
+    return [
+        f"order         {what}{': steps ' + steps if steps else ''}",
+        f"period        {period}",
+        f"anisotropy    {o['anisotropy']:.2f} (0 = nearest neighbours in every direction), along {o['anisotropy_angle']:.0f}°",
+        f"clustering    R = {clustering} (Clark-Evans: <1 clustered, 1 random, >1 regular)",
+        f"banding       {o['banding']:.2f} in strips at {o['band_angle']:.0f}° (0 = even), kinds {o['kind_banding']:.2f} (0 = mixed)",
+    ]

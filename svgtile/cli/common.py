@@ -17,6 +17,7 @@ from svgtile.apps.load import load_exemplar
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
 from svgtile.engines.base import EngineParams
+from svgtile.engines.choose import AUTO, choose, with_choice
 from svgtile.errors import ParameterError
 from svgtile.gis.layers import is_gis
 
@@ -163,13 +164,16 @@ def engine_help() -> str:
     return "Synthesis algorithm: " + "; ".join(f"{e.name} = {e.summary}" for e in ENGINES.values()) + "."
 
 
-def engine_options(f):
+def engine_options(f=None, *, auto: bool = False):
     """Decorate a command with ``--engine`` and one option per public engine parameter.
 
     The options have no default of their own (each engine has its defaults, shown in the help);
     :func:`engine_params` passes only those the user gave, so one the chosen engine does not
-    have is an error instead of being ignored.
+    have is an error instead of being ignored.  With ``auto``, ``--engine auto`` is offered and is
+    the default (:mod:`svgtile.engines.choose`; the command resolves it with :func:`auto_params`).
     """
+    if f is None:
+        return lambda g: engine_options(g, auto=auto)
     for p in reversed(list(public_params().values())):
         owners = engines_with(p.name)
         default = "off" if p.type is bool else f"{p.default:g}" if isinstance(p.default, float) else p.default
@@ -179,14 +183,38 @@ def engine_options(f):
         else:
             kind = click.Choice(p.choices) if p.choices else p.type
             f = click.option(p.option, p.name, type=kind, default=None, metavar=p.metavar, help=text)(f)
+    if auto:
+        return click.option("--engine", type=click.Choice([AUTO, *ENGINES]), default=AUTO, show_default=True,
+                            help=engine_help() + f" {AUTO} = chosen from the exemplar's order (rows, lattice, "
+                            "period; see svgtile analyze), said on stderr.")(f)  # fmt: skip
     return click.option("--engine", type=click.Choice(list(ENGINES)), default="patch", show_default=True,
                         help=engine_help())(f)  # fmt: skip
 
 
-def engine_params(ctx: click.Context, engine: str, values: dict) -> EngineParams:
-    """The chosen engine's parameters from the options the user gave (see :func:`engine_options`)."""
+def engine_params(ctx: click.Context, engine: str, values: dict) -> EngineParams | dict:
+    """The chosen engine's parameters from the options the user gave (see :func:`engine_options`).
+
+    For ``--engine auto`` the options the user gave, by name, for :func:`auto_params` once the
+    exemplar is read; each is checked against every engine that has it (types and ranges).
+    """
     options = public_params()
     given = {name: values[name] for name in options
              if ctx.get_parameter_source(name) not in (ParameterSource.DEFAULT, None)}  # fmt: skip
-    spell = {name: p.option for name, p in options.items()}
-    return make_params(get_engine(engine), given, spell=lambda name: spell.get(name, name.replace("_", "-")))
+    if engine == AUTO:
+        for name, value in given.items():
+            for owner in engines_with(name):
+                make_params(get_engine(owner), {name: value}, spell=_spell)
+        return given
+    return make_params(get_engine(engine), given, spell=_spell)
+
+
+def _spell(name: str) -> str:
+    return {p.name: p.option for p in public_params().values()}.get(name, "--" + name.replace("_", "-"))
+
+
+def auto_params(ex, stats, given: dict) -> tuple[str, EngineParams]:
+    """Resolve ``--engine auto`` for an exemplar: the engine and parameters :func:`choose` picks,
+    the user's options on top; says the choice on stderr."""
+    picked = choose(ex, stats, available=ENGINES)
+    click.echo(f"svgtile: auto: {picked.describe()}", err=True)
+    return picked.engine, make_params(get_engine(picked.engine), with_choice(picked, given), spell=_spell)

@@ -15,8 +15,10 @@ from svgtile.apps.mapread import synth_region
 from svgtile.apps.preview import render_png
 from svgtile.apps.tiled import synthesize_to_file
 from svgtile.cli.common import (
+    AUTO,
     POINT_FORMATS,
     Stderr,
+    auto_params,
     default_boundary,
     engine_options,
     engine_params,
@@ -48,7 +50,7 @@ from svgtile.svg.writer import fmt, result_document
               help="Keep every motif clear of these labels, lines or shapes (texts by their box, lines by their stroke, grown by --avoid-margin). Repeatable.")
 @click.option("--avoid-margin", type=float, default=2.0, show_default=True,
               help="Clear space around --avoid zones, user units.")
-@engine_options
+@engine_options(auto=True)
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default=None,
               help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out. [default: clip; inside for GIS point outputs, whose markers cannot be cut]")
 @click.option("--with-style", is_flag=True,
@@ -92,6 +94,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         check_style(output, protect=inputs)
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
+    if engine == AUTO:
+        engine, params = auto_params(ex, stats, params)
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)

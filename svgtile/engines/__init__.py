@@ -38,6 +38,7 @@ from svgtile.engines.base import (
     honoured,
     reading_order,
 )
+from svgtile.engines.choose import AUTO, Choice, choose, with_choice
 from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
 from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
@@ -60,8 +61,8 @@ def _registry() -> dict[str, Engine]:
     engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, OPTIMIZE)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
-        if ep.name in engines:
-            REFUSED[ep.name] = "a built-in engine has that name"
+        if ep.name in engines or ep.name == AUTO:
+            REFUSED[ep.name] = "a built-in engine has that name" if ep.name in engines else "svgtile reserves that name"
             continue
         try:  # a broken plug-in must not break svgtile: it is refused, with the reason kept
             engine = ep.load()
@@ -162,7 +163,9 @@ def synthesize(
     ----------
     exemplar : the parsed exemplar
     region : the output region, user units (with its avoid zones)
-    engine : an engine or its name (:data:`ENGINES`)
+    engine : an engine or its name (:data:`ENGINES`), or ``"auto"``: the engine and parameters
+        :func:`svgtile.engines.choose.choose` picks from the exemplar's order (``params`` given
+        here override its parameters)
     seed, rng : the only source of randomness, exactly one of them: a seed (recorded in the
         result) or a generator; one 63-bit key is drawn from it
         (:func:`svgtile.core.cellrng.root_key`)
@@ -181,6 +184,10 @@ def synthesize(
     Result whose arrangement has no overlaps and no distance-rule violations, is filtered by the
     boundary mode and in reading order.
     """
+    if engine == AUTO:
+        stats = analyze(exemplar) if stats is None else stats
+        picked = choose(exemplar, stats, available=ENGINES)
+        engine, params = picked.engine, with_choice(picked, None if isinstance(params, EngineParams) else params)
     engine = get_engine(engine) if isinstance(engine, str) else engine
     p = make_params(engine, params)
     if boundary not in BOUNDARY_MODES:
@@ -209,5 +216,6 @@ def synthesize(
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine)
 
 
-__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams",
-           "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
+__all__ = ["AUTO", "ENGINES", "Choice", "Context", "Controls", "Engine", "EngineParams", "OptimizeParams", "PatchParams",
+           "RandomParams", "Result", "TileParams", "choose", "engines_with", "get_engine", "make_params", "public_params",
+           "synthesize"]  # fmt: skip

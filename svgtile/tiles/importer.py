@@ -12,7 +12,9 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
 3. **group** — pieces are joined into motifs on a 3 × 3 block of tiles, so that motifs cut at
    an edge are reassembled: footprints that touch or overlap belong together, and so do two
    pieces closer than :data:`JOIN_RATIO` times the smaller one's size (729's pairs of parallel
-   lines); a group that reaches its own repeat is a continuous line or hatching, and the pattern
+   lines), and subpaths of one icon (an element spanning at most :data:`ICON_SPAN` of the tile)
+   closer than :data:`ELEMENT_JOIN` times the pattern's spacing (an icon drawn as one ``<path>``
+   stays whole); a group that reaches its own repeat is a continuous line or hatching, and the pattern
    is refused (:class:`TileRefused`);
 4. **pick** — each part of the periodic pattern is kept once (the copy whose lowest piece
    lies in the central tile) and moved by whole periods so its centroid is in the tile;
@@ -58,8 +60,19 @@ STRAIGHTNESS = 0.05
 #: Shape tolerance for kinds (see :func:`svgtile.svg.kinds.match_kinds`): hand-digitised symbol
 #: sets repeat a motif with a few percent of variation (FGDC 730 has 3 of 43 rectangles 7 % larger).
 KIND_TOLERANCE = 0.08
+#: Subpaths of one element (an icon drawn as one ``<path>``: osm-carto's dog-park paw is a pad and
+#: four toes, the Muslim graveyard's crescent and star) closer than this share of the pattern's
+#: spacing, ``√(tile area / pieces)``, are one motif.  Icons measured 0.04–0.06; the dashes FGDC
+#: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.
+ELEMENT_JOIN = 0.15
+#: … when the element is an icon: its subpaths span at most this share of the tile each way.
+ICON_SPAN = 0.5
 #: Gaps below this share of the tile's size count as touching (coordinates are rounded in files).
 TOUCH = 2e-4
+#: … and so do gaps below this share of the smaller piece's size (the square root of its box's
+#: area): FGDC 626 draws two pieces 0.014 units apart (1.7 % of the smaller), which the redrawn
+#: symbols then made overlap.
+TOUCH_SIZE = 0.05
 #: Coordinates are compared at this many decimals when dropping duplicate pieces (relative to the
 #: tile size, 1e-5 of it).
 DUPLICATE_DECIMALS = 5
@@ -157,7 +170,10 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     base = np.tile(np.arange(n), 9)
     copy = np.repeat(np.arange(9), n)
     lines = _Lines.of(tile, idx, np.tile(shift, (9, 1)) + np.repeat(OFFSETS * period, n, axis=0), 9)
-    comp = _components(block, lines, scale=float(max(w, h)))
+    # subpaths of one element (an icon drawn as one <path>) in one copy, and the spacing of pieces
+    element = np.where(_icons(tile, idx)[base], tile.element[idx][base] * 9 + copy, -1 - np.arange(len(base)))
+    spacing = float(np.sqrt(w * h / n))
+    comp = _components(block, lines, scale=float(max(w, h)), element=element, near=ELEMENT_JOIN * spacing)
     _refuse_continuous(tile, idx, comp, base, copy)
 
     # 4. one copy per part: the component whose lowest piece lies in the central tile
@@ -238,17 +254,39 @@ def _unique_pieces(tile: TilePieces, shift: np.ndarray) -> np.ndarray:
     return keep
 
 
-def _components(geoms: np.ndarray, lines: _Lines, *, scale: float) -> np.ndarray:
+def _icons(tile: TilePieces, idx: np.ndarray) -> np.ndarray:
+    """(n,) bool for the pieces ``idx``: the piece is a subpath of an *icon*, an element whose
+    subpaths together span at most :data:`ICON_SPAN` of the tile each way.  A path that spans
+    the tile is a pattern drawn in one path (FGDC 305-K's dashes, osm-carto's flattened
+    jsdotpattern fills), whose subpaths are motifs of their own."""
+    bounds = shapely.bounds(tile.footprint)
+    el = tile.element
+    k = int(el.max(initial=-1)) + 1
+    lo = np.full((k, 2), np.inf)
+    hi = np.full((k, 2), -np.inf)
+    np.minimum.at(lo, el, bounds[:, :2])
+    np.maximum.at(hi, el, bounds[:, 2:])
+    span = (hi - lo) / np.array(tile.box[2:])
+    return (span <= ICON_SPAN).all(axis=1)[el[idx]]
+
+
+def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, element: np.ndarray | None = None,
+                near: float = 0.0) -> np.ndarray:  # fmt: skip
     """(m,) component label of each footprint: joined when they touch or overlap (gap below
-    :data:`TOUCH` × ``scale``), or when they are a pair of parallel strokes (:meth:`_Lines.paired`)."""
+    :data:`TOUCH` × ``scale`` or :data:`TOUCH_SIZE` × the smaller one's size), when they are a pair of parallel strokes (:meth:`_Lines.paired`),
+    or when they are subpaths of one element (``element``, (m,) int) closer than ``near``."""
     touch = TOUCH * scale
-    reach = max(touch, JOIN_RATIO * float(lines.length.max(initial=0.0)))
+    reach = max(touch, JOIN_RATIO * float(lines.length.max(initial=0.0)), near)
     tree = shapely.STRtree(geoms)
     i, j = tree.query(geoms, predicate="dwithin", distance=reach)
     keep = i < j
     i, j = i[keep], j[keep]
     gap = shapely.distance(geoms[i], geoms[j])
-    join = (gap <= touch) | lines.paired(i, j, gap)
+    r = np.sqrt(shapely.area(shapely.envelope(geoms)))
+    seen_touching = gap <= np.maximum(touch, TOUCH_SIZE * np.minimum(r[i], r[j]))
+    join = seen_touching | lines.paired(i, j, gap)
+    if element is not None:
+        join |= (element[i] == element[j]) & (gap <= near)
     m = len(geoms)
     graph = coo_matrix((np.ones(int(join.sum())), (i[join], j[join])), shape=(m, m))
     return connected_components(graph, directed=False)[1]

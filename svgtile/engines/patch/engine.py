@@ -47,6 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from svgtile.analysis.order import read_order
 from svgtile.analysis.stats import (
     Stats,
     exemplar_gaps,
@@ -60,6 +61,7 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.base import Context, EngineParams, param
 from svgtile.engines.patch.density import _ORIENT, _PRIORITY, _ROTATE, adjust_density, uniform_at
+from svgtile.engines.patch.lattice import lattice_pivot, lattice_steps, lattice_variation
 from svgtile.engines.patch.orientation import turn, vary_orientations
 from svgtile.errors import ParameterError
 
@@ -74,8 +76,10 @@ class PatchParams(EngineParams):
 
     Attributes
     ----------
-    grid : "square" or "hex"
-        Layout of the exemplar copies (§3.2).
+    grid : "square", "hex" or "lattice"
+        Layout of the exemplar copies (§3.2); "lattice" steps copies by the exemplar's own
+        lattice or row step, or its tile period (:func:`lattice_steps`), so that the rows and
+        lattices of one copy continue into the next.
     overlap : float in [0, 0.5]
         σ, the fraction by which neighbouring copies overlap (§3.2).
     max_rotation : float in [0, 180], degrees
@@ -98,8 +102,10 @@ class PatchParams(EngineParams):
         Exemplar placements tried per sparse window and round (§3.4).
     """
 
-    grid: str = param("square", "Layout of the exemplar copies; hex suits round exemplars.",
-                      choices=("square", "hex"))
+    grid: str = param("square", "Layout of the exemplar copies; hex suits round exemplars; lattice steps "
+                                "copies by the exemplar's own rows, lattice or tile period, so rows run on "
+                                "across copies.",
+                      choices=("square", "hex", "lattice"))
     overlap: float = param(0.05, "How much neighbouring exemplar copies overlap, 0 to 0.5. More overlap "
                                  "hides seams but removes more motifs.",
                            interval=(0.0, 0.5))
@@ -117,8 +123,8 @@ class PatchParams(EngineParams):
     disc_tries: int = 6
 
     def __post_init__(self) -> None:
-        if self.grid not in ("square", "hex"):
-            raise ParameterError(f"--grid must be square or hex, not {self.grid!r}")
+        if self.grid not in ("square", "hex", "lattice"):
+            raise ParameterError(f"--grid must be square, hex or lattice, not {self.grid!r}")
         if not 0.0 <= self.overlap <= 0.5:
             raise ParameterError(f"--overlap must be between 0 and 0.5, not {self.overlap:g}")
         if not 0.0 <= self.max_rotation <= 180.0:
@@ -167,9 +173,15 @@ class PatchEngine:
         rules = [junction_distance(exemplar, stats, q, gaps) for q in steps]
         priority = p.coherence * _from_centre(exemplar)[cell[:, 2]] + (1 - p.coherence) * uniform_at(key, _PRIORITY, cell)
         copy = np.unique(cell[:, :2], axis=0, return_inverse=True)[1].ravel()
-        keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy, junction=rules[0])
+        # copies of a tile on its own period, unturned, are the pattern itself: its pairs across
+        # the seams are the pattern's own, which the junction rule (a gap quantile) would thin,
+        # and its density holds everywhere, which window-by-window repair would only disturb
+        exact = p.grid == "lattice" and exemplar.period is not None and p.max_rotation == 0 and not p.vary_orientation
+        keep = resolve(arr, protos, stats.distance, priority, frequency=stats.frequency, group=copy,
+                       junction=stats.distance if exact else rules[0])  # fmt: skip
         arr = arr.take(keep)
-
+        if exact:
+            return arr
         return adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
 
     def reach(self, exemplar: Exemplar, params: PatchParams) -> float:
@@ -192,7 +204,10 @@ def grid(
 
     Copies sit at ``(a·sx, b·sy)`` in world coordinates, ``sx = w(1 − σ)``, ``sy = h(1 − σ)`` for
     an input region of bounding size ``w × h``; the hexagonal layout shifts odd rows by ``sx/2``
-    and packs rows ``√3/2`` closer.  Copy ``(a, b)`` is rotated by θ = M(2u − 1), u a hash of the
+    and packs rows ``√3/2`` closer.  The ``lattice`` layout steps copies by the exemplar's own
+    lattice vectors (:func:`~svgtile.engines.patch.lattice.lattice_steps`) and turns each by 0°
+    or 180° about a motif and shifts it by a lattice step
+    (:func:`~svgtile.engines.patch.lattice.lattice_variation`, drawn exemplars only), on top of θ.  Copy ``(a, b)`` is rotated by θ = M(2u − 1), u a hash of the
     cell, about its centre; each motif keeps its exemplar orientation (it is turned by −θ), as in
     the paper, unless ``stats`` is given: then a motif whose orientation turned by θ is still
     in its kind's exemplar arc turns with its copy (:func:`turn`).
@@ -212,18 +227,30 @@ def grid(
     reach = float(np.hypot(local[:, 0], local[:, 1]).max() + motif_radius(motifs, exemplar.prototypes).max())
 
     X0, Y0, X1, Y1 = region.bounds
-    b = np.arange(math.floor((Y0 - reach) / sy), math.ceil((Y1 + reach) / sy) + 1)
-    a = np.arange(math.floor((X0 - reach) / sx) - 1, math.ceil((X1 + reach) / sx) + 2)
-    A, B = np.meshgrid(a, b)
-    A, B = A.ravel(), B.ravel()
-    shift = (B % 2) * 0.5 if grid_kind == "hex" else 0.0
-    cx, cy = (A + shift) * sx, B * sy
+    pivot, flip = np.zeros(2), 0.0
+    if grid_kind == "lattice":
+        order = read_order(exemplar)
+        A, B, cx, cy = _lattice_centres(lattice_steps(order, (w, h), overlap),
+                                        (X0 - reach, Y0 - reach, X1 + reach, Y1 + reach))  # fmt: skip
+        flip, shift = lattice_variation(order, key, A, B)
+        cx, cy = cx + shift[:, 0], cy + shift[:, 1]
+        pivot = lattice_pivot(exemplar)
+        sx = 0.0  # the box above already bounds the centres
+    else:
+        b = np.arange(math.floor((Y0 - reach) / sy), math.ceil((Y1 + reach) / sy) + 1)
+        a = np.arange(math.floor((X0 - reach) / sx) - 1, math.ceil((X1 + reach) / sx) + 2)
+        A, B = np.meshgrid(a, b)
+        A, B = A.ravel(), B.ravel()
+        shift = (B % 2) * 0.5 if grid_kind == "hex" else 0.0
+        cx, cy = (A + shift) * sx, B * sy
     near = (cx > X0 - reach - sx) & (cx < X1 + reach + sx) & (cy > Y0 - reach) & (cy < Y1 + reach)
     A, B, cx, cy = A[near], B[near], cx[near], cy[near]
+    flip = flip[near] if grid_kind == "lattice" else flip
 
-    theta = max_rotation * (2.0 * cellrng.uniform(key, _ROTATE, A, B) - 1.0)
+    theta = max_rotation * (2.0 * cellrng.uniform(key, _ROTATE, A, B) - 1.0) + flip
     rot = rotation(theta)  # (c, 2, 2)
-    xy = np.matmul(rot, local.T).transpose(0, 2, 1) + np.stack([cx, cy], -1)[:, None, :]
+    turned = np.matmul(rot, (local - pivot).T).transpose(0, 2, 1) + pivot  # (c, m, 2)
+    xy = turned + np.stack([cx, cy], -1)[:, None, :]
     c, m = len(A), len(motifs)
     kind = np.tile(motifs.kind, c)
     angle = turn(kind, np.tile(motifs.angle, c), np.repeat(theta, m), stats)
@@ -238,6 +265,25 @@ def grid(
 
 
 # ----------------------------------------------------------------------------- helpers
+
+
+def _lattice_centres(steps: np.ndarray, box: tuple[float, float, float, float]
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """Copy indices (A, B) and centres ``A·X + B·Y`` of the copies whose centre lies in ``box``.
+
+    ``steps`` is (2, 2), rows X and Y (:func:`svgtile.engines.patch.lattice.lattice_steps`); the
+    index ranges come from the box's corners in lattice coordinates.
+    """
+    x0, y0, x1, y1 = box
+    corners = np.array([[x0, y0], [x1, y0], [x0, y1], [x1, y1]])
+    ab = np.linalg.solve(steps.T, corners.T).T  # (4, 2) lattice coordinates
+    lo, hi = np.floor(ab.min(axis=0)) - 1, np.ceil(ab.max(axis=0)) + 1
+    A, B = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1))
+    A, B = A.ravel().astype(np.int64), B.ravel().astype(np.int64)
+    cx = A * steps[0, 0] + B * steps[1, 0]
+    cy = A * steps[0, 1] + B * steps[1, 1]
+    inside = (cx >= x0) & (cx <= x1) & (cy >= y0) & (cy <= y1)
+    return A[inside], B[inside], cx[inside], cy[inside]
 
 
 def _from_centre(exemplar: Exemplar) -> np.ndarray:

@@ -1,0 +1,66 @@
+"""Kinds as classes (issue 12.3): kinds drawn once each share the distance rule of their shape
+class, so no fragment is lost for having no twin."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+from conftest import XLINK
+
+from svgtile.analysis.classes import pooled_distance, shape_classes
+from svgtile.analysis.stats import analyze
+from svgtile.core.footprint import Prototype
+from svgtile.svg.reader import parse_exemplar
+
+
+def proto(geom) -> Prototype:
+    return Prototype.from_geometry(shapely.affinity.translate(geom, -geom.centroid.x, -geom.centroid.y))
+
+
+SQUARE = shapely.box(0, 0, 2, 2)
+SQUARE_B = shapely.Polygon([(0, 0), (2.1, 0.1), (2.0, 2.0), (0.1, 2.1)])
+BIG = shapely.box(0, 0, 6, 6)
+BAR = shapely.box(0, 0, 6, 0.7)
+DISC = shapely.Point(0, 0).buffer(1.1, 32)
+
+
+def test_single_kinds_of_like_shape_share_a_class_and_others_do_not():
+    protos = [proto(g) for g in (SQUARE, SQUARE_B, BIG, BAR, DISC, SQUARE)]
+    cls = shape_classes(protos, np.array([1, 1, 1, 1, 1, 2]))
+    assert cls[0] == cls[1]  # two angular quadrilaterals of one size
+    assert len({cls[0], cls[2], cls[3], cls[4]}) == 4  # size, elongation, roundness differ
+    assert cls[5] not in cls[:5]  # drawn twice: its own class, even with a square's shape
+
+
+def test_kinds_drawn_more_than_once_are_their_own_classes():
+    protos = [proto(SQUARE), proto(SQUARE_B)]
+    assert shape_classes(protos, np.array([2, 3])).tolist() == [0, 1]
+
+
+def test_pooled_distance_takes_the_class_pairs_smallest_measured_distance():
+    d = np.array([[9.0, 8.0, 1.0], [8.0, 7.0, 2.0], [1.0, 2.0, 0.5]])
+    m = np.array([[False, True, True], [True, False, True], [True, True, True]])
+    out, measured = pooled_distance(d, m, np.array([0, 0, 1]))
+    assert out[0, 1] == out[1, 0] == out[0, 0] == out[1, 1] == 8.0  # the class's own pair
+    assert out[0, 2] == out[1, 2] == 1.0
+    assert out[2, 2] == 0.5 and measured.all()
+    same, _ = pooled_distance(d, m, np.array([0, 1, 2]))
+    assert np.array_equal(same, d)
+
+
+def test_analyze_pools_fragments_drawn_once_so_they_may_come_close():
+    """Four like fragments drawn once each: two far apart no longer forbid each other closer
+    than their own gap in the exemplar, only closer than the class's nearest pair."""
+    frags = [(5, 5), (9.5, 5), (35, 5), (35, 35)]
+    shapes = ["0,0 2,0 2,2 0,2", "0,0 2.4,0 2.1,1.9 0,2.2", "0,0 1.8,0.3 2.3,2 0.1,1.7", "0,0 2.2,0.1 1.7,2.2 0.3,1.9"]
+    uses = "".join(f'<polygon points="{p}" transform="translate({x} {y})"/>'
+                   for p, (x, y) in zip(shapes, frags, strict=True))  # fmt: skip
+    uses += "".join(f'<circle cx="{x}" cy="{y}" r="0.4"/>' for x in (5, 15, 25) for y in (15, 25, 35))
+    ex = parse_exemplar(f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="{XLINK}" viewBox="0 0 45 45">'
+                        f"{uses}</svg>", source="t.svg")  # fmt: skip
+    counts = np.bincount(ex.motifs.kind)
+    once = np.flatnonzero(counts == 1)
+    assert len(once) == 4  # four different quadrilaterals, each drawn once
+    stats = analyze(ex)
+    sub = stats.distance[np.ix_(once, once)]
+    assert np.allclose(sub, sub.min()) and sub.min() < 3.0  # all pairs: the nearest pair's gap
