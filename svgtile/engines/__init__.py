@@ -4,7 +4,9 @@ Built in:
 
 * ``patch`` — patch-based synthesis (AlMeraj, Kaplan & Asente 2013), the default;
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
-* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline).
+* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline);
+* ``cellular`` — feature-based cellular textures (Legakis, Dorsey & Gortler 2001): bricks, blocks,
+  ashlar, rhombs and bedding lines turning a unit's corners and following its edges.
 
 Other packages add engines through the ``svgtile.engines`` entry-point group (the ecosystem's
 plug-in convention, as vpype's): an entry point ``NAME = module:ENGINE`` naming an object that
@@ -37,6 +39,7 @@ from svgtile.engines.base import (
     honoured,
     reading_order,
 )
+from svgtile.engines.cellular import CELLULAR, CellularParams
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
@@ -54,7 +57,7 @@ REFUSED: dict[str, str] = {}
 
 
 def _registry() -> dict[str, Engine]:
-    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM)}
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, CELLULAR)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines:
@@ -190,11 +193,15 @@ def synthesize(
     report = progress or (lambda stage, fraction: None)
     key = cellrng.root_key(np.random.default_rng(seed) if rng is None else rng)
     ctx = Context(exemplar, stats, region, boundary, key, report, controls)
-    arr = engine.place(ctx, p)
+    cells = None
+    if hasattr(engine, "place_cells"):
+        arr, cells = engine.place_cells(ctx, p)
+    else:
+        arr = engine.place(ctx, p)
     arr = reading_order(arr.take(region.keep(arr, exemplar.prototypes, boundary)))
     report("done", 1.0)
-    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
+    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, cells)
 
 
-__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
+__all__ = ["ENGINES", "CellularParams", "Context", "Controls", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
            "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
