@@ -85,7 +85,7 @@ def analyze(exemplar: Exemplar) -> Stats:
         count_density=len(motifs) / region_area,
         arc_start=start,
         arc_width=width,
-        frequency=counts / counts.sum(),
+        frequency=counts / max(int(counts.sum()), 1),  # a cellular exemplar may have no motifs
         overlaps=overlaps,
     )
 

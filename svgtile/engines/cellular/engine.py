@@ -44,6 +44,8 @@ _KIND, _ANGLE, _SCALE, _TAKE, _PRIORITY = range(5)
 #: The RGB blocks of §4.1, for debugging a tree: corners red, edges green, faces blue.
 RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf4a;stroke:#ffffff;stroke-width:0.2",
        FACE: "fill:#377eb8;stroke:#ffffff;stroke-width:0.2"}  # fmt: skip
+#: How a line is drawn when neither its description nor the cells give a style.
+LINE_STYLE = "fill:none;stroke:#000000;stroke-width:0.3"
 #: Face cells with less than this share of a whole cell inside the free space are not made.
 SLIVER = 0.02
 
@@ -127,7 +129,7 @@ def description(exemplar: Exemplar, p: CellularParams) -> Description:
         course = math.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1))
     length = p.cell_length or d.length or 2.0 * course
     return Description(course, length, d.offset, p.mortar or d.mortar, d.cell_style, d.tree, d.lines, d.motifs,
-                       d.ashlar, d.rhomb_angle)  # fmt: skip
+                       d.ashlar, d.rhomb_angle, d.angle)  # fmt: skip
 
 
 def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
@@ -154,7 +156,7 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     if ctx.controls.flow is not None:
         frame = FlowFrame(ctx.controls.flow, face, h / 2)
     else:
-        frame = RotatedFrame(long_axis_angle(face) if p.courses == "long-axis" else p.strike)
+        frame = RotatedFrame(long_axis_angle(face) if p.courses == "long-axis" else p.strike or d.angle)
     styles: list[str] = [d.cell_style]
     shapes, feature, style = [], [], []
 
@@ -177,10 +179,10 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
         cells = face_cells(frame, free, leaf.generator, d, key=ctx.key)
         add(cells, FACE, RGB[FACE] if leaf.generator == "blocks" and leaf.style is None else leaf.style)
     # bedding lines along the courses, over the face
-    if d.lines is not None:
+    if d.lines:
         ctx.progress("lines", 0.7)
-        lines = bedding(frame, face, d)
-        add(lines, LINE, d.lines.get("style", d.cell_style or "fill:none;stroke:#000000;stroke-width:0.3"))
+        for lines, css in zip(*bedding(frame, face, d), strict=True):
+            add(lines, LINE, css or d.cell_style or LINE_STYLE)
     work = Cellwork(np.concatenate(shapes) if shapes else np.empty(0, dtype=object),
                     np.concatenate(feature).astype(np.int64) if feature else np.zeros(0, np.int64),
                     np.concatenate(style).astype(np.int64) if style else np.zeros(0, np.int64), tuple(styles))  # fmt: skip
@@ -194,6 +196,10 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     if d.motifs is not None and len(ctx.exemplar.motifs):
         ctx.progress("motifs in cells", 0.85)
         motifs = motifs_in_cells(ctx, work.shapes[work.feature != LINE], frame, float(d.motifs.get("share", 1.0)))
+    # cells with no style were only claimed (to hold motifs, to keep the order): not drawn
+    blank = np.array([not css for css in work.styles], dtype=bool)
+    if len(work) and blank.any():
+        work = work.take(np.flatnonzero(~blank[work.style]))
     return motifs, work.in_reading_order(DECIMALS)
 
 
@@ -324,21 +330,27 @@ def _polygonal(geoms: np.ndarray) -> np.ndarray:
     return out
 
 
-def bedding(frame, face: shapely.Geometry, d: Description) -> np.ndarray:
-    """Bedding lines over ``face`` (solid or dashed), clipped to it."""
-    spec = d.lines or {}
+def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndarray], list[str | None]]:
+    """Bedding lines over ``face`` (solid or dashed), clipped to it: per line spec of the
+    description, the lines and their style."""
     step = d.course / 2
-    dash = spec.get("dash")
-    lines = gen.course_lines(frame, gen.st_bounds(frame, face, step), d.course, every=int(spec.get("every", 1)),
-                             dash=None if dash is None else (float(dash[0]), float(dash[1])),
-                             offset=float(spec.get("offset", 0.0)), phase=float(spec.get("phase", 0.0)),
-                             step=step if not isinstance(frame, RotatedFrame) else max(d.length, step) * 50)  # fmt: skip
-    if len(lines) == 0:
-        return lines
-    clipped = shapely.intersection(lines, face)
-    parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))
-    parts = parts[np.isin(shapely.get_type_id(parts), (1,))]
-    return parts[shapely.length(parts) > 1e-6]
+    fine = step if not isinstance(frame, RotatedFrame) else math.inf  # a straight frame maps ends only
+    bounds = gen.st_bounds(frame, face, step)
+    out, styles = [], []
+    for spec in d.lines or ():
+        dash = spec.get("dash")
+        s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
+        lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
+                                 dash=None if dash is None else (float(dash[0]), float(dash[1])),
+                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step)  # fmt: skip
+        if len(lines):
+            clipped = shapely.intersection(lines, face)
+            parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))
+            parts = parts[shapely.get_type_id(parts) == 1]
+            lines = parts[shapely.length(parts) > 1e-6]
+        out.append(lines)
+        styles.append(spec.get("style"))
+    return out, styles
 
 
 def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arrangement:

@@ -206,43 +206,40 @@ def map_quads(frame, quads: np.ndarray, subdivide: int) -> np.ndarray:
     return out
 
 
-def course_lines(frame, bounds: tuple[float, float, float, float], course: float, *, every: int = 1,
-                 dash: tuple[float, float] | None = None, offset: float = 0.0, phase: float = 0.0,
+def course_lines(frame, bounds: tuple[float, float, float, float], course: float, *, every: int = 1, start: int = 0,
+                 dash: tuple[float, float] | None = None, offset: float = 0.0, shift: float = 0.0,
                  step: float) -> np.ndarray:  # fmt: skip
-    """Bedding lines along the courses (every ``every``-th course boundary ``t = j·course``), solid
-    or dashed (``dash`` = on, off lengths; course ``j``'s dashes shifted by ``offset`` periods),
-    in the world; ``step`` is the spacing of the points a curved frame maps.  Not clipped.
-
-    ``phase`` shifts the lines within a course, as a share of it (a tile whose lines are not at
-    its course boundaries)."""
+    """Bedding lines along the course boundaries ``t = j·course`` with ``j % every == start``, solid
+    or dashed (``dash`` = on, off lengths; the dashes of course ``j`` shifted by ``offset · j +
+    shift`` periods, world-anchored), in the world; ``step`` is the spacing of the points a curved
+    frame maps.  Not clipped."""
     s0, t0, s1, t1 = bounds
     j = np.arange(math.floor(t0 / course) - 1, math.ceil(t1 / course) + 2)
-    j = j[j % every == 0]
-    t = (j + phase) * course
+    j = j[j % every == start % every]
+    if len(j) == 0:
+        return np.empty(0, dtype=object)
+    t = j * course
     if dash is None:
         s = np.arange(math.floor(s0 / step) - 1, math.ceil(s1 / step) + 2) * step
         st = np.stack(np.broadcast_arrays(s[None, :], t[:, None]), axis=-1)  # (c, m, 2)
-    else:
-        period = dash[0] + dash[1]
-        sh = (offset * j % 1.0) * period
-        k0 = math.floor(s0 / period) - 2
-        k = np.arange(k0, math.ceil(s1 / period) + 2)
-        a = k[None, :] * period + sh[:, None]  # (c, m)
-        pieces = max(1, math.ceil(dash[0] / step))
-        u = np.linspace(0.0, dash[0], pieces + 1)
-        s = a[:, :, None] + u[None, None, :]
-        tt = np.broadcast_to(t[:, None, None], s.shape)
-        st = np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2)
-    world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
-    ok = np.isfinite(world).all(axis=(1, 2)) if dash is not None else None
-    if dash is None:
+        world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
         lines = []
         for row in world:  # one course line at a time: NaNs (outside a flow grid) split it
             good = np.isfinite(row).all(axis=1)
             if good.sum() >= 2:
                 lines.append(shapely.linestrings(row[good]))
         return geometry_array(lines)
-    return shapely.linestrings(world[ok])
+    period = dash[0] + dash[1]
+    sh = ((offset * j + shift) % 1.0) * period
+    k = np.arange(math.floor(s0 / period) - 2, math.ceil(s1 / period) + 2)
+    a = k[None, :] * period + sh[:, None]  # (c, m) dash starts
+    pieces = max(1, math.ceil(dash[0] / step))
+    u = np.linspace(0.0, dash[0], pieces + 1)
+    s = a[:, :, None] + u[None, None, :]
+    tt = np.broadcast_to(t[:, None, None], s.shape)
+    st = np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2)
+    world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
+    return shapely.linestrings(world[np.isfinite(world).all(axis=(1, 2))])
 
 
 def shrink(cells: np.ndarray, mortar: float) -> np.ndarray:

@@ -12,6 +12,7 @@ A description, in TOML (JSON has the same keys)::
     length = 12.0           # cell length along the course, user units (s)
     offset = 0.5            # shift of each course against the one below, share of a length
     mortar = 0.0            # gap between cells, user units (§5.4)
+    angle = 0.0             # the courses' bearing, degrees (when no --strike is given)
     cell_style = "fill:none;stroke:#000;stroke-width:0.3"
 
     [[tree]]                # the root's children, tried in order
@@ -28,10 +29,12 @@ A description, in TOML (JSON has the same keys)::
     feature = "face"
     generator = "bricks"
 
-    [lines]                 # bedding lines along the courses (optional)
-    every = 1               # a line every this many courses
+    [[lines]]               # bedding lines along the courses (optional; one table per kind)
+    every = 1               # a line every this many courses …
+    start = 0               # … on the courses j with j % every == start
     dash = [3.0, 1.5]       # on, off lengths (omit for solid lines)
     offset = 0.5            # dash shift per course, share of the dash period
+    shift = 0.0             # dash shift of every line, share of the dash period
     style = "fill:none;stroke:#000;stroke-width:0.3"
 
     [motifs]                # exemplar motifs set in cells (optional)
@@ -60,7 +63,8 @@ GENERATORS = {
 }
 _TESTS = ("feature", "label", "direction", "hole", "convex")
 _NODE_KEYS = {*_TESTS, "generator", "children", "style"}
-_TOP_KEYS = {"course", "length", "offset", "mortar", "cell_style", "tree", "lines", "motifs", "ashlar", "rhomb_angle"}
+_TOP_KEYS = {"course", "length", "offset", "mortar", "cell_style", "tree", "lines", "motifs", "ashlar", "rhomb_angle",
+             "angle"}
 
 
 @dataclass(frozen=True)
@@ -106,7 +110,9 @@ class Description:
     mortar : user units, the gap between adjacent cells (§5.4)
     cell_style : CSS style of the cells' paths ("" = cells not drawn, only claimed)
     tree : the root
-    lines : the bedding lines (``every``, ``dash``, ``offset``, ``style``), or None
+    lines : the bedding lines, one dict per kind of line (``every``, ``start``, ``dash``,
+        ``offset``, ``shift``, ``style``), or None
+    angle : degrees, the courses' bearing when the run gives none
     motifs : the motifs in cells (``share``), or None
     ashlar : (max length, max height) of a random ashlar stone, in grid cells of a third of a course
     rhomb_angle : degrees, the slant of a rhomb's joints from the course normal
@@ -118,10 +124,11 @@ class Description:
     mortar: float = 0.0
     cell_style: str = "fill:none;stroke:#000000;stroke-width:0.3"
     tree: Node = field(default_factory=lambda: default_tree())
-    lines: dict[str, Any] | None = None
+    lines: tuple[dict[str, Any], ...] | None = None
     motifs: dict[str, Any] | None = None
     ashlar: tuple[int, int] = (4, 2)
     rhomb_angle: float = 45.0
+    angle: float = 0.0
 
 
 def default_tree(face: str = "bricks") -> Node:
@@ -145,7 +152,7 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
     if unknown:
         raise bad(f"unknown key {unknown[0]!r} (keys: {', '.join(sorted(_TOP_KEYS))})")
     out: dict[str, Any] = {}
-    for key in ("course", "length", "offset", "mortar", "rhomb_angle"):
+    for key in ("course", "length", "offset", "mortar", "rhomb_angle", "angle"):
         if key in data:
             value = data[key]
             if isinstance(value, bool) or not isinstance(value, (int, float)) or value != value:
@@ -164,17 +171,38 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
         out["ashlar"] = (a[0], a[1])
     if "tree" in data:
         out["tree"] = Node(children=tuple(_node(n, bad) for n in _list(data["tree"], "tree", bad)))
-    for key in ("lines", "motifs"):
-        if key in data:
-            if not isinstance(data[key], dict):
-                raise bad(f"{key} must be a table")
-            out[key] = dict(data[key])
-    if out.get("lines") is not None:
-        dash = out["lines"].get("dash")
-        if dash is not None and not (isinstance(dash, list) and len(dash) == 2
-                                     and all(isinstance(v, (int, float)) and v > 0 for v in dash)):  # fmt: skip
-            raise bad("lines.dash must be two positive numbers (on, off)")
+    if "motifs" in data:
+        if not isinstance(data["motifs"], dict):
+            raise bad("motifs must be a table")
+        out["motifs"] = dict(data["motifs"])
+    if "lines" in data:
+        specs = data["lines"] if isinstance(data["lines"], list) else [data["lines"]]
+        if not all(isinstance(spec, dict) for spec in specs):
+            raise bad("lines must be a table or a list of tables")
+        out["lines"] = tuple(_line_spec(spec, bad) for spec in specs)
     return Description(**out)
+
+
+_LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None}
+
+
+def _line_spec(spec: dict[str, Any], bad) -> dict[str, Any]:
+    unknown = sorted(set(spec) - set(_LINE_KEYS))
+    if unknown:
+        raise bad(f"unknown lines key {unknown[0]!r} (keys: {', '.join(_LINE_KEYS)})")
+    out = {**_LINE_KEYS, **spec}
+    dash = out["dash"]
+    if dash is not None and not (isinstance(dash, list) and len(dash) == 2
+                                 and all(isinstance(v, (int, float)) and v > 0 for v in dash)):  # fmt: skip
+        raise bad("lines.dash must be two positive numbers (on, off)")
+    if not (isinstance(out["every"], int) and out["every"] >= 1 and isinstance(out["start"], int)):
+        raise bad("lines.every must be a whole number ≥ 1, lines.start a whole number")
+    for key in ("offset", "shift"):
+        if isinstance(out[key], bool) or not isinstance(out[key], (int, float)):
+            raise bad(f"lines.{key} must be a number")
+    if out["style"] is not None and not isinstance(out["style"], str):
+        raise bad("lines.style must be text")
+    return out
 
 
 def _list(value: Any, where: str, bad) -> list:
