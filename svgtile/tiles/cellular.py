@@ -38,12 +38,20 @@ from svgtile.svg.numbers import fmt, fmt_array
 from svgtile.svg.tilepieces import TilePieces
 
 ET.register_namespace("svgtile", "urn:svgtile:run:1")
+#: How a solid fill is drawn (the tile reader keeps no paint of a frame it drops).
+SOLID_STYLE = "fill:#000000;stroke:none"
 #: Straight: no point farther from the chord than this share of its length.
 STRAIGHT = 0.05
+#: A gently wavy stroke (no point farther from the chord than this share of its length) may be a
+#: bedding line too: it is drawn straight along the course.
+WAVY = 0.3
 #: Along the bearing: within this many degrees.
 ALONG = 4.0
 #: A row covering at least this share of the tile's width is a solid line.
 SOLID = 0.9
+#: A row of pieces of uneven lengths covering at least this share of the tile's width is a broken
+#: line, drawn dashed with its mean dash and gap.
+BROKEN = 0.5
 #: A joint crosses this share of a course, at least and at most.
 JOINT = (0.6, 1.25)
 
@@ -65,6 +73,13 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
     notes : what was left out
     """
     w, h = tile.box[2], tile.box[3]
+    if len(tile.points) == 0:
+        if not tile.filled_frame:
+            raise refused
+        # a solid fill (FGDC 658, coal): one block per tile, filled, the face whole
+        desc = {"course": round(h, 4), "length": round(w, 4), "offset": 0.0, "cell_style": SOLID_STYLE,
+                "tree": [{"feature": "face", "generator": "blocks", "style": SOLID_STYLE}]}  # fmt: skip
+        return _with_description(_empty(tile), desc, tile), desc, None, ["a solid fill, drawn black"]
     feats = _straight(tile)
     bearing = _bearing(feats)
     if bearing is None:
@@ -83,9 +98,13 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
         lines.append(spec)
     used = row_of >= 0
     # joints: straight pieces across a course, not in a row
-    joint = ~used & feats["straight"] & (feats["length"] >= JOINT[0] * course) & (feats["length"] <= JOINT[1] * course)
+    joint = ~used & feats["wavy"] & (feats["length"] >= JOINT[0] * course) & (feats["length"] <= JOINT[1] * course)
     rel = (feats["angle"] - bearing) % 180.0
     joint &= np.abs(rel - 90.0) <= 50.0
+    if joint.any():  # the common slants of joints (ticks inside bricks are not joints)
+        slant = np.round(rel[joint] / 5.0).astype(np.int64)
+        counts = np.bincount(slant)
+        joint[joint] = counts[slant] >= 0.5 * counts.max()
     notes: list[str] = []
     desc: dict = {"course": round(course, 4), "offset": 0.5, "lines": lines, "angle": round(bearing, 4)}
     cells_drawn = False
@@ -146,15 +165,16 @@ def _straight(tile: TilePieces) -> dict[str, np.ndarray]:
             d = chord[i] / length[i]
             dev[i] = float(np.abs((p[:, 0] - first[i, 0]) * d[1] - (p[:, 1] - first[i, 1]) * d[0]).max())
     straight = ~tile.closed & (length > 0) & (dev <= STRAIGHT * np.maximum(length, 1e-12))
+    wavy = ~tile.closed & (length > 0) & (dev <= WAVY * np.maximum(length, 1e-12))
     angle = np.degrees(np.arctan2(chord[:, 1], chord[:, 0])) % 180.0
-    return {"straight": straight, "length": length, "angle": angle, "mid": (first + last) / 2, "first": first,
+    return {"straight": straight, "wavy": wavy, "length": length, "angle": angle, "mid": (first + last) / 2, "first": first,
             "last": last}  # fmt: skip
 
 
 def _bearing(f: dict[str, np.ndarray]) -> float | None:
     """The bedding's bearing: horizontal if straight horizontal pieces hold a tenth of the straight
     ink, else the bearing holding the most straight ink (within :data:`ALONG`)."""
-    s = f["straight"]
+    s = f["wavy"]
     if not s.any():
         return None
     ink = f["length"] * s
@@ -191,7 +211,8 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
     t = math.radians(bearing)
     u, nrm = np.array([math.cos(t), math.sin(t)]), np.array([-math.sin(t), math.cos(t)])
     period = _normal_period(w, h, bearing)
-    along = f["straight"] & ((f["angle"] - bearing + ALONG) % 180.0 <= 2 * ALONG)
+    tol_angle = ALONG if bearing == 0.0 else 2 * ALONG  # oblique rows are digitised less evenly
+    along = f["wavy"] & ((f["angle"] - bearing + tol_angle) % 180.0 <= 2 * tol_angle)
     row_of = np.full(len(f["length"]), -1)
     idx = np.flatnonzero(along)
     if len(idx) == 0:
@@ -208,6 +229,17 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
         last = off[i]
     if len(groups) > 1 and off[groups[0][0]] + period - off[groups[-1][-1]] <= tol:  # wraps round
         groups[0] = groups.pop() + groups[0]
+    if len(groups) > 2:  # hand-digitised rows wobble: groups much closer than the rows' spacing are one
+        centre = np.array([float(np.median(off[g])) for g in groups])
+        gap = np.diff(centre)
+        close = gap < 0.35 * float(np.median(gap))
+        merged = [groups[0]]
+        for g, c in zip(groups[1:], close.tolist(), strict=True):
+            if c:
+                merged[-1] = merged[-1] + g
+            else:
+                merged.append(g)
+        groups = merged
     width = abs(w * u[0]) + abs(h * u[1]) if abs(u[0]) > 1e-9 and abs(u[1]) > 1e-9 else (w if abs(u[0]) > 0.5 else h)
     span_len = w / abs(u[0]) if abs(u[0]) > 1e-9 else h  # length of a line across one tile
     rows = []
@@ -218,11 +250,11 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
         if cover >= SOLID:
             dash = None
             shift = 0.0
-        elif len(members) >= 2 and length.std() <= 0.35 * length.mean():
+        elif len(members) >= 2 and (length.std() <= 0.35 * length.mean() or cover >= BROKEN):
             starts = np.sort((np.minimum(f["first"][members] @ u, f["last"][members] @ u)) % span_len)
             gaps = np.diff(np.r_[starts, starts[0] + span_len])
             per = span_len / len(members)
-            on = float(np.median(length))
+            on = float(np.median(length)) if length.std() <= 0.35 * length.mean() else cover * per
             if on >= per * 0.95:
                 dash, shift = None, 0.0
             else:
