@@ -6,6 +6,7 @@ import secrets
 from pathlib import Path
 
 import click
+from click.core import ParameterSource
 
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapread import synth_region
@@ -68,6 +69,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
+    if ex.cellular is not None and ctx.get_parameter_source("engine") == ParameterSource.DEFAULT:
+        engine, params = "cellular", engine_params(ctx, "cellular", values)  # its own pattern: courses of cells
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
                         params=params)  # fmt: skip
     Stderr.clear()
@@ -76,7 +79,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
     if kind == "geojson":
-        data = exemplar_placements(ex, result.arrangement)
+        data = exemplar_placements(ex, result.arrangement, cells=result.cells)
     else:
         data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
         if kind == "png":

@@ -37,25 +37,31 @@ def corner_reach(turn: np.ndarray, course: float, length: float) -> np.ndarray:
     return np.maximum(length / 2, 1.05 * course * np.tan(np.radians(turn) / 2))
 
 
-def divide(length: np.ndarray, cell: float, generator: str) -> list[np.ndarray]:
-    """Cuts dividing each free interval of an edge into cells (relative positions, ends excluded).
+def divide(length: float, cell: float, generator: str, anchor: float | None = None) -> np.ndarray:
+    """Cuts dividing a free interval of an edge (its 1-D occupancy map) into cells: positions
+    in ``(0, length)``, relative to the interval's start.
 
-    ``edge_blocks`` divides an interval into equal cells as close as possible to ``cell`` long;
-    ``edge_bricks`` alternates whole and half bricks (stretchers and headers seen from above,
-    §5.2's "bricks in alternating directions"), stretched to fill the interval exactly.
+    ``edge_blocks`` makes cells ``cell`` long, ``edge_bricks`` alternates whole and half bricks
+    (stretchers and headers seen from above: §5.2's "bricks in alternating directions").  On a
+    straight edge, ``anchor`` is the world coordinate of the interval's start along the edge's
+    direction: the cuts then fall where that coordinate is a whole number of cells, so a moved
+    vertex elsewhere leaves them be (edits stay local), and a cell shorter than a third of one at
+    either end joins its neighbour.  Without an anchor (a curved edge, a closed ring) the interval
+    is divided into whole cells stretched to fit it exactly.
     """
-    out = []
-    for total in np.asarray(length, dtype=np.float64).tolist():
-        if total <= 0:
-            out.append(np.zeros(0))
-            continue
-        if generator == "edge_bricks":
-            pieces = np.resize([1.0, 0.5], max(1, round(total / (0.75 * cell))))
-        else:
-            pieces = np.ones(max(1, round(total / cell)))
-        ends = np.cumsum(pieces) / pieces.sum() * total
-        out.append(ends[:-1])
-    return out
+    if length <= 0:
+        return np.zeros(0)
+    pattern = np.array([1.0, 0.5]) * cell if generator == "edge_bricks" else np.array([cell])
+    period = pattern.sum()
+    if anchor is None:
+        n = max(1, round(length / (period / len(pattern))))
+        pieces = np.resize(pattern, n)
+        return (np.cumsum(pieces) / pieces.sum() * length)[:-1]
+    offsets = np.r_[0.0, np.cumsum(pattern)[:-1]]  # cut positions within a period
+    k = np.arange(math.floor(anchor / period) - 1, math.ceil((anchor + length) / period) + 1)
+    cuts = np.sort((k[:, None] * period + offsets[None, :]).ravel()) - anchor
+    margin = min(pattern) / 3
+    return cuts[(cuts > margin) & (cuts < length - margin)]
 
 
 def strip_pieces(face: shapely.Geometry, rings: list[np.ndarray], cuts: list[np.ndarray], depth: float
