@@ -176,11 +176,13 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
         check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
-        arr = synthesize(exemplar, region, "patch", seed=seed, stats=stats).arrangement
+        engine = "cellular" if exemplar.cellular is not None else "patch"  # bedded and brick tiles: cells
+        made = synthesize(exemplar, region, engine, seed=seed, stats=stats)
+        arr = made.arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
-    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}))
+    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}, cells=made.cells))
     result = Swatch(path, label, len(imported), imported.kinds, len(arr))
     return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
 
