@@ -213,8 +213,12 @@ def fill_region(
     check_motif_count(ex, stats, region, "the region", limit=max_motifs,
                       hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     seed = style.seed if style.seed is not None else seed
-    arr = synthesize(ex, region, style.engine, seed=seed, stats=stats, boundary=style.boundary,
-                     params=style.params).arrangement  # fmt: skip
+    made = synthesize(ex, region, style.engine, seed=seed, stats=stats, boundary=style.boundary,
+                      params=style.params)  # fmt: skip
+    if made.cells is not None:  # not silently dropped: the map writer draws <use> motifs only
+        raise ParameterError(f"class {style.cls!r}: svgtile map cannot draw the cellular engine's cells yet; "
+                             "fill the unit with svgtile synth --region instead")  # fmt: skip
+    arr = made.arrangement
     if unit != 1.0:
         arr = Arrangement(arr.kind, arr.xy * unit, arr.angle, arr.scale * unit)
     return arr
