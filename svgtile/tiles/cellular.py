@@ -49,9 +49,9 @@ WAVY = 0.3
 ALONG = 4.0
 #: A row covering at least this share of the tile's width is a solid line.
 SOLID = 0.9
-#: A row of pieces of uneven lengths covering at least this share of the tile's width is a broken
-#: line, drawn dashed with its mean dash and gap.
-BROKEN = 0.5
+#: A row of three or more pieces of uneven lengths covering at least this share of the tile's
+#: width is a broken line, drawn dashed with its mean dash and gap.
+BROKEN = 0.25
 #: A joint crosses this share of a course, at least and at most.
 JOINT = (0.6, 1.25)
 
@@ -98,8 +98,9 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
         lines.append(spec)
     used = row_of >= 0
     # joints: straight pieces across a course, not in a row
-    joint = ~used & feats["wavy"] & (feats["length"] >= JOINT[0] * course) & (feats["length"] <= JOINT[1] * course)
     rel = (feats["angle"] - bearing) % 180.0
+    across = feats["length"] * np.abs(np.sin(np.radians(rel)))  # a slanted joint still spans one course
+    joint = ~used & feats["wavy"] & (across >= JOINT[0] * course) & (across <= JOINT[1] * course)
     joint &= np.abs(rel - 90.0) <= 50.0
     if joint.any():  # the common slants of joints (ticks inside bricks are not joints)
         slant = np.round(rel[joint] / 5.0).astype(np.int64)
@@ -134,8 +135,9 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
             motifs = import_pieces(sub)
         except ExemplarError as exc:
             notes.append(f"{len(rest)} piece(s) besides the bedding and joints left out ({exc.message if hasattr(exc, 'message') else exc})")
-            # reading the rest as motifs failed: the linework is more than rows and joints
-            if _ink(tile, rest) > 0.5 * _ink(tile, np.arange(len(tile.points))):
+            # reading the rest as motifs failed: unless rows and joints (cells) carry the pattern,
+            # the linework is more than what a cellular pattern draws
+            if not cells_drawn and _ink(tile, rest) > 0.5 * _ink(tile, np.arange(len(tile.points))):
                 raise refused from None
     if motifs is not None and len(motifs):
         cells = len(rows) * (w / desc["length"] if "length" in desc else 1.0)
@@ -250,7 +252,7 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
         if cover >= SOLID:
             dash = None
             shift = 0.0
-        elif len(members) >= 2 and (length.std() <= 0.35 * length.mean() or cover >= BROKEN):
+        elif len(members) >= 2 and length.std() <= 0.35 * length.mean() or len(members) >= 3 and cover >= BROKEN:
             starts = np.sort((np.minimum(f["first"][members] @ u, f["last"][members] @ u)) % span_len)
             gaps = np.diff(np.r_[starts, starts[0] + span_len])
             per = span_len / len(members)
