@@ -252,7 +252,7 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
         if cover >= SOLID:
             dash = None
             shift = 0.0
-        elif len(members) >= 2 and length.std() <= 0.35 * length.mean() or len(members) >= 3 and cover >= BROKEN:
+        elif (len(members) >= 2 and length.std() <= 0.35 * length.mean()) or (len(members) >= 3 and cover >= BROKEN):
             starts = np.sort((np.minimum(f["first"][members] @ u, f["last"][members] @ u)) % span_len)
             gaps = np.diff(np.r_[starts, starts[0] + span_len])
             per = span_len / len(members)
