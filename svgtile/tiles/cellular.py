@@ -175,16 +175,17 @@ def _straight(tile: TilePieces) -> dict[str, np.ndarray]:
 
 def _bearing(f: dict[str, np.ndarray]) -> float | None:
     """The bedding's bearing: horizontal if straight horizontal pieces hold a tenth of the straight
-    ink, else the bearing holding the most straight ink (within :data:`ALONG`)."""
+    ink and half as much as any other bearing, else the bearing holding the most straight ink."""
     s = f["wavy"]
     if not s.any():
         return None
     ink = f["length"] * s
     horizontal = (np.minimum(f["angle"], 180.0 - f["angle"]) <= ALONG) & s
-    if ink[horizontal].sum() >= 0.1 * ink.sum():
-        return 0.0
     bins = np.round(f["angle"][s] / 5.0) * 5.0 % 180.0
     weights = np.bincount((bins / 5).astype(np.int64), weights=ink[s], minlength=36)
+    # bedding is horizontal unless another bearing holds far more ink (FGDC 657's hatching)
+    if ink[horizontal].sum() >= max(0.1 * ink.sum(), 0.5 * weights.max()):
+        return 0.0
     return float(np.argmax(weights) * 5.0)
 
 
