@@ -151,8 +151,7 @@ def test_a_labelled_edge_goes_to_its_own_generator(tmp_path):
     widths = np.sort(np.ptp(shapely.bounds(faulted)[:, [0, 2]], axis=1))
     assert np.ptp(widths[1:-1]) < 1e-6  # (the end ones meet the corner cells)
     plain = run(tree, shape=unit, tmp_path=tmp_path)  # no label given: no red cells
-    assert "fill:none;stroke:#ff0000" not in plain.cells.styles[1:] or not (
-        plain.cells.style == plain.cells.styles.index("fill:none;stroke:#ff0000")).any()  # fmt: skip
+    assert "fill:none;stroke:#ff0000" not in plain.cells.styles
 
 
 def test_courses_follow_a_flow(tmp_path):
@@ -163,18 +162,22 @@ def test_courses_follow_a_flow(tmp_path):
     unit = shapely.box(20, 20, 180, 120)
     result = run({**LIMESTONE, "tree": [{"feature": "face", "generator": "bricks"}]}, shape=unit,
                  tmp_path=tmp_path, controls=Controls(flow=flow))  # fmt: skip
-    face = result.cells.shapes[result.cells.feature == FACE]
-    whole = face[shapely.area(face) > 0.9 * 6 * 14]
-    assert len(whole) > 50
-    rect = [np.asarray(shapely.minimum_rotated_rectangle(c).exterior.coords) for c in whole]
-    long = np.array([max(np.diff(r[:3], axis=0), key=lambda v: np.hypot(*v)) for r in rect])
-    want = flow.direction(shapely.get_coordinates(shapely.centroid(whole)))
-    cos = np.abs(np.sum(long * want, axis=1)) / np.hypot(long[:, 0], long[:, 1])
-    off = np.degrees(np.arccos(np.minimum(cos, 1.0)))
-    assert np.quantile(off, 0.9) < 8.0
-    # a straight strike would be off by up to ~25° at the unit's sides: the flow is what bends them
+
+    def misfit(result) -> np.ndarray:
+        """Degrees between each whole face brick's long axis and the flow at its centre."""
+        face = result.cells.shapes[result.cells.feature == FACE]
+        whole = face[shapely.area(face) > 0.9 * 6 * 14]
+        assert len(whole) > 50
+        rect = [np.asarray(shapely.minimum_rotated_rectangle(c).exterior.coords) for c in whole]
+        long = np.array([max(np.diff(r[:3], axis=0), key=lambda v: np.hypot(*v)) for r in rect])
+        want = flow.direction(shapely.get_coordinates(shapely.centroid(whole)))
+        cos = np.abs(np.sum(long * want, axis=1)) / np.hypot(long[:, 0], long[:, 1])
+        return np.degrees(np.arccos(np.minimum(cos, 1.0)))
+
+    assert np.quantile(misfit(result), 0.9) < 8.0
+    # straight courses (strike 0) miss the same flow by up to ~25° at the unit's sides
     straight = run({**LIMESTONE, "tree": [{"feature": "face", "generator": "bricks"}]}, shape=unit, tmp_path=tmp_path)
-    assert straight.cells.styles and not np.allclose(shapely.area(straight.cells.cells).sum(), 0)
+    assert np.quantile(misfit(straight), 0.9) > 12.0
 
 
 def test_flow_frame_maps_and_projects_back():
