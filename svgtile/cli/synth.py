@@ -74,7 +74,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
                         params=params)  # fmt: skip
     Stderr.clear()
-    if len(result) == 0:
+    if len(result) == 0 and (result.cells is None or len(result.cells) == 0):
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
