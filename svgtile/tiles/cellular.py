@@ -81,9 +81,21 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
                 "tree": [{"feature": "face", "generator": "blocks", "style": SOLID_STYLE}]}  # fmt: skip
         return _with_description(_empty(tile), desc, tile), desc, None, ["a solid fill, drawn black"]
     feats = _straight(tile)
-    bearing = _bearing(feats)
-    if bearing is None:
+    first = _bearing(feats)
+    if first is None:
         raise refused
+    for bearing in dict.fromkeys((first, 0.0)):  # the likeliest bearing, then the horizontal
+        try:
+            return _bedded(tile, feats, bearing, refused, import_pieces)
+        except ExemplarError:
+            continue
+    raise refused
+
+
+def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refused: ExemplarError, import_pieces
+            ) -> tuple[str, dict, object | None, list[str]]:  # fmt: skip
+    """:func:`import_cellular` with courses along ``bearing``; ``refused`` raised if not bedded so."""
+    w, h = tile.box[2], tile.box[3]
     rows, row_of = _rows(tile, feats, bearing)
     if not rows:
         raise refused
