@@ -202,7 +202,7 @@ def test_a_rule_for_an_engine_not_registered_is_skipped(monkeypatch):
     module = importlib.import_module("svgtile.engines.choose")
 
     ex = exemplar(random_points(50))
-    extra = Rule("growth-rows", lambda o, s: True, "growth", {"x": 1}, lambda o: "rows grow")
+    extra = Rule("growth-rows", lambda o, s, e: True, "growth", {"x": 1}, lambda o: "rows grow")
     monkeypatch.setattr(module, "RULES", (extra, *RULES))
     assert choose(ex, analyze(ex), available={"patch": None}).engine == "patch"
     assert choose(ex, analyze(ex), available={"patch": None, "growth": None}).engine == "growth"

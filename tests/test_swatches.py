@@ -15,7 +15,9 @@ from svgtile.svg.dialect import SVG_NS
 HEAD = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
 STROKE = 'fill="none" stroke="#000" stroke-width="0.2"'
 GOOD = HEAD + f'<polygon id="a" points="1,1 4,1 1,2" {STROKE}/><circle cx="7" cy="7" r="1" {STROKE}/></svg>'
-HATCH = HEAD + f'<line x1="0" y1="3" x2="10" y2="3" {STROKE}/></svg>'
+# a zigzag joining its own repeat: continuous, with no bedding rows (a straight line across the tile
+# is bedding since issue 15, drawn by the cellular engine)
+HATCH = HEAD + f'<polyline points="0,5 2.5,1 5,9 7.5,1 10,5" {STROKE}/></svg>'
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 
 

@@ -91,7 +91,7 @@ def analyze(exemplar: Exemplar) -> Stats:
         count_density=len(motifs) / region_area,
         arc_start=start,
         arc_width=width,
-        frequency=counts / counts.sum(),
+        frequency=counts / max(int(counts.sum()), 1),  # a cellular exemplar may have no motifs
         overlaps=overlaps,
     )
 
@@ -153,7 +153,7 @@ def distance_matrix(arr: Arrangement, protos: list[Prototype]) -> tuple[np.ndarr
         best = _far_minimum(arr, protos, geoms, radius, a, b, distance[a, b], reach)
         distance[a, b] = distance[b, a] = best
     measured = np.isfinite(distance)
-    row_min = np.where(measured, distance, np.inf).min(axis=1)
+    row_min = np.where(measured, distance, np.inf).min(axis=1, initial=np.inf)
     fallback = np.minimum.outer(row_min, row_min)
     fallback[~np.isfinite(fallback)] = 0.0
     distance = np.where(measured, distance, fallback)

@@ -52,7 +52,7 @@ from svgtile.apps.mapread import (
 )
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import BOUNDARY_MODES, Region
-from svgtile.engines import ENGINES, engines_with, make_params, public_params
+from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
 from svgtile.errors import ParameterError, RegionError, SvgtileError
 from svgtile.gis import geojson, layers
 from svgtile.runners.schedule import Unit, run
@@ -241,6 +241,9 @@ def fill_working(
     check_motif_count(ex, stats, part, where, limit=max_motifs,
                       hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     seed = style.seed if style.seed is not None else seed
+    if hasattr(get_engine(style.engine), "place_cells"):  # not silently dropped: the map writer draws <use> only
+        raise ParameterError(f"class {style.cls!r}: svgtile map cannot draw the {style.engine} engine's cells yet; "
+                             "fill the unit with svgtile synth --region instead")  # fmt: skip
     return synthesize_tile(ex, region, style.engine, tile, seed=seed, stats=stats, boundary=style.boundary,
                            params=style.params, refine=style.refine or 0)  # fmt: skip
 

@@ -182,14 +182,15 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
         check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
-        arr = synthesize(exemplar, region, "auto", seed=seed, stats=stats).arrangement
+        made = synthesize(exemplar, region, "auto", seed=seed, stats=stats)
+        arr = made.arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
-    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}))
+    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}, cells=made.cells))
     # L on the swatch's interior (one tile in from each edge): few motifs, a rough figure
     inside = in_window(arr, interior(exemplar, region))
-    found = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() else None
+    found = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() and made.cells is None else None
     result = Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=found)
     return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
 

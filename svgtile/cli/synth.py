@@ -34,6 +34,7 @@ from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import synthesize
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
+from svgtile.gis.geojson import exemplar_placements
 from svgtile.gis.layers import common_crs, is_gis
 from svgtile.runners.schedule import check_scheduler
 from svgtile.svg.writer import fmt, result_document
@@ -107,10 +108,15 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
                         params=params, refine=refine)  # fmt: skip
     Stderr.clear()
-    if len(result) == 0:
+    if len(result) == 0 and (result.cells is None or len(result.cells) == 0):
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
     x0, y0, x1, y1 = region.bounds
     where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+    if kind in POINT_FORMATS and result.cells is not None:  # cells are polygons: GeoJSON or SVG
+        if not (output == "-" or str(output).lower().endswith(".geojson")) or crs is not None:
+            raise ParameterError(f"{output}: a cellular texture's cells are written to .svg or .geojson without a CRS")
+        write_file(exemplar_placements(ex, result.arrangement, cells=result.cells), output, protect=inputs)
+        return
     if kind in POINT_FORMATS:
         write_placements([(ex, result.arrangement, None, None)], output, crs=crs, protect=inputs)
         if with_style:

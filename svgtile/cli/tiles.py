@@ -22,7 +22,8 @@ def import_cmd(tile, output):
     Frame and background rectangles are dropped, zero-length round-capped lines become dots,
     motifs cut at the tile's edge are reassembled, touching strokes and parallel pairs of strokes
     are grouped into motifs, and motifs identical up to rotation share a <symbol>.  Hatching,
-    continuous lines and solid fills are refused with the reason.
+    continuous lines and solid fills are refused with the reason, unless they are bedded (rows of
+    lines, joints, motifs in cells): those become cellular patterns for ``--engine cellular``.
     """
     if output != "-" and same_file(output, tile):
         raise ParameterError(f"{output}: refusing to overwrite the tile")
@@ -31,8 +32,11 @@ def import_cmd(tile, output):
     for note in imported.notes:
         warn(f"{tile}: {note}")
     write_file(imported.text, output, protect=(Path(tile),))
+    cells = imported.cellular
+    bedded = "" if cells is None else (f"a cellular pattern (courses of {cells['course']:g}, "
+                                       f"{len(cells.get('lines', ()))} bedding line(s) per repeat) with ")  # fmt: skip
     click.echo(
-        f"svgtile: {tile}: {len(imported)} motif(s) of {imported.kinds} kind(s), "
+        f"svgtile: {tile}: {bedded}{len(imported)} motif(s) of {imported.kinds} kind(s), "
         f"{int(imported.wrapped.sum())} reassembled across the tile's edge",
         err=True,
     )

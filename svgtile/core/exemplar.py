@@ -74,6 +74,10 @@ class Exemplar:
         The exemplar is one tile of a pattern that repeats with this horizontal and vertical
         period (given by ``svgtile:period="W H"`` on the region element, as ``svgtile import``
         writes it); :func:`svgtile.analysis.stats.analyze` then measures across the tile's edges.
+    cellular : dict or None
+        The description of a cellular pattern (``svgtile:cellular`` on the region element, JSON,
+        as ``svgtile import`` writes it for bedded and brick tiles; see
+        :mod:`svgtile.engines.cellular.tree`): such an exemplar may have no motifs.
     """
 
     source: str
@@ -83,6 +87,7 @@ class Exemplar:
     defs: tuple[ET.Element, ...]
     warnings: tuple[str, ...] = ()
     period: tuple[float, float] | None = None
+    cellular: dict | None = None
 
     @property
     def prototypes(self) -> list[Prototype]:

@@ -6,6 +6,8 @@ Built in:
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
 * ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline);
 * ``optimize`` — discrete element texture optimisation (Ma, Wei & Tong 2011) from a patch start.
+* ``cellular`` — feature-based cellular textures (Legakis, Dorsey & Gortler 2001): bricks, blocks,
+  ashlar, rhombs and bedding lines turning a unit's corners and following its edges.
 
 Other packages add engines through the ``svgtile.engines`` entry-point group (the ecosystem's
 plug-in convention, as vpype's): an entry point ``NAME = module:ENGINE`` naming an object that
@@ -38,6 +40,7 @@ from svgtile.engines.base import (
     honoured,
     reading_order,
 )
+from svgtile.engines.cellular import CELLULAR, CellularParams
 from svgtile.engines.choose import AUTO, Choice, choose, with_choice
 from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
 from svgtile.engines.optimize.solver import refine as _refine
@@ -58,7 +61,7 @@ REFUSED: dict[str, str] = {}
 
 
 def _registry() -> dict[str, Engine]:
-    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, OPTIMIZE)}
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, OPTIMIZE, CELLULAR)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines or ep.name == AUTO:
@@ -206,16 +209,20 @@ def synthesize(
     ctx = Context(exemplar, stats, region, boundary, key, report, controls)
     if not (isinstance(refine, int) and not isinstance(refine, bool) and refine >= 0):
         raise ParameterError(f"--refine must be a whole number of iterations, at least 0, not {refine!r}")
-    arr = engine.place(ctx, p)
+    cells = None
+    if hasattr(engine, "place_cells"):  # a cellular engine: cells and lines besides its motifs
+        arr, cells = engine.place_cells(ctx, p)
+    else:
+        arr = engine.place(ctx, p)
     arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
     if refine:
         arr, _ = _refine(arr, exemplar, stats, region, boundary, iterations=refine, key=ctx.key,
                          flow=controls.flow, progress=report)  # fmt: skip
     arr = reading_order(arr)
     report("done", 1.0)
-    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine)
+    return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine=refine, cells=cells)
 
 
-__all__ = ["AUTO", "ENGINES", "Choice", "Context", "Controls", "Engine", "EngineParams", "OptimizeParams", "PatchParams",
-           "RandomParams", "Result", "TileParams", "choose", "engines_with", "get_engine", "make_params", "public_params",
-           "synthesize"]  # fmt: skip
+__all__ = ["AUTO", "ENGINES", "CellularParams", "Choice", "Context", "Controls", "Engine", "EngineParams",
+           "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "choose", "engines_with",
+           "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

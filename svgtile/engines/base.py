@@ -13,6 +13,9 @@ An engine is an object with
 * ``controls`` (optional) — the map controls it honours, a frozenset of :class:`Controls` field
   names (``"flow"``, ``"barriers"``, ``"grow_within"``); a control given to an engine that does
   not honour it is an error, never silently ignored;
+* ``place_cells(ctx, params) -> (Arrangement, Cellwork)`` (optional) — an engine whose output
+  is cells and lines besides motifs (``cellular``) returns both; :func:`synthesize` then puts the
+  cells in :attr:`Result.cells`;
 * ``reach(exemplar, params) -> float`` — how far, in user units, what happens outside a tile can
   change the motifs inside it; a tiled run (one tile synthesized with a halo this wide, keeping
   only the motifs anchored in the tile) equals the whole run exactly when the reach is finite.
@@ -44,6 +47,7 @@ import shapely
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.cells import Cellwork
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
@@ -215,6 +219,8 @@ class Result:
         then records none)
     refine : iterations of optimisation run on the engine's output (``--refine``; recorded when
         not 0)
+    cells : the cells and lines of a cellular engine (:class:`~svgtile.core.cells.Cellwork`),
+        None for an engine that places motifs only
     """
 
     arrangement: Arrangement
@@ -226,6 +232,7 @@ class Result:
     params: EngineParams
     seed: int | None
     refine: int = 0
+    cells: Cellwork | None = None
 
     def __len__(self) -> int:
         return len(self.arrangement)
@@ -236,6 +243,8 @@ class Result:
         run = {"engine": self.engine, **({} if self.seed is None else {"seed": self.seed})}
         own = {**self.params.public_values(), **({"refine": self.refine} if self.refine else {}),
                "boundary": self.boundary, "motifs": len(self.arrangement)}
+        if self.cells is not None:
+            own["cells"] = len(self.cells.cells)
         clash = (set(where) & set(own)) | (set(where) & set(run))
         if clash:
             raise ValueError(f"metadata keys {sorted(clash)} are the run's own")

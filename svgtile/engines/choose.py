@@ -46,10 +46,11 @@ def _word(v: object) -> str:
 
 @dataclass(frozen=True)
 class Rule:
-    """One row of :data:`RULES`: when ``test(order, stats)`` holds, use ``engine`` with ``params``."""
+    """One row of :data:`RULES`: when ``test(order, stats, exemplar)`` holds, use ``engine`` with
+    ``params``."""
 
     name: str
-    test: Callable[[Order, Stats], bool]
+    test: Callable[[Order, Stats, Exemplar], bool]
     engine: str
     params: Mapping[str, object]
     why: Callable[[Order], str]
@@ -68,11 +69,14 @@ def _steps(o: Order) -> str:
 #: 0.08 at 400 × 300, seed 1 — its hand-placed rows repeat their jitter at the copy step.  A
 #: growth engine, which grows rows rather than copying them, is the rule to add for them.
 RULES: tuple[Rule, ...] = (
-    Rule("tile-order", lambda o, s: o.period is not None and o.kind != "scatter", "patch",
+    Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
+         lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "
+                   "and follow its edges"),
+    Rule("tile-order", lambda o, s, e: o.period is not None and o.kind != "scatter", "patch",
          {"grid": "lattice", "max_rotation": 0.0},
          lambda o: f"a repeating tile with {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): "
                    "copies on its period, not turned, so they meet without seams"),
-    Rule("scatter", lambda o, s: True, "patch", {},
+    Rule("scatter", lambda o, s, e: True, "patch", {},
          lambda o: "no repeating rows or lattice to keep: the patch engine's defaults"),
 )
 
@@ -90,7 +94,7 @@ def choose(exemplar: Exemplar, stats: Stats, *, order: Order | None = None,
     """
     order = read_order(exemplar) if order is None else order
     for rule in RULES:
-        if (available is None or rule.engine in available) and rule.test(order, stats):
+        if (available is None or rule.engine in available) and rule.test(order, stats, exemplar):
             return Choice(rule.engine, dict(rule.params), rule.why(order), rule.name)
     raise AssertionError("the last rule always holds")  # pragma: no cover
 

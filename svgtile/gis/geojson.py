@@ -187,6 +187,29 @@ def placements(arr: Arrangement, names: list[str], radius: np.ndarray, *, unit: 
     return {"type": "FeatureCollection", "features": features}
 
 
+def cellwork_features(cells, *, unit: float = 1.0) -> list[dict]:
+    """GeoJSON features of a cellular texture's cells (Polygons) and lines (LineStrings), in the
+    GeoJSON frame (y up) and map units; properties ``feature`` (corner, edge, face, line) and
+    ``style`` (the SVG style they are drawn with).
+
+    Parameters
+    ----------
+    cells : :class:`~svgtile.core.cells.Cellwork`, working frame, exemplar user units
+    unit : map units per exemplar user unit
+    """
+    from svgtile.core.cells import FEATURES
+
+    if cells is None or len(cells) == 0:
+        return []
+    shapes = shapely.transform(cells.shapes, lambda c: np.round(c * np.array([unit, -unit]), COORD_DECIMALS) + 0.0)
+    shapes = shapely.orient_polygons(shapes)  # RFC 7946: exteriors counter-clockwise
+    return [
+        {"type": "Feature", "geometry": json.loads(shapely.to_geojson(g)),
+         "properties": {"feature": FEATURES[f], "style": cells.styles[s]}}
+        for g, f, s in zip(shapes, cells.feature.tolist(), cells.style.tolist(), strict=True)
+    ]  # fmt: skip
+
+
 def placements_text(collection: dict) -> str:
     """A FeatureCollection as text: one feature per line, stable, ending with a newline."""
     head = '{"type": "FeatureCollection", "features": [\n'
@@ -221,8 +244,12 @@ def read_placements(path: str | Path, names: list[str], *, unit: float = 1.0) ->
     return Arrangement(table[:, 0].astype(np.int64), table[:, 1:3], table[:, 3], table[:, 4])
 
 
-def exemplar_placements(exemplar, arr: Arrangement, *, unit: float = 1.0) -> str:
-    """The placements file of a texture synthesized from ``exemplar`` (``synth -o X.geojson``)."""
+def exemplar_placements(exemplar, arr: Arrangement, *, unit: float = 1.0, cells=None) -> str:
+    """The placements file of a texture synthesized from ``exemplar`` (``synth -o X.geojson``);
+    a cellular texture's cells and lines (:func:`cellwork_features`) come first."""
     names = [k.name for k in exemplar.kinds]
     radius = np.array([k.prototype.radius for k in exemplar.kinds])
-    return placements_text(placements(arr, names, radius, unit=unit))
+    collection = placements(arr, names, radius, unit=unit)
+    if cells is not None:
+        collection["features"] = cellwork_features(cells, unit=unit) + collection["features"]
+    return placements_text(collection)

@@ -57,6 +57,8 @@ MAX_USE_DEPTH = 32
 OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
 #: Attribute of the region element giving the period of a repeating tile (see Exemplar.period).
 PERIOD_ATTR = "{urn:svgtile:run:1}period"
+#: A cellular pattern's description on the region element (JSON; svgtile.engines.cellular.tree).
+CELLULAR_ATTR = "{urn:svgtile:run:1}cellular"
 
 
 

@@ -26,6 +26,7 @@ and viewport, and each ``<use>`` only contributes its matrix.
 from __future__ import annotations
 
 import copy
+import json
 import math
 import re
 import xml.etree.ElementTree as ET
@@ -40,6 +41,7 @@ from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.footprint import Prototype
 from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import (
+    CELLULAR_ATTR,
     CONTAINERS,
     INHERITED,
     INITIAL,
@@ -168,7 +170,12 @@ class DocumentReader:
             self.warn("CSS <style> sheets are not applied; use presentation attributes or style=")
         instances: list[_Instance] = []
         self._walk(self.root, np.eye(3), cascade_style(self.root, INITIAL), instances)
+        cellular = self._cellular()
         if not instances:
+            if cellular is not None:  # a cellular pattern of cells and lines only
+                region = self._region(Arrangement.empty(), [])
+                return Exemplar(self.source, (), Arrangement.empty(), region, (), tuple(self.warnings), self._period(),
+                                cellular)  # fmt: skip
             raise self.error("no motifs found (expected <use> elements or top-level shapes)")
         kinds, arrangement, defs = self._kinds(instances)
         region = self._region(arrangement, kinds)
@@ -180,7 +187,23 @@ class DocumentReader:
             self.warn(f"{int((~centroid_in).sum())} motif(s) outside the input region are ignored")
             arrangement = arrangement.take(centroid_in)
         period = self._period()
-        return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings), period)
+        return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings), period,
+                        cellular)  # fmt: skip
+
+    def _cellular(self) -> dict | None:
+        """The ``svgtile:cellular`` description of the region element, if any (see
+        :attr:`Exemplar.cellular`)."""
+        el = self.ids.get("region")
+        text = None if el is None else el.attrib.get(CELLULAR_ATTR)
+        if text is None:
+            return None
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise self.error(f"unreadable svgtile:cellular ({exc.msg})") from None
+        if not isinstance(data, dict):
+            raise self.error("svgtile:cellular must be a JSON object")
+        return data
 
     def _period(self) -> tuple[float, float] | None:
         """The ``svgtile:period`` of the region element, if any (see :attr:`Exemplar.period`)."""

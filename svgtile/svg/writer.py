@@ -17,6 +17,7 @@ import numpy as np
 import shapely
 
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.cells import FEATURES, Cellwork
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.engines.base import Result
@@ -75,11 +76,12 @@ def result_document(result: Result, **where: object) -> str:
     its run recorded in the metadata (:meth:`Result.metadata`: engine, seed, ``where``,
     parameters, boundary, motif count)."""
     return svg_document(result.exemplar, result.arrangement, result.region, boundary=result.boundary,
-                        params=result.metadata(**where))  # fmt: skip
+                        params=result.metadata(**where), cells=result.cells)  # fmt: skip
 
 
 def svg_document(
-    exemplar: Exemplar, arr: Arrangement, region: Region, *, boundary: str, params: dict[str, object]
+    exemplar: Exemplar, arr: Arrangement, region: Region, *, boundary: str, params: dict[str, object],
+    cells: Cellwork | None = None,
 ) -> str:
     """The output SVG as text.
 
@@ -90,12 +92,14 @@ def svg_document(
     region : the output region; its bounding box is the document's viewBox
     boundary : ``clip`` adds a clipPath of the region around the motifs
     params : recorded in ``<metadata>`` (engine, seed, parameters), sorted by name
+    cells : the cells and lines of a cellular texture, drawn before the motifs
+        (:func:`cell_elements`)
 
     The motifs go in ``<g id="svgtile">`` and the clip path is ``svgtile-clip``; should the
     exemplar's copied defs already use such an id, a numbered suffix keeps ids unique.
     """
     head, tail = svg_document_parts(exemplar, region, boundary=boundary, params=params)
-    body = "\n".join(use_elements(arr, exemplar.kinds))
+    body = "\n".join([*cell_elements(cells), *use_elements(arr, exemplar.kinds)])
     return head + body + tail if body else head.rstrip(" ").removesuffix("\n") + tail
 
 
@@ -134,6 +138,32 @@ def svg_document_parts(
     before, _, after = text.rpartition(f"<!--{USES_MARK}-->")
     indent = len(before) - len(before.rstrip(" "))
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + before[: len(before) - indent], after + "\n"
+
+
+def cell_elements(cells: Cellwork | None, indent: str = "    ") -> list[str]:
+    """One ``<path>`` per cell or line, in the cellwork's order, with its style and its feature as
+    class (``svgtile-corner``, ``-edge``, ``-face``, ``-line``); cells with holes use evenodd."""
+    if cells is None or len(cells) == 0:
+        return []
+    styles = [_escape(s) for s in cells.styles]
+    out = []
+    for geom, feature, style in zip(cells.shapes, cells.feature.tolist(), cells.style.tolist(), strict=True):
+        polygonal = shapely.get_type_id(geom) in (3, 6)
+        d = path_data(geom) if polygonal else line_data(geom)
+        rule = ' fill-rule="evenodd"' if polygonal else ""
+        if d:
+            out.append(f'{indent}<path class="svgtile-{FEATURES[feature]}" style="{styles[style]}"{rule} d="{d}"/>')
+    return out
+
+
+def line_data(geom: shapely.Geometry) -> str:
+    """SVG path data of a (Multi)LineString."""
+    parts = []
+    for line in shapely.get_parts(geom):
+        xy = fmt_array(np.asarray(line.coords).ravel())
+        if len(xy) >= 4:
+            parts.append("M" + " L".join(f"{x} {y}" for x, y in zip(xy[::2], xy[1::2], strict=True)))
+    return " ".join(parts)
 
 
 def path_data(geom: shapely.Geometry) -> str:

@@ -103,6 +103,8 @@ class ImportedTile:
     wrapped : (n,) bool array, the motif was cut at the tile's edge and reassembled
     text : str, the exemplar SVG
     notes : tuple of str, what was dropped or ignored
+    cellular : dict or None, the cellular description of a bedded or brick tile
+        (:mod:`svgtile.tiles.cellular`); the motifs are then those set in its cells
     """
 
     source: str
@@ -114,6 +116,7 @@ class ImportedTile:
     wrapped: np.ndarray
     text: str
     notes: tuple[str, ...]
+    cellular: dict | None = None
 
     @property
     def kinds(self) -> int:
@@ -138,7 +141,25 @@ def import_tile(path: str | Path) -> ImportedTile:
         data = path.read_bytes()
     except OSError as exc:
         raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
-    return import_pieces(parse_tile(data, source=str(path)))
+    tile = parse_tile(data, source=str(path))
+    try:
+        return import_pieces(tile)
+    except TileRefused as refused:  # bedded or brick tiles: courses of cells (issue 15)
+        return import_bedded(tile, refused)
+
+
+def import_bedded(tile: TilePieces, refused: TileRefused) -> ImportedTile:
+    """The tile as a cellular exemplar (:func:`svgtile.tiles.cellular.import_cellular`), or
+    ``refused`` raised again if it is not bedded."""
+    from svgtile.tiles.cellular import import_cellular
+
+    text, desc, motifs, notes = import_cellular(tile, refused, import_pieces)
+    if motifs is None or len(motifs) == 0:
+        empty = np.zeros(0, np.int64)
+        return ImportedTile(tile.source, tile.box, empty, np.zeros((0, 2)), np.zeros(0), empty,
+                            np.zeros(0, dtype=bool), text, (*tile.warnings, *notes), desc)  # fmt: skip
+    return ImportedTile(motifs.source, motifs.box, motifs.kind, motifs.xy, motifs.angle, motifs.pieces, motifs.wrapped,
+                        text, (*motifs.notes, *notes), desc)  # fmt: skip
 
 
 def import_pieces(tile: TilePieces) -> ImportedTile:

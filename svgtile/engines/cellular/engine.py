@@ -1,0 +1,400 @@
+"""Feature-based cellular textures (Legakis, Dorsey & Gortler 2001) behind the engine protocol.
+
+A map unit is the paper's base mesh in 2-D (:mod:`.mesh`, §3.1): corners, edges (holes
+included, labelled by the map's lines), the face.  Its features are textured in the paper's
+order (§4.2) — corners, then edges, then the face — each by the generator the tree of
+:mod:`.tree` routes it to (§4.1), each filling only what is still empty (occupancy maps, §3.3:
+1-D intervals of arc length per edge, exact polygon bookkeeping with shapely for the face).
+Faces are laid on a course frame (:mod:`.frame`, §3.2): a strike angle, the unit's long axis, or
+the ``--flow`` control.  Cells claim their space-filling shapes and are drawn shrunk by the
+mortar (§5.4); bedding lines follow the courses; exemplar motifs may be set in cells.
+
+The output is a :class:`~svgtile.core.cells.Cellwork` (cells and lines) beside the motifs
+(:meth:`CellularEngine.place_cells`); :meth:`CellularEngine.place` returns the motifs alone.
+
+What a run keeps (the guarantees the tests hold it to): cells lie in the region whatever the
+boundary mode (edge cells follow the boundary instead of being cut by it), no two cells overlap,
+face cells are world-anchored (the same strike gives the same courses in every unit, and an edit
+of the boundary changes only the cells within about a course and a cell of it).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.cells import CORNER, EDGE, FACE, LINE, Cellwork, geometry_array
+from svgtile.core.conflicts import cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import world_footprints
+from svgtile.engines.base import Context, EngineParams, param
+from svgtile.errors import ParameterError
+
+from . import generators as gen
+from .frame import FlowFrame, RotatedFrame, long_axis_angle
+from .mesh import BaseMesh, base_mesh
+from .tree import Description, parse_description, read_description
+
+_KIND, _ANGLE, _SCALE, _TAKE, _PRIORITY = range(5)
+#: The RGB blocks of §4.1, for debugging a tree: corners red, edges green, faces blue.
+RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf4a;stroke:#ffffff;stroke-width:0.2",
+       FACE: "fill:#377eb8;stroke:#ffffff;stroke-width:0.2"}  # fmt: skip
+#: How a line is drawn when neither its description nor the cells give a style.
+LINE_STYLE = "fill:none;stroke:#000000;stroke-width:0.3"
+#: Face cells with less than this share of a whole cell inside the free space are not made.
+SLIVER = 0.02
+
+
+@dataclass(frozen=True)
+class CellularParams(EngineParams):
+    """Parameters of the cellular engine.
+
+    Attributes
+    ----------
+    tree : path of a TOML/JSON pattern description (:mod:`.tree`); "" = the exemplar's own (as
+        ``svgtile import`` writes it), else the paper's "Bricks" tree sized to the exemplar
+    courses : ``strike`` (courses along ``strike``) or ``long-axis`` (along the unit's long
+        axis); the ``--flow`` control, when given, overrides both
+    strike : degrees, the courses' bearing in user space (0 = along +x)
+    course_height, cell_length, mortar : user units; 0 = the description's
+    label : ``NAME=MAP.svg#ID`` pairs, comma-separated: edges running along that map element are
+        labelled NAME (for the tree's ``label`` tests)
+    corner_angle : degrees; the boundary turning by more than this makes a corner (library only)
+    """
+
+    tree: str = param("", "Cellular pattern description, a TOML or JSON file (default: the exemplar's own, or running-bond bricks).", metavar="FILE")
+    courses: str = param("strike", "Cellular courses run along the --strike angle or along the unit's long axis (a --flow overrides both).", choices=("strike", "long-axis"))
+    strike: float = param(0.0, "Bearing of the cellular courses, degrees from +x.", interval=(-360.0, 360.0))
+    course_height: float = param(0.0, "Cellular course height, user units (0 = the description's).", interval=(0.0, math.inf))
+    cell_length: float = param(0.0, "Cellular cell length along a course, user units (0 = the description's).", interval=(0.0, math.inf))
+    mortar: float = param(0.0, "Gap between cellular cells, user units (0 = the description's).", interval=(0.0, math.inf))
+    label: str = param("", "Label the unit's edges that run along map lines, NAME=MAP.svg#ID[,NAME=MAP.svg#ID…] (cellular trees route labelled edges).", metavar="NAME=MAP.svg#ID")
+    corner_angle: float = 30.0
+
+    def __post_init__(self) -> None:
+        for name in ("course_height", "cell_length", "mortar"):
+            value = getattr(self, name)
+            if not (value >= 0 and math.isfinite(value)):
+                raise ParameterError(f"{name} must be a finite number ≥ 0, not {value:g}")
+        if not (math.isfinite(self.strike) and -360.0 <= self.strike <= 360.0):
+            raise ParameterError(f"strike must be in [-360, 360], not {self.strike:g}")
+        if not 0.0 < self.corner_angle < 180.0:
+            raise ParameterError(f"corner_angle must be in (0, 180), not {self.corner_angle:g}")
+
+
+class CellularEngine:
+    """Cellular textures behind the engine protocol (:mod:`svgtile.engines.base`)."""
+
+    name = "cellular"
+    summary = ("cells in courses — bricks, blocks, random ashlar, rhombs, bedding lines, motifs set in cells — "
+               "turning the unit's corners and following its edges (Legakis et al. 2001)")
+    Params = CellularParams
+    controls = frozenset({"flow"})
+
+    def place(self, ctx: Context, p: CellularParams) -> Arrangement:
+        """The motifs set in cells (the cells themselves: :meth:`place_cells`)."""
+        return self.place_cells(ctx, p)[0]
+
+    def place_cells(self, ctx: Context, p: CellularParams) -> tuple[Arrangement, Cellwork]:
+        """Texture ``ctx.region``: corners, edges, then the face (§4.2); lines; motifs in cells."""
+        d = description(ctx.exemplar, p)
+        labels = read_labels(p.label, d.course)
+        return texture(ctx, d, p, labels)
+
+    def reach(self, exemplar: Exemplar, params: CellularParams) -> float:
+        """Not tile-exact: edge and corner cells follow the whole unit's boundary, and a tile's
+        boundary is not the unit's; run it whole."""
+        return math.inf
+
+
+CELLULAR = CellularEngine()
+
+
+def description(exemplar: Exemplar, p: CellularParams) -> Description:
+    """The pattern: the ``tree`` file, else the exemplar's own, else bricks sized to its motifs;
+    sizes given as parameters override the description's."""
+    if p.tree:
+        d = read_description(p.tree)
+    elif getattr(exemplar, "cellular", None):
+        d = parse_description(exemplar.cellular, exemplar.source)
+    else:
+        d = Description(motifs={"share": 1.0})
+    course = p.course_height or d.course
+    if not course:  # one motif's share of the exemplar's area, as a square's side
+        course = math.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1))
+    length = p.cell_length or d.length or 2.0 * course
+    return Description(course, length, d.offset, p.mortar or d.mortar, d.cell_style, d.tree, d.lines, d.motifs,
+                       d.ashlar, d.rhomb_angle, d.angle)  # fmt: skip
+
+
+def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
+    """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course."""
+    from svgtile.svg.mapdoc import SvgShapes
+
+    out: dict[str, shapely.Geometry] = {}
+    for item in filter(None, (s.strip() for s in spec.split(","))):
+        name, eq, where = item.partition("=")
+        path, sep, ident = where.partition("#")
+        if not (eq and sep and name.strip() and path and ident):
+            raise ParameterError(f"--label {item!r}: expected NAME=MAP.svg#ID")
+        doc = SvgShapes.read(path)
+        out[name.strip()] = doc.keep_clear(doc.element(ident), 0.1 * course)
+    return out
+
+
+def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, shapely.Geometry]
+            ) -> tuple[Arrangement, Cellwork]:  # fmt: skip
+    """The whole run on a parsed description (see the module docstring)."""
+    face = ctx.region.shape
+    h, length = d.course, d.length
+    mesh = base_mesh(face, corner_angle=p.corner_angle, tolerance=0.01 * h, labels=labels, label_distance=0.0)
+    if ctx.controls.flow is not None:
+        frame = FlowFrame(ctx.controls.flow, face, h / 2)
+    else:
+        frame = RotatedFrame(long_axis_angle(face) if p.courses == "long-axis" else p.strike or d.angle)
+    styles: list[str] = [d.cell_style]
+    shapes, feature, style = [], [], []
+
+    def add(cells: np.ndarray, kind: int, css: str | None) -> None:
+        css = d.cell_style if css is None else css
+        if css not in styles:
+            styles.append(css)
+        shapes.append(cells)
+        feature.append(np.full(len(cells), kind))
+        style.append(np.full(len(cells), styles.index(css)))
+
+    # 1. corners and 2. edges, in the edge strip (§4.2)
+    ctx.progress("corners and edges", 0.0)
+    claimed = _corners_and_edges(mesh, d, h, length, add)
+    # 3. the face: what is still free (its occupancy map)
+    ctx.progress("face", 0.4)
+    free = shapely.difference(face, claimed) if claimed is not None else face
+    leaf = d.tree.route({"feature": "face", "label": ""})
+    if leaf is not None and leaf.generator != "none" and not free.is_empty:
+        cells = face_cells(frame, free, leaf.generator, d, key=ctx.key)
+        add(cells, FACE, RGB[FACE] if leaf.generator == "blocks" and leaf.style is None else leaf.style)
+    # bedding lines along the courses, over the face
+    if d.lines:
+        ctx.progress("lines", 0.7)
+        for lines, css in zip(*bedding(frame, face, d), strict=True):
+            add(lines, LINE, css or d.cell_style or LINE_STYLE)
+    work = Cellwork(np.concatenate(shapes) if shapes else np.empty(0, dtype=object),
+                    np.concatenate(feature).astype(np.int64) if feature else np.zeros(0, np.int64),
+                    np.concatenate(style).astype(np.int64) if style else np.zeros(0, np.int64), tuple(styles))  # fmt: skip
+    if d.mortar > 0:
+        cell = work.feature != LINE
+        shrunk = work.shapes.copy()
+        shrunk[cell] = gen.shrink(work.shapes[cell], d.mortar)
+        work = Cellwork(shrunk, work.feature, work.style, work.styles)
+    work = work.take(np.flatnonzero(~shapely.is_empty(work.shapes)))
+    motifs = Arrangement.empty()
+    if d.motifs is not None and len(ctx.exemplar.motifs):
+        ctx.progress("motifs in cells", 0.85)
+        motifs = motifs_in_cells(ctx, work.shapes[work.feature != LINE], frame, float(d.motifs.get("share", 1.0)))
+    # cells with no style were only claimed (to hold motifs, to keep the order): not drawn
+    blank = np.array([not css for css in work.styles], dtype=bool)
+    if len(work) and blank.any():
+        work = work.take(np.flatnonzero(~blank[work.style]))
+    return motifs, work.in_reading_order(DECIMALS)
+
+
+def _corners_and_edges(mesh: BaseMesh, d: Description, h: float, length: float, add) -> shapely.Geometry | None:
+    """Route every corner and edge through the tree, cut the edge strip into their cells, add them;
+    returns the union of what they claim (None if nothing).
+
+    Each ring's arc length is the edges' 1-D occupancy map: a corner claims ``[a − r, a + r]``
+    around its vertex (:func:`.generators.corner_reach`, at most half of either adjacent edge),
+    then each edge divides what is left of it (:func:`.generators.divide`)."""
+    n_rings = len(mesh.rings)
+    ring_len = mesh.ring_length
+    hole = _hole_sides(mesh)
+    direction = mesh.edge_direction()
+    edge_len = mesh.edge_end - mesh.edge_start
+    c_leaf = [d.tree.route({"feature": "corner", "convex": bool(t > 0), "label": ""}) for t in mesh.corner_turn]
+    e_leaf = [d.tree.route({"feature": "edge", "label": str(mesh.labels[e]), "direction": float(direction[e]),
+                            "hole": hole[e]}) for e in range(len(mesh.edges))]  # fmt: skip
+    on = [leaf is not None and leaf.generator != "none" for leaf in c_leaf]
+    reach = gen.corner_reach(mesh.corner_turn, h, length)
+    cuts: list[list[float]] = [[] for _ in range(n_rings)]
+    owners: list[list[tuple[int, int]]] = [[] for _ in range(n_rings)]  # (feature, index) after each cut
+    edges_of = [np.flatnonzero(mesh.edge_ring == r) for r in range(n_rings)]
+    for r in range(n_rings):
+        es = edges_of[r]
+        corners = np.flatnonzero(mesh.corner_ring == r)  # corner j starts edge es[j], ends es[j - 1]
+        ra = np.zeros(len(es))  # what the corner at each edge's start claims of it
+        rb = np.zeros(len(es))  # … and the corner at its end
+        for j, c in enumerate(corners.tolist()):
+            if not on[c]:
+                continue
+            nxt, prv = es[j], es[j - 1]
+            x = min(float(reach[c]), 0.5 * float(edge_len[nxt]), 0.5 * float(edge_len[prv]))
+            ra[j], rb[(j - 1) % len(es)] = x, x
+            a = float(mesh.edge_start[nxt])
+            cuts[r].append(a - x)
+            owners[r].append((CORNER, c))
+        for j, e in enumerate(es.tolist()):
+            a, b = float(mesh.edge_start[e]) + ra[j], float(mesh.edge_end[e]) - rb[j]
+            cuts[r].append(a)
+            owners[r].append((EDGE, e))
+            leaf = e_leaf[e]
+            if leaf is not None and leaf.generator != "none":
+                name = "edge_blocks" if leaf.generator == "blocks" else leaf.generator
+                for x in gen.divide(b - a, length, name, _anchor(mesh, e, a)).tolist():
+                    cuts[r].append(a + x)
+                    owners[r].append((EDGE, e))
+        if cuts[r]:
+            arr = np.array(cuts[r]) % ring_len[r]
+            order = np.argsort(arr, kind="stable")
+            cuts[r] = arr[order].tolist()
+            owners[r] = [owners[r][i] for i in order]
+    pieces, ring, arc = gen.strip_pieces(mesh.face, mesh.rings, [np.array(c) for c in cuts], h)
+    keyed: dict[tuple[int, str], list] = {}
+    for r in range(n_rings):
+        sel = np.flatnonzero(ring == r)
+        if len(sel) == 0 or not cuts[r]:
+            continue
+        k = (np.searchsorted(np.array(cuts[r]), arc[sel], side="right") - 1) % len(cuts[r])
+        for idx, kk in zip(sel.tolist(), k.tolist(), strict=True):
+            kind, i = owners[r][kk]
+            leaf = c_leaf[i] if kind == CORNER else e_leaf[i]
+            if leaf is None or leaf.generator == "none":
+                continue
+            css = RGB[kind] if leaf.generator == "blocks" and leaf.style is None else (leaf.style or "")
+            keyed.setdefault((kind, css), []).append(pieces[idx])
+    if not keyed:
+        return None
+    claimed = []
+    for (kind, css), geoms in sorted(keyed.items()):
+        cells = geometry_array(geoms)
+        add(cells, kind, css or None)
+        claimed.append(cells)
+    return shapely.union_all(np.concatenate(claimed))
+
+
+def _anchor(mesh: BaseMesh, e: int, at: float) -> float | None:
+    """World coordinate, along a straight edge's direction, of the point at arc length ``at`` of its
+    ring (None for a curved edge: its length differs from its chord's by more than 0.1 %)."""
+    edge = mesh.edges[e]
+    xy = np.asarray(edge.coords)
+    chord = xy[-1] - xy[0]
+    span = float(np.hypot(*chord))
+    if span <= 0 or edge.length > 1.001 * span:
+        return None
+    d = chord / span
+    return float(np.dot(xy[0], d) + (at - float(mesh.edge_start[e])))
+
+
+def _arc_of(ring: np.ndarray, vertex: int) -> float:
+    seg = np.hypot(*np.diff(ring[: vertex + 1], axis=0).T)
+    return float(seg.sum())
+
+
+def _hole_sides(mesh: BaseMesh) -> list[str]:
+    """Per edge: ``outer`` on an exterior ring, else ``top`` or ``bottom`` of its hole (its
+    midpoint above or below the hole's centre; y grows downwards on a page)."""
+    exterior = set()
+    k = 0
+    for poly in shapely.get_parts(mesh.face):
+        exterior.add(k)
+        k += 1 + len(poly.interiors)
+    out = []
+    for e in range(len(mesh.edges)):
+        r = int(mesh.edge_ring[e])
+        if r in exterior:
+            out.append("outer")
+            continue
+        mid = shapely.get_coordinates(shapely.line_interpolate_point(mesh.edges[e], 0.5, normalized=True))[0]
+        out.append("top" if mid[1] < mesh.rings[r][:, 1].mean() else "bottom")
+    return out
+
+
+def face_cells(frame, free: shapely.Geometry, generator: str, d: Description, *, key: int) -> np.ndarray:
+    """Cells of a face generator clipped to the free space (§3.3, Figure 3b); slivers dropped."""
+    step = d.course / 2
+    bounds = gen.st_bounds(frame, free, step)
+    quads, _ = gen.face_rectangles(generator, bounds, d.course, d.length, d.offset, key=key, ashlar=d.ashlar,
+                                   rhomb_angle=d.rhomb_angle)  # fmt: skip
+    subdivide = 1 if isinstance(frame, RotatedFrame) else max(2, math.ceil(d.length / step))
+    cells = gen.map_quads(frame, quads, subdivide)
+    cells = cells[cells != None]  # noqa: E711 - an object array of geometries
+    shapely.prepare(free)
+    cells = cells[shapely.intersects(free, cells)]
+    full = shapely.area(cells)
+    inside = shapely.covered_by(cells, free)
+    clipped = cells.copy()
+    clipped[~inside] = shapely.intersection(cells[~inside], free)
+    clipped = _polygonal(clipped)
+    # a cell the edge cells cut in two is two cells
+    parts, index = shapely.get_parts(clipped, return_index=True)
+    keep = shapely.area(parts) > SLIVER * full[index]
+    return parts[keep]
+
+
+def _polygonal(geoms: np.ndarray) -> np.ndarray:
+    """The polygonal part of each geometry (an intersection may add lines and points)."""
+    out = geoms.copy()
+    odd = ~np.isin(shapely.get_type_id(out), (3, 6))
+    for i in np.flatnonzero(odd):
+        parts = [g for g in shapely.get_parts(out[i]) if shapely.get_type_id(g) in (3, 6)]
+        out[i] = shapely.union_all(parts) if parts else shapely.Polygon()
+    return out
+
+
+def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndarray], list[str | None]]:
+    """Bedding lines over ``face`` (solid or dashed), clipped to it: per line spec of the
+    description, the lines and their style."""
+    step = d.course / 2
+    fine = step if not isinstance(frame, RotatedFrame) else math.inf  # a straight frame maps ends only
+    bounds = gen.st_bounds(frame, face, step)
+    out, styles = [], []
+    for spec in d.lines or ():
+        dash = spec.get("dash")
+        s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
+        lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
+                                 dash=None if dash is None else (float(dash[0]), float(dash[1])),
+                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step)  # fmt: skip
+        if len(lines):
+            clipped = shapely.intersection(lines, face)
+            parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))
+            parts = parts[shapely.get_type_id(parts) == 1]
+            lines = parts[shapely.length(parts) > 1e-6]
+        out.append(lines)
+        styles.append(spec.get("style"))
+    return out, styles
+
+
+def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arrangement:
+    """Exemplar motifs set in cells (chert nodules in limestone, fossils): one in a ``share`` of
+    the cells, at the cell's inner point, turned with the courses; the kind by the exemplar's
+    frequencies, the angle in its arc (almeraj2013 §3.5), the scale of a random instance.  A motif
+    must lie in its cell, and conflicts between motifs (overlap, distance rule) are culled.
+    Randomness is keyed by the cell's position (world-anchored)."""
+    ex, stats = ctx.exemplar, ctx.stats
+    if len(cells) == 0:
+        return Arrangement.empty()
+    pts = shapely.get_coordinates(shapely.point_on_surface(cells))
+    cell_id = np.round(pts * 1000).astype(np.int64)
+    u = [cellrng.uniform(ctx.key, s, cell_id[:, 0], cell_id[:, 1]) for s in (_KIND, _ANGLE, _SCALE, _TAKE, _PRIORITY)]
+    take = u[3] < share
+    cdf = np.cumsum(stats.frequency)
+    kind = np.minimum(np.searchsorted(cdf, u[0] * cdf[-1], side="right"), len(cdf) - 1)
+    angle = stats.arc_start[kind] + u[1] * stats.arc_width[kind] + frame.course_angle(pts)
+    scale = np.ones(len(pts))
+    motifs = ex.motifs
+    for k in np.unique(kind).tolist():
+        inst = np.flatnonzero(motifs.kind == k)
+        sel = kind == k
+        if len(inst):
+            scale[sel] = motifs.scale[inst[np.minimum((u[2][sel] * len(inst)).astype(np.int64), len(inst) - 1)]]
+    arr = Arrangement(kind, pts, (angle + 180.0) % 360.0 - 180.0, scale).quantized(DECIMALS)
+    fits = take & shapely.covered_by(world_footprints(arr, ex.prototypes), cells)
+    arr, pri = arr.take(fits), u[4][fits]
+    if len(arr) == 0:
+        return arr
+    keep = cull(len(arr), find_conflicts(arr, ex.prototypes, stats.distance), pri)
+    return arr.take(keep)

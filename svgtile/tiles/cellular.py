@@ -1,0 +1,359 @@
+"""Recognising a bedded or brick tile and writing it as a cellular exemplar (issue 15, item 6).
+
+FGDC limestone, dolomite, shale, bedded chert and the interbedded series are not scatters of
+motifs: they are courses between bedding lines, cut into bricks or rhombs by joints, with dashes
+on the lines and nodules or fossils set in the cells.  :func:`import_cellular` reads that
+structure from the tile's pieces (:class:`~svgtile.svg.tilepieces.TilePieces`):
+
+1. **bedding rows** — straight pieces along one bearing (horizontal first, else the bearing of the
+   longest straight pieces) grouped by their offset across it: a row that covers the tile's width
+   is a solid line, a row of several similar pieces a dashed line (its dash length, period and
+   shift measured); the rows give the course height (the tile's height over their number) and
+   each row becomes one line of the description, repeating every that many courses, so
+   interbedded rows keep their order and weights;
+2. **joints** — straight pieces crossing a course (0.6–1.25 of its height) cut it into cells: their
+   spacing gives the cell length, their shift from course to course the bond's offset, their slant
+   rhombs (dolomite);
+3. **motifs** — the rest is imported as discrete motifs (:func:`svgtile.svg.importer.import_pieces`)
+   and set in cells, in the share of cells the tile has them.
+
+The exemplar is the scatter importer's, or an empty tile, with the description as the region's
+``svgtile:cellular`` attribute (JSON; :mod:`svgtile.engines.cellular.tree`).  A tile with no
+bedding rows (crossed hatching, a grid, wavy foliation) is refused with the reason.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from svgtile.errors import ExemplarError
+from svgtile.svg.dialect import CELLULAR_ATTR, PERIOD_ATTR, SVG_NS
+from svgtile.svg.numbers import fmt, fmt_array
+from svgtile.svg.tilepieces import TilePieces
+
+ET.register_namespace("svgtile", "urn:svgtile:run:1")
+#: How a solid fill is drawn (the tile reader keeps no paint of a frame it drops).
+SOLID_STYLE = "fill:#000000;stroke:none"
+#: Straight: no point farther from the chord than this share of its length.
+STRAIGHT = 0.05
+#: A gently wavy stroke (no point farther from the chord than this share of its length) may be a
+#: bedding line too: it is drawn straight along the course.
+WAVY = 0.3
+#: Along the bearing: within this many degrees.
+ALONG = 4.0
+#: A row covering at least this share of the tile's width is a solid line.
+SOLID = 0.9
+#: A row of three or more pieces of uneven lengths covering at least this share of the tile's
+#: width is a broken line, drawn dashed with its mean dash and gap.
+BROKEN = 0.25
+#: A joint crosses this share of a course, at least and at most.
+JOINT = (0.6, 1.25)
+
+
+def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> tuple[str, dict, object | None, list[str]]:
+    """The cellular exemplar of ``tile`` (see the module docstring).
+
+    Parameters
+    ----------
+    tile : the tile's pieces
+    refused : why the scatter importer refused it (raised again if the tile is not bedded)
+    import_pieces : the scatter importer, for the motifs in cells
+
+    Returns
+    -------
+    text : the exemplar SVG
+    description : the cellular description (JSON-ready)
+    motifs : the scatter importer's result for the motifs in cells, or None
+    notes : what was left out
+    """
+    w, h = tile.box[2], tile.box[3]
+    if len(tile.points) == 0:
+        if not tile.filled_frame:
+            raise refused
+        # a solid fill (FGDC 658, coal): one block per tile, filled, the face whole
+        desc = {"course": round(h, 4), "length": round(w, 4), "offset": 0.0, "cell_style": SOLID_STYLE,
+                "tree": [{"feature": "face", "generator": "blocks", "style": SOLID_STYLE}]}  # fmt: skip
+        return _with_description(_empty(tile), desc, tile), desc, None, ["a solid fill, drawn black"]
+    feats = _straight(tile)
+    first = _bearing(feats)
+    if first is None:
+        raise refused
+    for bearing in dict.fromkeys((first, 0.0)):  # the likeliest bearing, then the horizontal
+        try:
+            return _bedded(tile, feats, bearing, refused, import_pieces)
+        except ExemplarError:
+            continue
+    raise refused
+
+
+def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refused: ExemplarError, import_pieces
+            ) -> tuple[str, dict, object | None, list[str]]:  # fmt: skip
+    """:func:`import_cellular` with courses along ``bearing``; ``refused`` raised if not bedded so."""
+    w, h = tile.box[2], tile.box[3]
+    rows, row_of = _rows(tile, feats, bearing)
+    if not rows:
+        raise refused
+    period = _normal_period(w, h, bearing)
+    course = period / len(rows)
+    lines = []
+    for k, row in enumerate(rows):
+        spec: dict = {"every": len(rows), "start": k, "style": row["style"]}
+        if row["dash"] is not None:
+            spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
+            spec["shift"] = round(row["shift"], 4)
+        lines.append(spec)
+    used = row_of >= 0
+    # joints: straight pieces across a course, not in a row
+    rel = (feats["angle"] - bearing) % 180.0
+    across = feats["length"] * np.abs(np.sin(np.radians(rel)))  # a slanted joint still spans one course
+    joint = ~used & feats["wavy"] & (across >= JOINT[0] * course) & (across <= JOINT[1] * course)
+    joint &= np.abs(rel - 90.0) <= 50.0
+    if joint.any():  # the common slants of joints (ticks inside bricks are not joints)
+        slant = np.round(rel[joint] / 5.0).astype(np.int64)
+        counts = np.bincount(slant)
+        joint[joint] = counts[slant] >= 0.5 * counts.max()
+    notes: list[str] = []
+    desc: dict = {"course": round(course, 4), "offset": 0.5, "lines": lines, "angle": round(bearing, 4)}
+    cells_drawn = False
+    if joint.sum() >= max(2, len(rows) // 2):
+        ju = _joints(feats, joint, bearing, course, period, w)
+        if ju is not None:
+            length, offset, slant = ju
+            desc.update(length=round(length, 4), offset=round(offset, 4))
+            face = "bricks"
+            if abs(slant) > 15.0:
+                face = "rhombs"
+                desc["rhomb_angle"] = round(slant, 4)
+            desc["tree"] = [{"feature": "corner", "generator": "corner"}, {"feature": "edge", "generator": "edge_bricks"},
+                            {"feature": "face", "generator": face}]  # fmt: skip
+            desc["cell_style"] = _style(tile, int(np.flatnonzero(joint)[0]))
+            used |= joint
+            cells_drawn = True
+            if all(r["dash"] is None for r in rows):  # the cells' outlines draw the solid rows
+                desc.pop("lines")
+    if not cells_drawn:
+        desc["cell_style"] = ""
+    rest = np.flatnonzero(~used)
+    motifs = None
+    if len(rest):
+        sub = _subset(tile, rest)
+        try:
+            motifs = import_pieces(sub)
+        except ExemplarError as exc:
+            notes.append(f"{len(rest)} piece(s) besides the bedding and joints left out ({exc.message if hasattr(exc, 'message') else exc})")
+            # reading the rest as motifs failed: unless rows and joints (cells) carry the pattern,
+            # the linework is more than what a cellular pattern draws
+            if not cells_drawn and _ink(tile, rest) > 0.5 * _ink(tile, np.arange(len(tile.points))):
+                raise refused from None
+    if motifs is not None and len(motifs):
+        cells = len(rows) * (w / desc["length"] if "length" in desc else 1.0)
+        if "length" not in desc:  # invisible cells, one motif each
+            desc["length"] = round(max(course, w * len(rows) / len(motifs)), 4)
+            desc["tree"] = [{"feature": "corner", "generator": "none"}, {"feature": "edge", "generator": "edge_blocks"},
+                            {"feature": "face", "generator": "bricks"}]  # fmt: skip
+            cells = len(rows) * w / desc["length"]
+        desc["motifs"] = {"share": round(min(1.0, len(motifs) / max(cells, 1.0)), 4)}
+    if not cells_drawn and "tree" not in desc:
+        desc["length"] = round(w, 4)
+        desc["tree"] = [{"feature": "face", "generator": "none"}]
+    text = _with_description(motifs.text if motifs is not None and len(motifs) else _empty(tile), desc, tile)
+    return text, desc, motifs, notes
+
+
+def _straight(tile: TilePieces) -> dict[str, np.ndarray]:
+    """Per piece: straight open stroke?, chord length, bearing (degrees in [0, 180)), midpoint."""
+    n = len(tile.points)
+    first = np.array([p[0] for p in tile.points]).reshape(-1, 2)
+    last = np.array([p[-1] for p in tile.points]).reshape(-1, 2)
+    chord = last - first
+    length = np.hypot(chord[:, 0], chord[:, 1])
+    dev = np.zeros(n)
+    for i, p in enumerate(tile.points):
+        if len(p) > 2 and length[i] > 0:
+            d = chord[i] / length[i]
+            dev[i] = float(np.abs((p[:, 0] - first[i, 0]) * d[1] - (p[:, 1] - first[i, 1]) * d[0]).max())
+    straight = ~tile.closed & (length > 0) & (dev <= STRAIGHT * np.maximum(length, 1e-12))
+    wavy = ~tile.closed & (length > 0) & (dev <= WAVY * np.maximum(length, 1e-12))
+    angle = np.degrees(np.arctan2(chord[:, 1], chord[:, 0])) % 180.0
+    return {"straight": straight, "wavy": wavy, "length": length, "angle": angle, "mid": (first + last) / 2, "first": first,
+            "last": last}  # fmt: skip
+
+
+def _bearing(f: dict[str, np.ndarray]) -> float | None:
+    """The bedding's bearing: horizontal if straight horizontal pieces hold a tenth of the straight
+    ink and half as much as any other bearing, else the bearing holding the most straight ink."""
+    s = f["wavy"]
+    if not s.any():
+        return None
+    ink = f["length"] * s
+    horizontal = (np.minimum(f["angle"], 180.0 - f["angle"]) <= ALONG) & s
+    bins = np.round(f["angle"][s] / 5.0) * 5.0 % 180.0
+    weights = np.bincount((bins / 5).astype(np.int64), weights=ink[s], minlength=36)
+    # bedding is horizontal unless another bearing holds far more ink (FGDC 657's hatching)
+    if ink[horizontal].sum() >= max(0.1 * ink.sum(), 0.5 * weights.max()):
+        return 0.0
+    return float(np.argmax(weights) * 5.0)
+
+
+def _normal_period(w: float, h: float, bearing: float) -> float:
+    """The period across lines of ``bearing`` in a tile repeating by (w, 0) and (0, h)."""
+    t = math.radians(bearing)
+    if abs(math.sin(t)) < 1e-9:
+        return h
+    if abs(math.cos(t)) < 1e-9:
+        return w
+    # lines through the lattice: the normal offsets of w·(1,0) and h·(0,1) generate the period
+    a, b = abs(w * math.sin(t)), abs(h * math.cos(t))
+    for k in range(1, 9):  # the smallest offset that is a whole fraction of both
+        g = a / k
+        if abs(b / g - round(b / g)) < 0.02:
+            return g
+    return min(a, b)
+
+
+def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[list[dict], np.ndarray]:
+    """Bedding rows along ``bearing``: the straight pieces along it grouped by their offset across it.
+
+    Returns the rows in order across the tile (``dash`` = (on, off) or None, ``shift`` of the dashes
+    as a share of their period, ``style``) and (n,) each piece's row (-1 for none)."""
+    x0, y0, w, h = tile.box
+    t = math.radians(bearing)
+    u, nrm = np.array([math.cos(t), math.sin(t)]), np.array([-math.sin(t), math.cos(t)])
+    period = _normal_period(w, h, bearing)
+    tol_angle = ALONG if bearing == 0.0 else 2 * ALONG  # oblique rows are digitised less evenly
+    along = f["wavy"] & ((f["angle"] - bearing + tol_angle) % 180.0 <= 2 * tol_angle)
+    row_of = np.full(len(f["length"]), -1)
+    idx = np.flatnonzero(along)
+    if len(idx) == 0:
+        return [], row_of
+    off = (f["mid"][idx] @ nrm - np.array([x0, y0]) @ nrm) % period
+    tol = max(0.01 * period, 0.15)
+    order = np.argsort(off)
+    groups: list[list[int]] = []
+    last = -np.inf
+    for i in order.tolist():
+        if off[i] - last > tol:
+            groups.append([])
+        groups[-1].append(i)
+        last = off[i]
+    if len(groups) > 1 and off[groups[0][0]] + period - off[groups[-1][-1]] <= tol:  # wraps round
+        groups[0] = groups.pop() + groups[0]
+    if len(groups) > 2:  # hand-digitised rows wobble: groups much closer than the rows' spacing are one
+        centre = np.array([float(np.median(off[g])) for g in groups])
+        gap = np.diff(centre)
+        close = gap < 0.35 * float(np.median(gap))
+        merged = [groups[0]]
+        for g, c in zip(groups[1:], close.tolist(), strict=True):
+            if c:
+                merged[-1] = merged[-1] + g
+            else:
+                merged.append(g)
+        groups = merged
+    width = abs(w * u[0]) + abs(h * u[1]) if abs(u[0]) > 1e-9 and abs(u[1]) > 1e-9 else (w if abs(u[0]) > 0.5 else h)
+    span_len = w / abs(u[0]) if abs(u[0]) > 1e-9 else h  # length of a line across one tile
+    rows = []
+    for g in groups:
+        members = idx[np.array(g)]
+        length = f["length"][members]
+        cover = length.sum() / span_len
+        if cover >= SOLID:
+            dash = None
+            shift = 0.0
+        elif (len(members) >= 2 and length.std() <= 0.35 * length.mean()) or (len(members) >= 3 and cover >= BROKEN):
+            starts = np.sort((np.minimum(f["first"][members] @ u, f["last"][members] @ u)) % span_len)
+            gaps = np.diff(np.r_[starts, starts[0] + span_len])
+            per = span_len / len(members)
+            on = float(np.median(length)) if length.std() <= 0.35 * length.mean() else cover * per
+            if on >= per * 0.95:
+                dash, shift = None, 0.0
+            else:
+                dash = (on, per - on)
+                shift = float((starts[0] % per) / per)
+            del gaps
+        else:
+            continue
+        row_of[members] = len(rows)
+        rows.append({"offset": float(np.median(off[np.array(g)])), "dash": dash, "shift": shift,
+                     "style": _style(tile, int(members[0]))})  # fmt: skip
+    del width
+    if len(rows) > 1:  # rows should be evenly spaced: courses of one height
+        offs = np.array([r["offset"] for r in rows])
+        gaps = np.diff(np.r_[offs, offs[0] + period])
+        if gaps.max() > 2.5 * gaps.min():
+            # uneven: keep the rows, the courses are their mean spacing (the tile's order stays)
+            pass
+    return rows, row_of
+
+
+def _joints(f: dict[str, np.ndarray], joint: np.ndarray, bearing: float, course: float, period: float, w: float
+            ) -> tuple[float, float, float] | None:  # fmt: skip
+    """(cell length, course offset as a share of it, slant in degrees from the course normal) of the
+    joints, or None if they make no regular bond."""
+    t = math.radians(bearing)
+    u, nrm = np.array([math.cos(t), math.sin(t)]), np.array([-math.sin(t), math.cos(t)])
+    mid = f["mid"][joint]
+    s, c = mid @ u, mid @ nrm
+    crs = np.floor(c / course).astype(np.int64)
+    span = w / abs(u[0]) if abs(u[0]) > 1e-9 else w
+    counts = np.bincount(crs - crs.min())
+    counts = counts[counts > 0]
+    per = float(np.median(counts))
+    if per < 1:
+        return None
+    length = span / per
+    # offset: shift of the joints from one course to the next, modulo a length
+    firsts = {int(k): float(np.min(s[crs == k] % length)) for k in np.unique(crs)}
+    shifts = [((firsts[k + 1] - firsts[k]) / length) % 1.0 for k in firsts if k + 1 in firsts]
+    offset = float(np.median(shifts)) if shifts else 0.5
+    d = (f["last"][joint] - f["first"][joint])
+    d = d * np.where((d @ nrm) < 0, -1.0, 1.0)[:, None]
+    slant = float(np.degrees(np.median(np.arctan2(d @ u, d @ nrm))))
+    return length, offset, slant
+
+
+def _style(tile: TilePieces, piece: int) -> str:
+    paint = dict(tile.paint[piece])
+    keys = ("stroke", "stroke-width", "stroke-linecap", "stroke-dasharray")
+    return ";".join(["fill:none", *(f"{k}:{paint[k]}" for k in keys if k in paint)])
+
+
+def _ink(tile: TilePieces, idx: np.ndarray) -> float:
+    return float(sum(float(np.hypot(*np.diff(tile.points[i], axis=0).T).sum()) if len(tile.points[i]) > 1 else 0.0
+                     for i in idx.tolist()))  # fmt: skip
+
+
+def _subset(tile: TilePieces, idx: np.ndarray) -> TilePieces:
+    return replace(tile, footprint=tile.footprint[idx], points=[tile.points[i] for i in idx.tolist()],
+                   closed=tile.closed[idx], element=tile.element[idx], paint=[tile.paint[i] for i in idx.tolist()],
+                   frames=[], warnings=[])  # fmt: skip
+
+
+def _empty(tile: TilePieces) -> str:
+    """An exemplar with no motifs: the tile as the region (the description is added after)."""
+    x0, y0, w, h = tile.box
+    box = " ".join(fmt_array(np.array([x0, y0, w, h])))
+    root = ET.Element(f"{{{SVG_NS}}}svg", {"viewBox": box, "width": fmt(w), "height": fmt(h)})
+    ET.SubElement(root, f"{{{SVG_NS}}}rect", {"id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
+                                               "height": fmt(h), "fill": "none", PERIOD_ATTR: f"{fmt(w)} {fmt(h)}"})  # fmt: skip
+    return ET.tostring(root, encoding="unicode")
+
+
+def _with_description(text: str, desc: dict, tile: TilePieces) -> str:
+    """``text`` with ``desc`` on its region element, and a note saying so in its ``<desc>``."""
+    root = ET.fromstring(text)
+    region = next(el for el in root.iter() if el.get("id") == "region")
+    region.set(CELLULAR_ATTR, json.dumps(desc, sort_keys=True, separators=(",", ":")))
+    note = root.find(f"{{{SVG_NS}}}desc")
+    if note is None:
+        note = ET.Element(f"{{{SVG_NS}}}desc")
+        root.insert(0, note)
+    note.text = (f"Imported by svgtile from {Path(tile.source).name} as a cellular pattern (courses of "
+                 f"{fmt(desc['course'])}; svgtile:cellular on the region). " + (note.text or "")).strip()  # fmt: skip
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="unicode") + "\n"
