@@ -7,39 +7,74 @@ line and an exit code.
 
 from __future__ import annotations
 
+import importlib
 import os
 import sys
 import warnings
+from collections.abc import Iterator, MutableMapping
 
 import click
 
 from svgtile import __version__
-from svgtile.cli.analyze import analyze_cmd
 from svgtile.cli.common import Stderr, one_line, showwarning
-from svgtile.cli.compare import compare
-from svgtile.cli.inkscape import inkscape
-from svgtile.cli.map import map_cmd
-from svgtile.cli.propagate import propagate_cmd
-from svgtile.cli.qgis import qgis
-from svgtile.cli.score import score
-from svgtile.cli.symbols import symbols_cmd
-from svgtile.cli.synth import synth
-from svgtile.cli.tiles import import_cmd, swatches_cmd
 from svgtile.errors import SvgtileError
+
+#: Every command, as ``name: "module:attribute"``; a command's module is imported only when the
+#: command is looked up (run, or listed by ``--help``), so ``svgtile score`` does not pay for
+#: importing ``map``, ``qgis`` and the rest.
+COMMANDS = {
+    "synth": "svgtile.cli.synth:synth",
+    "analyze": "svgtile.cli.analyze:analyze_cmd",
+    "compare": "svgtile.cli.compare:compare",
+    "import": "svgtile.cli.tiles:import_cmd",
+    "inkscape": "svgtile.cli.inkscape:inkscape",
+    "map": "svgtile.cli.map:map_cmd",
+    "propagate": "svgtile.cli.propagate:propagate_cmd",
+    "qgis": "svgtile.cli.qgis:qgis",
+    "score": "svgtile.cli.score:score",
+    "swatches": "svgtile.cli.tiles:swatches_cmd",
+    "symbols": "svgtile.cli.symbols:symbols_cmd",
+}
+
+
+class LazyCommands(MutableMapping):
+    """The group's command table: names are known up front, each command is imported on first
+    lookup (click's ``Group`` reads its ``commands`` mapping only by name, iteration and ``get``)."""
+
+    def __init__(self, specs: dict[str, str]) -> None:
+        self._specs = dict(specs)
+        self._loaded: dict[str, click.Command] = {}
+
+    def __getitem__(self, name: str) -> click.Command:
+        if name not in self._loaded:
+            module, _, attr = self._specs[name].partition(":")
+            self._loaded[name] = getattr(importlib.import_module(module), attr)
+        return self._loaded[name]
+
+    def __setitem__(self, name: str, command: click.Command) -> None:
+        self._specs.setdefault(name, "")
+        self._loaded[name] = command
+
+    def __delitem__(self, name: str) -> None:
+        del self._specs[name]
+        self._loaded.pop(name, None)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._specs)
+
+    def __len__(self) -> int:
+        return len(self._specs)
+
 
 # click >= 8.2 raises this for a bare ``svgtile``; older versions print the help and exit 0
 _NO_ARGS_IS_HELP = getattr(click.exceptions, "NoArgsIsHelpError", ())
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(commands=LazyCommands(COMMANDS), context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="svgtile")
 def cli() -> None:
     """Fill any region with small vector motifs so it looks like a small exemplar you drew."""
 
-
-for _command in (synth, analyze_cmd, compare, import_cmd, inkscape, map_cmd, propagate_cmd, qgis, score, swatches_cmd,
-                 symbols_cmd):
-    cli.add_command(_command)
 
 
 def main(argv: list[str] | None = None) -> int:
