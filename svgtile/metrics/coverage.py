@@ -135,8 +135,8 @@ def _raster_clearance(
     pad = 2 * step
     ox, oy = x0 - pad, y0 - pad
     nx, ny = math.ceil((x1 - x0 + 2 * pad) / step), math.ceil((y1 - y0 + 2 * pad) / step)
-    gx, gy = np.meshgrid(ox + (np.arange(nx) + 0.5) * step, oy + (np.arange(ny) + 0.5) * step)
-    feature = ~_contains_xy(within, gx, gy)
+    xs, ys = ox + (np.arange(nx) + 0.5) * step, oy + (np.arange(ny) + 0.5) * step
+    feature = ~_contains_grid(within, xs, ys)
     if len(arr):
         reach = float(motif_radius(arr, protos).max())
         near = (
@@ -161,14 +161,26 @@ def _raster_clearance(
                 iy = np.floor((wy.ravel() - oy) / step).astype(np.int64)
                 ok = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
                 feature[iy[ok], ix[ok]] = True
+    keep = _contains_grid(centres, xs, ys)
+    iy, ix = np.nonzero(keep)
     if feature.all():
-        estimate = np.zeros(feature.shape)
+        estimate = np.zeros(len(iy))
     elif feature.any():
-        estimate = distance_transform_edt(~feature) * step
+        estimate = _feature_distance(~feature, iy, ix) * step
     else:
-        estimate = np.full(feature.shape, np.inf)
-    keep = _contains_xy(centres, gx, gy)
-    return np.stack([gx[keep], gy[keep]], axis=1), estimate[keep]
+        estimate = np.full(len(iy), np.inf)
+    return np.stack([xs[ix], ys[iy]], axis=1), estimate
+
+
+def _feature_distance(free: np.ndarray, iy: np.ndarray, ix: np.ndarray) -> np.ndarray:
+    """``distance_transform_edt(free)[iy, ix]``, in pixels, bit for bit, without the distances
+    of the pixels not asked for: the feature transform gives each pixel its nearest feature
+    pixel, and the distance is taken only at ``(iy, ix)`` (integer offsets, so their squares
+    and sums are exact whatever the order)."""
+    near = distance_transform_edt(free, return_distances=False, return_indices=True)
+    dy = (near[0][iy, ix] - iy).astype(np.float64)
+    dx = (near[1][iy, ix] - ix).astype(np.float64)
+    return np.sqrt(dy * dy + dx * dx)
 
 
 def _best_first(e: np.ndarray, k: int) -> np.ndarray:
@@ -189,10 +201,11 @@ def _best_first(e: np.ndarray, k: int) -> np.ndarray:
     return chosen[np.argsort(-e[chosen], kind="stable")]
 
 
-def _contains_xy(geom: shapely.Geometry, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """``shapely.contains_xy(geom, x, y)``, by four comparisons when ``geom`` is an axis-aligned
-    rectangle (a rectangular region or its interior): the same answer — the boundary is not
-    inside — without a point-in-polygon test for each of millions of raster pixels."""
+def _contains_grid(geom: shapely.Geometry, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """``shapely.contains_xy(geom, *np.meshgrid(xs, ys))``, shape ``(len(ys), len(xs))``: when
+    ``geom`` is an axis-aligned rectangle (a rectangular region or its interior), by comparing
+    the two axes once each — the same answer, the boundary is not inside — without a
+    point-in-polygon test, or even a coordinate, for each of millions of raster pixels."""
     if shapely.get_type_id(geom) == 3 and shapely.get_num_interior_rings(geom) == 0:
         ring = shapely.get_coordinates(shapely.get_exterior_ring(geom))
         x0, y0, x1, y1 = geom.bounds
@@ -200,5 +213,6 @@ def _contains_xy(geom: shapely.Geometry, x: np.ndarray, y: np.ndarray) -> np.nda
             corner = np.isin(ring[:, 0], (x0, x1)) & np.isin(ring[:, 1], (y0, y1))
             step = np.diff(ring, axis=0) != 0
             if corner.all() and (step[:, 0] != step[:, 1]).all():
-                return (x > x0) & (x < x1) & (y > y0) & (y < y1)
-    return shapely.contains_xy(geom, x, y)
+                return ((ys > y0) & (ys < y1))[:, None] & ((xs > x0) & (xs < x1))[None, :]
+    gx, gy = np.meshgrid(xs, ys)
+    return shapely.contains_xy(geom, gx, gy)
