@@ -1,0 +1,27 @@
+#!/bin/sh
+# svgtile score's text and --json, before and after a change, on textures of the bundled exemplars.
+#
+#   sh benchmarks/score_identity.sh BEFORE_PKG_DIR AFTER_PKG_DIR
+#
+# Each *_PKG_DIR is a `git archive COMMIT | tar -x` of the commit to run (put first on
+# PYTHONPATH).  The textures are synthesized once, with BEFORE; then both score each of them
+# and the outputs are compared with `diff -r` (exit status 0: identical).  Run from the
+# repository root.
+set -e
+PY=${PY:-.venv/bin/python}
+OUT=${TMPDIR:-/tmp}/svgtile-score-identity
+rm -rf "$OUT"; mkdir -p "$OUT/tex" "$OUT/before" "$OUT/after"
+synth() { PYTHONPATH="$1" "$PY" -m svgtile synth "exemplars/$2.svg" -o "$OUT/tex/$2-$3.svg" --seed "$4" --force --size "$5" ${6:+--engine $6}; }
+for e in gravel till breccia sand shale marsh; do synth "$1" $e patch 3 400x400; done
+synth "$1" gravel tile 2 500x300 tile
+synth "$1" till random 2 500x500 random
+synth "$1" gravel big 1 3000x3000
+for t in "$OUT"/tex/*.svg; do
+  b=$(basename "$t" .svg); e=${b%%-*}
+  for side in before after; do
+    [ $side = before ] && pkg=$1 || pkg=$2
+    PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" --json > "$OUT/$side/$b.json"
+    PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" > "$OUT/$side/$b.txt"
+  done
+done
+diff -r "$OUT/before" "$OUT/after" && echo "identical: $(ls "$OUT/before" | wc -l) outputs"
