@@ -4,7 +4,8 @@ Built in:
 
 * ``patch`` — patch-based synthesis (AlMeraj, Kaplan & Asente 2013), the default;
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
-* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline).
+* ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline);
+* ``growth`` — local growth from the exemplar's neighbourhoods (Ijiri, Měch, Igarashi & Miller 2008).
 
 Other packages add engines through the ``svgtile.engines`` entry-point group (the ecosystem's
 plug-in convention, as vpype's): an entry point ``NAME = module:ENGINE`` naming an object that
@@ -37,6 +38,7 @@ from svgtile.engines.base import (
     honoured,
     reading_order,
 )
+from svgtile.engines.growth import GROWTH, GrowthParams
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
@@ -54,7 +56,7 @@ REFUSED: dict[str, str] = {}
 
 
 def _registry() -> dict[str, Engine]:
-    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM)}
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, GROWTH)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines:
@@ -196,5 +198,5 @@ def synthesize(
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed)
 
 
-__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "PatchParams", "RandomParams", "Result", "TileParams",
+__all__ = ["ENGINES", "Context", "Controls", "Engine", "EngineParams", "GrowthParams", "PatchParams", "RandomParams", "Result", "TileParams",
            "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
