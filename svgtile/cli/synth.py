@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
-from svgtile.apps.mapread import synth_region
+from svgtile.apps.mapread import read_controls, synth_region
 from svgtile.apps.preview import render_png
 from svgtile.cli.common import (
     Stderr,
@@ -40,6 +40,12 @@ from svgtile.svg.writer import fmt, result_document
               help="Keep every motif clear of these labels, lines or shapes (texts by their box, lines by their stroke, grown by --avoid-margin). Repeatable.")
 @click.option("--avoid-margin", type=float, default=2.0, show_default=True,
               help="Clear space around --avoid zones, user units.")
+@click.option("--flow", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Turn motifs along these strokes (a flow field interpolated between them; the way each stroke was drawn is the way motifs point). Repeatable. Engines that honour it: growth.")
+@click.option("--barrier", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Lines no motif crosses and growth does not cross (a fault, a river); each side is filled on its own. Repeatable. Engines that honour it: growth.")
+@click.option("--grow-within", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Grow motifs only inside these shapes or brush strokes (a stroke's width is the brush). Repeatable. Engines that honour it: growth.")
 @engine_options
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default="clip", show_default=True,
               help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out.")
@@ -49,8 +55,8 @@ from svgtile.svg.writer import fmt, result_document
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 @click.pass_context
-def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, seed, force, as_tile,
-          **values):  # fmt: skip
+def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, barrier, grow_within, engine, boundary,
+          seed, force, as_tile, **values):  # fmt: skip
     """Synthesize a texture like EXEMPLAR and write it (SVG, GeoJSON points or PNG, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -59,6 +65,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     region = synth_region(parse_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
+    controls = read_controls(flow, barrier, grow_within)
     kind = output_format(output)
     if output != "-" and same_file(output, exemplar):
         raise ParameterError(f"{output}: refusing to overwrite the exemplar")
@@ -69,7 +76,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
-                        params=params)  # fmt: skip
+                        params=params, controls=controls)  # fmt: skip
     Stderr.clear()
     if len(result) == 0:
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")

@@ -31,6 +31,7 @@ are filled and growth never crosses one (a seed is made only inside its piece).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from dataclasses import dataclass
@@ -39,7 +40,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.analysis.stats import Stats, periodic_block
+from svgtile.analysis.stats import periodic_block
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
@@ -54,6 +55,8 @@ from svgtile.errors import ParameterError
 
 ROTATIONS = ("auto", "none", "fit", "flow")
 _START, _RING, _NOISE, _PRIORITY = range(4)
+#: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cell`).
+REFILLS = 2
 _PRIORITY_ITEM = re.compile(r"^\s*([^=,\s][^=,]*?)\s*=\s*(-?\d+)\s*$")
 
 
@@ -83,7 +86,7 @@ class GrowthParams(EngineParams):
                              interval=(0, 1_000_000), metavar="N")  # fmt: skip
     relaxation: bool = True
     cell_widths: float = 1.0
-    weights: Weights = Weights()
+    weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:
         if self.rotation not in ROTATIONS:
@@ -256,7 +259,7 @@ class Growth:
     def grow_cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> Arrangement:
         """The motifs of cell ``c``, grown against its earlier-phase neighbours."""
         a, b = c
-        ex, rings, p = self.ex, self.rings, self.p
+        rings, p = self.rings, self.p
         w, h = self.cell
         before = Arrangement.concat([done[(a + da, b + db)] for da in (-1, 0, 1) for db in (-1, 0, 1)
                                      if _phase((a + da, b + db)) < _phase(c) and (a + da, b + db) in done])  # fmt: skip
@@ -264,64 +267,90 @@ class Growth:
         near = ((before.xy[:, 0] > a * w - margin) & (before.xy[:, 0] < (a + 1) * w + margin)
                 & (before.xy[:, 1] > b * h - margin) & (before.xy[:, 1] < (b + 1) * h + margin))  # fmt: skip
         before = before.take(near)
-        sub = np.zeros(len(before), np.int64) - 1
         flow = self.ctx.controls.flow
         flow_angle = (lambda xy: np.radians(flow.angle(xy))) if flow is not None else (lambda xy: np.zeros(len(xy)))
         key = self.ctx.key
 
-        grown = []
+        grown: list[Arrangement] = []
         for part, piece in enumerate(self.pieces(a, b)):
             shapely.prepare(piece)
             start, ring0 = self.start(a, b, part, piece)
-            fixed = Arrangement.concat([before, *[g for g in grown]])
-            fsub = np.r_[sub, np.full(len(fixed) - len(before), -1)]
             # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
             draws = np.random.default_rng(int(cellrng.hash64(key, _NOISE, a, b, part)))
+            kept: list[Arrangement] = []
+            more = more_kind = None
+            for rnd in range(1 + REFILLS):
+                fixed = Arrangement.concat([before, *grown, *kept])
+                fsub = np.full(len(fixed), -1)
 
-            def relaxer(xy, ring, theta, first):
-                return relax(rings, xy, ring, theta, first)
+                def relaxer(xy, ring, theta, first):
+                    return relax(rings, xy, ring, theta, first)
 
-            g = grow(rings, piece, start, ring0, fixed_xy=fixed.xy, fixed_kind=fixed.kind, fixed_sub=fsub,
-                     rotation=self.rotation, flow_angle=flow_angle, priority=self.priority, weights=p.weights,
-                     centre_gap=self.gap, noise=lambda step, draws=draws: draws.random(len(rings)),
-                     relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
-            xy = g.xy
-            if p.relaxation and len(xy) > 1:
-                held = None
-                if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
-                    held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
-                xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
-            angle = rings.angle[g.ring] + np.degrees(g.theta)
-            arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, rings.scale[g.ring])
-            grown.append(arr.quantized(DECIMALS))
-        new = Arrangement.concat(grown)
-        return self.settle(new, before, c)
+                g = grow(rings, piece, start, ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
+                         fixed_sub=fsub, more=more, more_kind=more_kind, rotation=self.rotation, flow_angle=flow_angle,
+                         priority=self.priority, weights=p.weights, centre_gap=self.gap,
+                         noise=lambda step, draws=draws: draws.random(len(rings)),
+                         relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
+                if not len(g.xy):
+                    break
+                xy = g.xy
+                if p.relaxation and len(xy) > 1:
+                    held = None
+                    if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
+                        held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
+                    xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
+                angle = rings.angle[g.ring] + np.degrees(g.theta)
+                arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, rings.scale[g.ring])
+                arr = arr.quantized(DECIMALS)
+                ok = self.settle(arr, fixed)
+                kept.append(arr.take(ok))
+                # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
+                more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
+                                                  Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
+                if not len(more):
+                    break
+            grown.extend(kept)
+        return Arrangement.concat(grown)
 
-    def settle(self, new: Arrangement, before: Arrangement, c: tuple[int, int]) -> Arrangement:
-        """``new`` without the motifs that overlap, break the distance rule or cross a barrier,
-        checked on footprints against each other and ``before`` (which stay)."""
-        if not len(new):
-            return new
-        ex, protos, d = self.ex, self.ex.prototypes, self.stats.distance
+    def free_slots(self, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, piece: shapely.Geometry,
+                   placed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+        """Seeds at the ring slots of motifs ``xy`` that no motif of ``placed`` fills (within
+        r_short), inside ``piece``: (s, 2) positions and (s,) kinds."""
+        rings = self.rings
+        if not len(xy):
+            return np.zeros((0, 2)), np.zeros(0, np.int64)
+        valid = np.arange(rings.rel.shape[1])[None, :] < rings.size[ring][:, None]
+        c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+        v = rings.rel[ring]
+        pos = xy[:, None] + np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
+        pos, kind = pos[valid], rings.nkind[ring][valid]
+        d, _ = cKDTree(placed).query(pos)
+        free = (d >= rings.short_length / 2) & shapely.contains_xy(piece, pos[:, 0], pos[:, 1])
+        return pos[free], kind[free]
+
+    def settle(self, new: Arrangement, before: Arrangement) -> np.ndarray:
+        """(n,) bool: the motifs of ``new`` that stay — no overlap, no distance-rule violation, no
+        barrier crossed, checked on footprints against each other and ``before`` (which stay)."""
+        protos, d = self.ex.prototypes, self.stats.distance
         ok = np.ones(len(new), bool)
-        if self.cut is not None or self.within is not None:
-            geoms = world_footprints(new, protos)
-            if self.barriers is not None:
-                ok &= ~shapely.intersects(geoms, self.barriers)
-            if self.within is not None:
-                ok &= shapely.contains_xy(self.within, new.xy[:, 0], new.xy[:, 1])
+        if not len(new):
+            return ok
+        if self.barriers is not None:
+            ok &= ~shapely.intersects(world_footprints(new, protos), self.barriers)
+        if self.within is not None:
+            ok &= shapely.contains_xy(self.within, new.xy[:, 0], new.xy[:, 1])
         if len(before):
             ok[ok] = ~cross_conflicts(new.take(ok), before, protos, d)
-        new = new.take(ok)
-        prio = cellrng.uniform(self.ctx.key, _PRIORITY, np.round(new.xy * 16).astype(np.int64)[:, 0],
-                               np.round(new.xy * 16).astype(np.int64)[:, 1])  # fmt: skip
-        found = find_conflicts(new, protos, d)
-        violator = np.zeros(len(new))
+        sel = np.flatnonzero(ok)
+        sub = new.take(sel)
+        grid = np.round(sub.xy * 16).astype(np.int64)
+        prio = cellrng.uniform(self.ctx.key, _PRIORITY, grid[:, 0], grid[:, 1])
+        found = find_conflicts(sub, protos, d)
+        violator = np.zeros(len(sub))
         side = found.violation & ~found.overlap
         violator[found.i[side]] = violator[found.j[side]] = 1.0
-        keep = cull(len(new), found, prio, violator)
-        del ex
-        return new.take(keep)
+        ok[sel] = cull(len(sub), found, prio, violator)
+        return ok
 
 
 def _phase(c: tuple[int, int]) -> int:

@@ -34,6 +34,9 @@ import shapely
 from svgtile.engines.growth.connectivity import Rings, ring_of
 from svgtile.engines.growth.matching import Weights, best_match
 
+#: A seed whose best match collides tries the next best, up to this many matches in all.
+ALTERNATIVES = 4
+
 
 @dataclass(frozen=True, eq=False)
 class Grown:
@@ -74,6 +77,7 @@ class _Buckets:
 
 
 def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: int, *, fixed_xy: np.ndarray,
+         more: np.ndarray | None = None, more_kind: np.ndarray | None = None,
          fixed_kind: np.ndarray, fixed_sub: np.ndarray, rotation: str, flow_angle: Callable[[np.ndarray], np.ndarray],
          priority: np.ndarray, weights: Weights, centre_gap: np.ndarray, noise: Callable[[int], np.ndarray],
          relax: Callable[[np.ndarray, np.ndarray, np.ndarray, int], np.ndarray] | None = None,
@@ -87,6 +91,9 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     start : (2,) float array, user units — the initial seed
     start_ring : the reference ring the initial seed becomes when it has no placed neighbour
         (so that a repeating tile grows on its own lattice); −1 to let the match decide
+    more, more_kind : (s, 2) float and (s,) int arrays, optional — further initial seeds and the
+        kinds they must become (−1: any), grown in order of distance from ``start`` (refilling
+        the holes a first growth left, see :mod:`.engine`)
     fixed_xy, fixed_kind, fixed_sub : (f, 2), (f,), (f,) — motifs placed before (neighbouring
         cells): they are neighbours in matching and are never moved
     rotation : ``none``, ``fit`` or ``flow``
@@ -129,6 +136,18 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     heap: list[tuple[float, int]] = [(0.0, 0)]
     top = int(priority.max()) if len(priority) else 0
     levels = len(np.unique(priority)) > 1
+    if more is not None:
+        for (px, py), kk in zip(more, more_kind, strict=True):
+            q = len(sxy)
+            sxy.append((float(px), float(py)))
+            skind.append(int(kk))
+            alive.append(True)
+            skey.append(float(np.hypot(px - start[0], py - start[1])))
+            seeds.add(q, px, py)
+            if levels:
+                waiting.add(q, px, py)
+            heap.append((skey[q], q))
+        heapq.heapify(heap)
     step = 0
     while heap and n - f < limit:
         d0, s = heapq.heappop(heap)
@@ -156,16 +175,17 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
         tar = rel[order]
         fa = float(flow_angle(np.array([[x, y]]))[0]) if rotation == "flow" else 0.0
         if start_ring >= 0 and s == 0 and not len(tar):
-            r, k, theta = start_ring, 0, fa
+            options = [(start_ring, 0, fa, 0.0)]
         else:
-            r, k, theta, _ = best_match(rings, tar, ekind[ids[order]], esub[ids[order]], want=want,
-                                        rotation=rotation, flow_angle=fa, weights=weights, noise=noise(step))  # fmt: skip
+            options = best_match(rings, tar, ekind[ids[order]], esub[ids[order]], want=want, rotation=rotation,
+                                 flow_angle=fa, weights=weights, noise=noise(step), top=ALTERNATIVES)  # fmt: skip
         step += 1
-        if r < 0:
+        # the best match whose element does not collide (Fig. 6d); none: the seed is dropped
+        fits = [o for o in options if not (len(ids) and (dist < centre_gap[rings.kind[o[0]], ekind[ids]]).any())]
+        if not fits:
             continue
+        r, k, theta, _ = fits[0]
         kind = int(rings.kind[r])
-        if len(ids) and (dist < centre_gap[kind, ekind[ids]]).any():
-            continue  # collision (Fig. 6d)
         if n == cap:
             cap *= 2
             exy = np.resize(exy, (cap, 2))

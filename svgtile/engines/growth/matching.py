@@ -42,7 +42,8 @@ class Weights:
 
 
 def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarray, *, want: int,
-               rotation: str, flow_angle: float, weights: Weights, noise: np.ndarray) -> tuple[int, int, float, float]:  # fmt: skip
+               rotation: str, flow_angle: float, weights: Weights, noise: np.ndarray,
+               top: int = 1) -> list[tuple[int, int, float, float]]:  # fmt: skip
     """The reference ring, shift and rotation that best fit a seed's placed neighbours.
 
     Parameters
@@ -57,13 +58,14 @@ def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarra
     weights : eq. (2)'s weights
     noise : (r,) float array in [0, 1) — breaks ties between equally good references (a
         world-anchored hash, so the choice is reproducible)
+    top : how many of the best (reference, shift) pairs to return
 
     Returns
     -------
-    ring : index into ``rings`` (−1 when none qualifies)
-    shift : k, the reference slot matched with the first target neighbour
-    theta : radians, the rotation applied to the reference ring
-    error : the error of eq. (3)
+    list of up to ``top`` tuples ``(ring, shift, theta, error)``, best first (empty when no
+    reference qualifies): ``ring`` indexes ``rings``, ``shift`` is k, the reference slot matched
+    with the first target neighbour, ``theta`` the rotation applied to the reference ring
+    (radians), ``error`` the error of eq. (3)
     """
     t = len(tar)
     ok = rings.size >= t
@@ -71,13 +73,12 @@ def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarra
         ok &= rings.kind == want
     cand = np.flatnonzero(ok)
     if not len(cand):
-        return -1, 0, 0.0, np.inf
+        return []
     M = rings.rel.shape[1]
     size = rings.size[cand]
     if t == 0:
-        best = cand[int(np.argmin(noise[cand]))]
         theta = flow_angle if rotation == "flow" else 0.0
-        return int(best), 0, theta, 0.0
+        return [(int(r), 0, theta, 0.0) for r in cand[np.argsort(noise[cand])[:top]]]
     shift = np.arange(M)
     ref = rings.rolled[cand, :, :t]  # (c, M, t, 2): reference slot k + i for target neighbour i
     if rotation == "fit":
@@ -96,6 +97,11 @@ def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarra
         err = err + weights.subid * (rings.rolled_sub[cand, :, :t] == tsub).sum(-1)
     err = np.where(shift[None, :] < size[:, None], err, np.inf)
     err = err + 1e-9 * noise[cand][:, None]  # ties: a reproducible random reference
-    flat = int(np.argmin(err))
-    i, k = divmod(flat, M)
-    return int(cand[i]), int(k), float(theta[i, k]), float(err[i, k])
+    flat = err.ravel()
+    best = np.argsort(flat)[:top] if top > 1 else np.array([np.argmin(flat)])
+    out = []
+    for f in best:
+        i, k = divmod(int(f), M)
+        if np.isfinite(err[i, k]):
+            out.append((int(cand[i]), k, float(theta[i, k]), float(err[i, k])))
+    return out
