@@ -212,3 +212,52 @@ def ring_of(xy: np.ndarray, centre: np.ndarray) -> np.ndarray:
         first = (int(np.argmax(gaps)) + 1) % len(order)
         order = np.roll(order, -first)
     return order
+
+
+#: Two ring shapes are alike when, under some cyclic shift, every neighbour is within this many
+#: mean edge lengths of its counterpart and of the same kind.
+ALIKE = 0.1
+
+
+def ring_classes(rings: Rings, tol: float = ALIKE) -> np.ndarray:
+    """(r,) int: a class label per reference ring; rings alike up to translation share one.
+
+    A perfect lattice has one class per motif of its primitive cell (one for a square or hex
+    lattice, two for bricks with a half offset), an irregular exemplar about one per motif.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    r = len(rings)
+    if r == 0:
+        return np.zeros(0, np.int64)
+    M = rings.rel.shape[1]
+    same = (rings.size[:, None] == rings.size[None, :]) & (rings.kind[:, None] == rings.kind[None, :])
+    a, b = np.nonzero(np.triu(same, 1))
+    alike = np.zeros(len(a), bool)
+    valid = np.arange(M)[None, :] < rings.size[a][:, None]  # (p, M)
+    for k in range(M):  # ring b under shift k against ring a
+        d = np.hypot(*(rings.rolled[b, k] - rings.rel[a]).transpose(2, 0, 1))
+        kinds = rings.rolled_kind[b, k] == rings.nkind[a]
+        ok = ((d < tol * rings.mean_length) & kinds) | ~valid
+        alike |= ok.all(1) & (k < rings.size[b])
+    graph = coo_matrix((np.ones(alike.sum()), (a[alike], b[alike])), shape=(r, r))
+    return connected_components(graph, directed=False)[1].astype(np.int64)
+
+
+def regularity(rings: Rings) -> float:
+    """1 − (ring classes − 1) / reference rings: 1 for a lattice or rows, near 0 when every
+    neighbourhood differs (the measure behind :func:`is_regular`)."""
+    if len(rings) == 0:
+        return 0.0
+    return 1.0 - (len(np.unique(ring_classes(rings))) - 1) / len(rings)
+
+
+#: An exemplar is regular (rows, a lattice) when at least this regularity is found: at most one
+#: ring shape per four motifs.
+REGULAR = 0.75
+
+
+def is_regular(rings: Rings) -> bool:
+    """Does the exemplar show rows or a lattice (§4's connectivity repeats)?"""
+    return regularity(rings) >= REGULAR

@@ -215,10 +215,11 @@ class Growth:
 
     def run(self) -> Arrangement:
         order = self.cells()
+        self.subs: dict[tuple[int, int], np.ndarray] = {}  # the sub-id (exemplar motif) of each motif
         done: dict[tuple[int, int], Arrangement] = {}
         for t, c in enumerate(order):
             self.ctx.progress("growth", t / max(len(order), 1))
-            done[c] = self.grow_cell(c, done)
+            done[c], self.subs[c] = self.grow_cell(c, done)
         return Arrangement.concat([done[c] for c in order])
 
     def pieces(self, a: int, b: int) -> list[shapely.Geometry]:
@@ -256,32 +257,36 @@ class Growth:
             return cand[np.argmin(np.hypot(*(cand - centre).T))], r
         return centre, -1
 
-    def grow_cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> Arrangement:
-        """The motifs of cell ``c``, grown against its earlier-phase neighbours."""
+    def grow_cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> tuple[Arrangement, np.ndarray]:
+        """The motifs of cell ``c``, grown against its earlier-phase neighbours, and their sub-ids."""
         a, b = c
         rings, p = self.rings, self.p
         w, h = self.cell
-        before = Arrangement.concat([done[(a + da, b + db)] for da in (-1, 0, 1) for db in (-1, 0, 1)
-                                     if _phase((a + da, b + db)) < _phase(c) and (a + da, b + db) in done])  # fmt: skip
+        nb = [(a + da, b + db) for da in (-1, 0, 1) for db in (-1, 0, 1)
+              if _phase((a + da, b + db)) < _phase(c) and (a + da, b + db) in done]  # fmt: skip
+        before = Arrangement.concat([done[q] for q in nb])
+        bsub = np.concatenate([self.subs[q] for q in nb]) if nb else np.zeros(0, np.int64)
         margin = rings.radius * 1.2 + 2 * self.radius + float(self.stats.distance.max())
         near = ((before.xy[:, 0] > a * w - margin) & (before.xy[:, 0] < (a + 1) * w + margin)
                 & (before.xy[:, 1] > b * h - margin) & (before.xy[:, 1] < (b + 1) * h + margin))  # fmt: skip
-        before = before.take(near)
+        before, bsub = before.take(near), bsub[near]
         flow = self.ctx.controls.flow
         flow_angle = (lambda xy: np.radians(flow.angle(xy))) if flow is not None else (lambda xy: np.zeros(len(xy)))
         key = self.ctx.key
 
         grown: list[Arrangement] = []
+        gsub: list[np.ndarray] = []
         for part, piece in enumerate(self.pieces(a, b)):
             shapely.prepare(piece)
             start, ring0 = self.start(a, b, part, piece)
             # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
             draws = np.random.default_rng(int(cellrng.hash64(key, _NOISE, a, b, part)))
             kept: list[Arrangement] = []
+            ksub: list[np.ndarray] = []
             more = more_kind = None
             for rnd in range(1 + REFILLS):
                 fixed = Arrangement.concat([before, *grown, *kept])
-                fsub = np.full(len(fixed), -1)
+                fsub = np.concatenate([bsub, *gsub, *ksub])
 
                 def relaxer(xy, ring, theta, first):
                     return relax(rings, xy, ring, theta, first)
@@ -304,13 +309,15 @@ class Growth:
                 arr = arr.quantized(DECIMALS)
                 ok = self.settle(arr, fixed)
                 kept.append(arr.take(ok))
+                ksub.append(rings.element[g.ring[ok]])
                 # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
                 more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
                                                   Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
                 if not len(more):
                     break
             grown.extend(kept)
-        return Arrangement.concat(grown)
+            gsub.extend(ksub)
+        return Arrangement.concat(grown), np.concatenate(gsub) if gsub else np.zeros(0, np.int64)
 
     def free_slots(self, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, piece: shapely.Geometry,
                    placed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
