@@ -126,7 +126,7 @@ def find_python():
 
 #: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
 #: against the .inx and svgtile's engine parameter classes).
-ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation")
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "rotation", "priority", "relax-every")
 
 
 class FillWithTexture(inkex.EffectExtension):
@@ -134,12 +134,15 @@ class FillWithTexture(inkex.EffectExtension):
 
     def add_arguments(self, pars):
         pars.add_argument("--tab", default="options")
-        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random"])
+        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "growth"])
         pars.add_argument("--grid", default="square", choices=["square", "hex"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--junction", type=float, default=0.6)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
+        pars.add_argument("--rotation", default="auto", choices=["auto", "none", "fit", "flow"])
+        pars.add_argument("--priority", default="")
+        pars.add_argument("--relax-every", type=int, default=0)
         pars.add_argument("--boundary", default="clip", choices=["clip", "inside", "centroid", "none"])
         pars.add_argument("--seed", type=int, default=0)
 
