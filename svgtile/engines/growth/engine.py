@@ -271,7 +271,7 @@ class Growth:
                 & (before.xy[:, 1] > b * h - margin) & (before.xy[:, 1] < (b + 1) * h + margin))  # fmt: skip
         before, bsub = before.take(near), bsub[near]
         flow = self.ctx.controls.flow
-        flow_angle = (lambda xy: np.radians(flow.angle(xy))) if flow is not None else (lambda xy: np.zeros(len(xy)))
+        flow_angle = self.flow_lookup(a, b) if flow is not None else (lambda xy: np.zeros(len(xy)))
         key = self.ctx.key
 
         grown: list[Arrangement] = []
@@ -318,6 +318,24 @@ class Growth:
             grown.extend(kept)
             gsub.extend(ksub)
         return Arrangement.concat(grown), np.concatenate(gsub) if gsub else np.zeros(0, np.int64)
+
+    def flow_lookup(self, a: int, b: int):
+        """``f(xy)`` → radians: the flow field's direction, sampled once per cell on a grid of
+        spacing r_short (one interpolation per cell instead of one per seed), nearest sample."""
+        w, h = self.cell
+        step = self.rings.short_length / 2
+        pad = self.rings.radius * 1.5
+        x0, y0 = a * w - pad, b * h - pad
+        nx, ny = int(np.ceil((w + 2 * pad) / step)) + 1, int(np.ceil((h + 2 * pad) / step)) + 1
+        gx, gy = np.meshgrid(x0 + np.arange(nx) * step, y0 + np.arange(ny) * step)
+        table = np.radians(self.ctx.controls.flow.angle(np.c_[gx.ravel(), gy.ravel()])).reshape(ny, nx)
+
+        def lookup(xy: np.ndarray) -> np.ndarray:
+            i = np.clip(np.rint((xy[:, 1] - y0) / step).astype(np.int64), 0, ny - 1)
+            j = np.clip(np.rint((xy[:, 0] - x0) / step).astype(np.int64), 0, nx - 1)
+            return table[i, j]
+
+        return lookup
 
     def free_slots(self, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, piece: shapely.Geometry,
                    placed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
