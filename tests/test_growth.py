@@ -247,3 +247,16 @@ def test_cli_refuses_bad_tools_in_one_line(tmp_path, capsys, opts, message):
     err = capsys.readouterr().err
     assert rc == 1 and not out.exists()
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_analyze_shows_and_draws_the_ring_shapes(tmp_path, capsys):
+    tile = tmp_path / "rows.svg"
+    tile.write_text(lattice_tile(4, 8, 3.0, 8.0))
+    png = tmp_path / "rings.png"
+    assert main(["analyze", str(tile), "--rings", "--png", str(png)]) == 0
+    out = capsys.readouterr().out
+    assert "32 motifs with a whole ring (periodic): 32×4 neighbours" in out
+    assert "1 class(es) of alike rings, regularity 1.00 (rows or a lattice)" in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(["analyze", str(REPO / "exemplars" / "shale.svg"), "--rings"]) == 0
+    assert "(irregular)" in capsys.readouterr().out
