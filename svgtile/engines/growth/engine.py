@@ -17,7 +17,8 @@ growth runs per *world cell*:
 * each cell is relaxed (§5.5) with its neighbours held, then its motifs are checked exactly
   (footprints: no overlap, the distance rule, no barrier crossed) against each other and the
   earlier motifs, and the conflicting ones leave (:func:`svgtile.core.conflicts.cull`, with
-  world-anchored priorities).
+  world-anchored priorities); the holes they leave are regrown (:data:`REFILLS` rounds) from the
+  ring slots of the motifs kept that no motif fills — §5.4's seeding, restarted.
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in

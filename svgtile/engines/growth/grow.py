@@ -14,6 +14,11 @@ heuristics of Fig. 6 keep the growth from crowding or tearing:
 * a seed that would leave the growth area — the piece of a cell between barriers, inside the
   ``--grow-within`` shapes — is not made, so growth never crosses a barrier.
 
+Not done from Fig. 6: the angle test (c) and the extra untyped seed on an edge longer than
+l_long (e); a hole they would fill is regrown by the engine's refill rounds instead.  Edges are
+not stored: a seed's neighbours are found afresh among the placed motifs by the Gabriel rule of
+:func:`~svgtile.engines.growth.connectivity.ring_of`, the rule the reference rings are made by.
+
 Priorities (§5.1): a seed is grown only when no seed of a higher-priority kind is alive within
 5·l of it (l: the exemplar's mean edge length); until then it waits behind that seed.
 
