@@ -27,14 +27,16 @@ from svgtile.engines.growth.connectivity import REGULAR, reference_rings, regula
 FGDC = SHARED / "fgdc-geologic-patterns" / "lithology"
 OSM = SHARED / "osm-carto" / "patterns"
 #: The regular tiles by the module docstring's rule.
-REGULAR_TILES = {name: FGDC / f"{name}.svg" for name in ("619", "620", "670", "710", "711", "712", "713", "716")} | {
+REGULAR_TILES = {name: FGDC / f"{name}.svg" for name in ("619", "620", "670", "710", "711", "712", "713", "716", "721", "728", "731")} | {
     name: OSM / f"{name}.svg" for name in ("allotments", "grave_yard_christian", "grave_yard_generic",
-                                           "grave_yard_jewish", "orchard", "plant_nursery", "vineyard")}  # fmt: skip
+                                           "grave_yard_jewish", "grave_yard_muslim", "orchard", "plant_nursery", "vineyard")}  # fmt: skip
 
 needs_data = pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real symbol sets) is not beside the checkout")
 
 #: Known failures, with the figure measured (4 periods, at least 200 units a side, seed 1).
-LOW_DENSITY = {"619": 0.770, "670": 0.665}
+LOW_DENSITY = {"619": 0.770, "670": 0.665, "grave_yard_muslim": 0.059}
+#: grave_yard_muslim: two motifs of two kinds per tile, one whole ring; growth places 7 motifs.
+LOW_LIKENESS = {"grave_yard_muslim": -23.0}
 
 
 @cache
@@ -50,7 +52,9 @@ def test_the_tile_is_regular_by_the_rule(name):
 
 
 @needs_data
-@pytest.mark.parametrize("name", sorted(REGULAR_TILES))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(
+    strict=True, reason=f"likeness {LOW_LIKENESS[n]:.1f}: the tile's two motifs give one whole ring, growth stalls"))
+    if n in LOW_LIKENESS else n for n in sorted(REGULAR_TILES)])  # fmt: skip
 def test_growth_keeps_rows_and_lattices(name):
     f = figures(name)
     assert f.overlaps == 0 and f.violators == 0
