@@ -126,7 +126,8 @@ def find_python():
 
 #: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
 #: against the .inx and svgtile's engine parameter classes).
-ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "passes", "neighbourhood")
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "passes", "neighbourhood",
+                  "rotation", "priority", "relax-every")
 
 
 class FillWithTexture(inkex.EffectExtension):
@@ -134,7 +135,7 @@ class FillWithTexture(inkex.EffectExtension):
 
     def add_arguments(self, pars):
         pars.add_argument("--tab", default="options")
-        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "optimize"])
+        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "optimize", "growth"])
         pars.add_argument("--grid", default="square", choices=["square", "hex", "lattice"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
@@ -142,6 +143,9 @@ class FillWithTexture(inkex.EffectExtension):
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
         pars.add_argument("--passes", type=int, default=5)
         pars.add_argument("--neighbourhood", type=int, default=6)
+        pars.add_argument("--rotation", default="auto", choices=["auto", "none", "fit", "flow"])
+        pars.add_argument("--priority", default="")
+        pars.add_argument("--relax-every", type=int, default=0)
         pars.add_argument("--boundary", default="clip", choices=["clip", "inside", "centroid", "none"])
         pars.add_argument("--seed", type=int, default=0)
 

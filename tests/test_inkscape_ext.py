@@ -155,6 +155,8 @@ class FillInx(InxMixin, TestCase):
                 assert (el.get("type"), el.text, value) == ("bool", str(p.default).lower(), p.default), name
             elif p.choices:
                 assert (params[name].options, value) == (list(p.choices), p.default), name
+            elif p.type is str:
+                assert (el.get("type"), el.text or "", value) == ("string", p.default, p.default), name
             else:
                 assert (float(el.text), value) == (p.default, p.default), name
                 low, high = p.interval

@@ -28,9 +28,11 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
+from svgtile.engines.base import Controls
 from svgtile.errors import ParameterError, RegionError
-from svgtile.gis import layers
+from svgtile.gis import geojson, layers
 from svgtile.gis.layers import is_gis
 from svgtile.svg.dialect import CONTAINERS, INKSCAPE_NS, NOT_RENDERED, SHAPES
 from svgtile.svg.mapdoc import SvgShapes
@@ -168,3 +170,78 @@ def synth_region(
         rect = Region.rectangle(*size)
         return rect if zone is None else Region.from_geometry(rect.shape, avoid=zone, source="--size")
     return Region.from_geometry(read_region_shape(region), avoid=zone, source=region)
+
+
+def _geojson_control(path: Path, option: str) -> bool:
+    """Whether a control spec names a GeoJSON file (other GIS formats are refused: controls are
+    read from ``MAP.svg#ID`` or ``FILE.geojson``)."""
+    if not is_gis(path):
+        return False
+    if path.suffix.lower() != ".geojson":
+        raise RegionError(f"{option} reads lines from MAP.svg#ID or FILE.geojson, not a {path.suffix} layer",
+                          source=str(path))  # fmt: skip
+    return True
+
+
+def read_lines(spec: str, option: str) -> list[tuple[np.ndarray, float]]:
+    """The polylines a control spec names, with their stroke widths (user units).
+
+    ``MAP.svg#ID``: the strokes of that element (:meth:`SvgShapes.strokes`); ``FILE.geojson[#ID]``:
+    the LineStrings, MultiLineStrings and polygon rings of the file (width 0).
+    """
+    path, ident = split_spec(spec)
+    gj = _geojson_control(Path(path), option)
+    if gj:
+        out = []
+        for g in shapely.get_parts(shapely.get_parts(geojson.read_geometry(path, feature=ident))):
+            if shapely.get_type_id(g) == 3:  # a polygon: its rings
+                out += [(shapely.get_coordinates(r), 0.0) for r in shapely.get_parts(shapely.boundary(g))]
+            elif shapely.get_type_id(g) == 1:
+                out.append((shapely.get_coordinates(g), 0.0))
+        lines_out = [(p, w) for p, w in out if len(p) >= 2]
+    else:
+        if ident is None:
+            raise RegionError(f"name the element: {option} MAP.svg#ID", source=str(path))
+        doc = SvgShapes.read(path)
+        lines_out = [(p, w) for p, w in doc.strokes(doc.element(ident)) if len(p) >= 2]
+    if not lines_out:
+        raise RegionError(f"{option}: {'feature' if gj else 'element'} {ident or ''} draws no line".replace("  ", " "),
+                          source=str(path))  # fmt: skip
+    return lines_out
+
+
+def read_controls(flow: tuple[str, ...] = (), barrier: tuple[str, ...] = (), grow_within: tuple[str, ...] = ()) -> Controls:
+    """The map controls of ``--flow``, ``--barrier`` and ``--grow-within`` (Ijiri et al. 2008 §6).
+
+    * flow: the strokes' tangents, interpolated (:class:`~svgtile.core.flow.FlowField`);
+    * barrier: the strokes as lines (their width ignored: a barrier is a line);
+    * grow-within: the closed shapes' area, and every stroke grown by half its width (the brush);
+      for GeoJSON, the polygons.
+    """
+    field = None
+    if flow:
+        lines = [p for spec in flow for p, _ in read_lines(spec, "--flow")]
+        field = FlowField.from_strokes(lines, source=" ".join(flow))
+    barriers = None
+    if barrier:
+        barriers = shapely.union_all([shapely.linestrings(p) for spec in barrier for p, _ in read_lines(spec, "--barrier")])
+    within = None
+    if grow_within:
+        parts = []
+        for spec in grow_within:
+            path, ident = split_spec(spec)
+            if _geojson_control(Path(path), "--grow-within"):
+                parts.append(shapely.union_all([r.shape for r in geojson.read_regions(path, feature=ident)]))
+                continue
+            if ident is None:
+                raise RegionError("name the element: --grow-within MAP.svg#ID", source=str(path))
+            doc = SvgShapes.read(path)
+            el = doc.element(ident)
+            area = doc.area(el)
+            brush = [shapely.buffer(shapely.linestrings(p), w / 2) for p, w in doc.strokes(el) if w > 0 and len(p) >= 2]
+            shape = shapely.union_all([area, *brush])
+            if shape.is_empty or shape.area <= 0:
+                raise RegionError(f"--grow-within: element #{ident} has no area and no stroke width", source=str(path))
+            parts.append(shape)
+        within = shapely.union_all(parts)
+    return Controls(flow=field, barriers=barriers, grow_within=within)

@@ -18,16 +18,37 @@ from svgtile.engines.choose import choose
 @click.command(name="analyze")
 @click.argument("exemplar", type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
-def analyze_cmd(exemplar, as_json):
+@click.option("--rings", "show_rings", is_flag=True,
+              help="Also show the ring shapes the growth engine found (each motif's neighbours, Ijiri et al. 2008 §4).")
+@click.option("--png", "png", default=None, metavar="FILE.png",
+              help="Draw the exemplar's connectivity (motif centres and the edges of their ring shapes) to FILE.png.")
+@click.option("--import", "as_tile", is_flag=True, help="EXEMPLAR is a seamless pattern tile: import it first.")
+def analyze_cmd(exemplar, as_json, show_rings, png, as_tile):
     """Print what synthesis reproduces from EXEMPLAR: kinds, density, distances, orientations,
     and its order (rows, lattice, period, anisotropy, clustering, banding) with the engine
     ``--engine auto`` picks for it."""
-    ex, stats = load(exemplar)
+    ex, stats = load(exemplar, as_tile=as_tile)
     report = stats_report(ex, stats)
+    if show_rings:
+        from svgtile.apps.rings import rings_report
+
+        report["rings"] = rings_report(ex)
+    if png is not None:
+        from svgtile.apps.preview import render_png
+        from svgtile.apps.rings import rings_svg
+        from svgtile.files import check_output, write_file
+
+        check_output(png, protect=(exemplar,))
+        write_file(render_png(rings_svg(ex), 800), png, protect=(exemplar,))
     if as_json:
         click.echo(json.dumps(json_safe(report), indent=2, allow_nan=False))
     else:
-        click.echo(format_report(report))
+        text = format_report(report)
+        if show_rings:
+            from svgtile.apps.rings import format_rings
+
+            text += "\n" + format_rings(report["rings"])
+        click.echo(text)
 
 
 def stats_report(ex: Exemplar, stats: Stats) -> dict:

@@ -16,8 +16,8 @@ from svgtile.analysis.stats import Stats
 from svgtile.apps.load import load_exemplar
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
-from svgtile.engines.base import EngineParams
-from svgtile.engines.choose import AUTO, choose, with_choice
+from svgtile.engines.base import EngineParams, honoured
+from svgtile.engines.choose import AUTO, choose, steerable, with_choice
 from svgtile.errors import ParameterError
 from svgtile.gis.layers import is_gis
 
@@ -212,9 +212,15 @@ def _spell(name: str) -> str:
     return {p.name: p.option for p in public_params().values()}.get(name, "--" + name.replace("_", "-"))
 
 
-def auto_params(ex, stats, given: dict) -> tuple[str, EngineParams]:
-    """Resolve ``--engine auto`` for an exemplar: the engine and parameters :func:`choose` picks,
-    the user's options on top; says the choice on stderr."""
-    picked = choose(ex, stats, available=ENGINES)
+def honoured_by(control: str) -> str:
+    """The engines that honour a map control (:class:`svgtile.engines.Controls` field), for help texts."""
+    return ", ".join(e.name for e in ENGINES.values() if control in honoured(e)) or "none"
+
+
+def auto_params(ex, stats, given: dict, controls: frozenset[str] = frozenset()) -> tuple[str, EngineParams]:
+    """Resolve ``--engine auto`` for an exemplar: the engine and parameters :func:`choose` picks
+    among those that honour the map ``controls`` given, the user's options on top; says the
+    choice on stderr."""
+    picked = choose(ex, stats, available=steerable(ENGINES, controls))
     click.echo(f"svgtile: auto: {picked.describe()}", err=True)
     return picked.engine, make_params(get_engine(picked.engine), with_choice(picked, given), spell=_spell)

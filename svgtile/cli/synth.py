@@ -11,7 +11,7 @@ import click
 from svgtile.apps.gisout import check_style, write_placements, write_style
 from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.mapfill import default_jobs
-from svgtile.apps.mapread import synth_region
+from svgtile.apps.mapread import read_controls, synth_region
 from svgtile.apps.preview import render_png
 from svgtile.apps.tiled import synthesize_to_file
 from svgtile.cli.common import (
@@ -22,6 +22,7 @@ from svgtile.cli.common import (
     default_boundary,
     engine_options,
     engine_params,
+    honoured_by,
     load,
     output_format,
     parse_size,
@@ -51,6 +52,12 @@ from svgtile.svg.writer import fmt, result_document
               help="Keep every motif clear of these labels, lines or shapes (texts by their box, lines by their stroke, grown by --avoid-margin). Repeatable.")
 @click.option("--avoid-margin", type=float, default=2.0, show_default=True,
               help="Clear space around --avoid zones, user units.")
+@click.option("--flow", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Turn motifs along these strokes (a flow field interpolated between them; the way each stroke was drawn is the way motifs point). Repeatable. Engines that honour it: " + honoured_by("flow") + ".")
+@click.option("--barrier", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Lines no motif crosses and growth does not cross (a fault, a river); each side is filled on its own. Repeatable. Engines that honour it: " + honoured_by("barriers") + ".")
+@click.option("--grow-within", multiple=True, metavar="MAP.svg#ID|FILE.geojson",
+              help="Grow motifs only inside these shapes or brush strokes (a stroke's width is the brush). Repeatable. Engines that honour it: " + honoured_by("grow_within") + ".")
 @engine_options(auto=True)
 @click.option("--boundary", type=click.Choice(BOUNDARY_MODES), default=None,
               help="At the region's edge: inside = only whole motifs; centroid = motifs whose centre is inside; clip = cut motifs at the edge; none = let them stick out. [default: clip; inside for GIS point outputs, whose markers cannot be cut]")
@@ -70,8 +77,8 @@ from svgtile.svg.writer import fmt, result_document
 @click.option("--import", "as_tile", is_flag=True,
               help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
 @click.pass_context
-def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine, boundary, with_style, refine, seed,
-          force, scheduler, tile_size, jobs, as_tile, **values):  # fmt: skip
+def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, barrier, grow_within, engine, boundary,
+          with_style, refine, seed, force, scheduler, tile_size, jobs, as_tile, **values):  # fmt: skip
     """Synthesize a texture like EXEMPLAR and write it (SVG, PNG or GIS points, by -o's suffix).
 
     EXEMPLAR is an SVG whose motifs are <use> clones of <symbol>s (or plain shapes); the element
@@ -82,6 +89,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     region = synth_region(parse_size(size) if size is not None else None, region_spec, avoid, avoid_margin)
     where = f"--size {size}" if size is not None else f"--region {region_spec}"
     params = engine_params(ctx, engine, values)  # checked before the work
+    controls = read_controls(flow, barrier, grow_within)
     kind = output_format(output)
     boundary = default_boundary(kind, boundary)
     if with_style and (kind not in POINT_FORMATS or output == "-"):
@@ -96,17 +104,19 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, engine,
     ex, stats = load(exemplar, as_tile=as_tile)
     check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if engine == AUTO:
-        engine, params = auto_params(ex, stats, params)
+        engine, params = auto_params(ex, stats, params, controls.given())
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
     if scheduler is not None or tile_size is not None:
+        if controls.given():
+            raise ParameterError("--flow, --barrier and --grow-within do not go with --scheduler or --tile-size yet")
         _tiled(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params, refine=refine,
                tile_size=tile_size, scheduler=scheduler or "local", jobs=jobs, where=where, region_spec=region_spec,
                exemplar_path=exemplar, size=size, crs=crs, protect=inputs)  # fmt: skip
         return
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
-                        params=params, refine=refine)  # fmt: skip
+                        params=params, refine=refine, controls=controls)  # fmt: skip
     Stderr.clear()
     if len(result) == 0 and (result.cells is None or len(result.cells) == 0):
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")

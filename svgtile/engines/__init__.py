@@ -5,6 +5,7 @@ Built in:
 * ``patch`` — patch-based synthesis (AlMeraj, Kaplan & Asente 2013), the default;
 * ``tile`` — the Tiling strategy: translated copies of the exemplar (a baseline);
 * ``random`` — the Random strategy: dart throwing to the exemplar's statistics (a baseline);
+* ``growth`` — local growth from the exemplar's neighbourhoods (Ijiri, Měch, Igarashi & Miller 2008).
 * ``optimize`` — discrete element texture optimisation (Ma, Wei & Tong 2011) from a patch start.
 * ``cellular`` — feature-based cellular textures (Legakis, Dorsey & Gortler 2001): bricks, blocks,
   ashlar, rhombs and bedding lines turning a unit's corners and following its edges.
@@ -41,7 +42,8 @@ from svgtile.engines.base import (
     reading_order,
 )
 from svgtile.engines.cellular import CELLULAR, CellularParams
-from svgtile.engines.choose import AUTO, Choice, choose, with_choice
+from svgtile.engines.choose import AUTO, Choice, choose, steerable, with_choice
+from svgtile.engines.growth import GROWTH, GrowthParams
 from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
 from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
@@ -61,7 +63,7 @@ REFUSED: dict[str, str] = {}
 
 
 def _registry() -> dict[str, Engine]:
-    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, OPTIMIZE, CELLULAR)}
+    engines: dict[str, Engine] = {e.name: e for e in (PATCH, TILE, RANDOM, GROWTH, OPTIMIZE, CELLULAR)}
     shared = {p.name: p for e in engines.values() for p in e.Params.public()}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         if ep.name in engines or ep.name == AUTO:
@@ -189,7 +191,8 @@ def synthesize(
     """
     if engine == AUTO:
         stats = analyze(exemplar) if stats is None else stats
-        picked = choose(exemplar, stats, available=ENGINES)
+        given = Controls().given() if controls is None else controls.given()
+        picked = choose(exemplar, stats, available=steerable(ENGINES, given))
         engine, params = picked.engine, with_choice(picked, None if isinstance(params, EngineParams) else params)
     engine = get_engine(engine) if isinstance(engine, str) else engine
     p = make_params(engine, params)
@@ -224,5 +227,5 @@ def synthesize(
 
 
 __all__ = ["AUTO", "ENGINES", "CellularParams", "Choice", "Context", "Controls", "Engine", "EngineParams",
-           "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "choose", "engines_with",
+           "GrowthParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "choose", "engines_with",
            "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

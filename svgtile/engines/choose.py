@@ -78,7 +78,21 @@ RULES: tuple[Rule, ...] = (
                    "copies on its period, not turned, so they meet without seams"),
     Rule("scatter", lambda o, s, e: True, "patch", {},
          lambda o: "no repeating rows or lattice to keep: the patch engine's defaults"),
+    # reached only when the map controls given leave patch out (see :func:`steerable`)
+    Rule("steered", lambda o, s, e: True, "growth", {},
+         lambda o: "a flow field, barrier or growth area was given, which the growth engine honours"),
 )
+
+
+def steerable(engines: Mapping[str, object], given: Collection[str]) -> list[str]:
+    """Names of the engines that honour every map control in ``given`` (auto chooses among them).
+
+    Parameters
+    ----------
+    engines : the registered engines by name (:data:`svgtile.engines.ENGINES`)
+    given : :meth:`svgtile.engines.base.Controls.given`
+    """
+    return [name for name, e in engines.items() if set(given) <= set(getattr(e, "controls", ()))]
 
 
 def choose(exemplar: Exemplar, stats: Stats, *, order: Order | None = None,

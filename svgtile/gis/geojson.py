@@ -157,6 +157,20 @@ def read_zones(path: str | Path, margin: float, *, feature: str | None = None) -
     return zone
 
 
+def read_geometry(path: str | Path, *, feature: str | None = None) -> shapely.Geometry:
+    """Every geometry of a GeoJSON file (or the feature with id ``feature``), merged into one
+    collection, in the working frame; a RegionError if there is none."""
+    source = str(path)
+    parts = []
+    for n, f in enumerate(_features(load(path), source)):
+        ident = _ident(f, n)
+        if feature is None or ident == feature:
+            parts.append(_geometry(f.get("geometry"), source, ident))
+    if not parts:
+        raise RegionError("no feature" + (f" with id {feature!r}" if feature else ""), source=source)
+    return shapely.GeometryCollection(parts)
+
+
 def to_working(geom: shapely.Geometry, unit: float) -> shapely.Geometry:
     """Map units -> exemplar user units (divide by ``unit``, about the origin: world anchoring
     keeps its meaning)."""

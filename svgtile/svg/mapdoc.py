@@ -196,6 +196,41 @@ class SvgShapes:
             for child in el:
                 self._keep_clear(child, style, m, out)
 
+    def strokes(self, el: ET.Element) -> list[tuple[np.ndarray, float]]:
+        """The lines ``el`` draws (a shape, or a group's shapes in document order) as polylines.
+
+        Returns
+        -------
+        list of ``(points, width)``: ``points`` a (k, 2) float array in the root's user units, in
+        drawing order (a closed subpath ends where it began); ``width`` its stroke width in root
+        user units (0 when unstroked), scaled by the transforms.  Hidden elements and text are
+        left out.
+        """
+        parent = self.parents.get(el)
+        parent_style = self.style(parent) if parent is not None else INITIAL
+        m = self.matrix(parent) if parent is not None else np.eye(3)
+        out: list[tuple[np.ndarray, float]] = []
+        self._strokes(el, parent_style, m, out)
+        return out
+
+    def _strokes(self, el, parent_style, m, out: list) -> None:
+        style = cascade_style(el, parent_style)
+        if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
+            return
+        m = m @ parse_matrix(el.attrib.get("transform"))
+        tag = local_tag(el.tag)
+        if tag in SHAPES:
+            painted = style.get("stroke", INITIAL["stroke"]).strip() not in ("none", "")
+            width = number_attr(style.get("stroke-width"), 1.0) * np.sqrt(abs(np.linalg.det(m[:2, :2]))) if painted else 0.0
+            for pts, closed in flat_subpaths(el, self.source, REGION_FLATNESS):
+                pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+                if closed and len(pts) > 1 and not np.array_equal(pts[0], pts[-1]):
+                    pts = np.vstack([pts, pts[:1]])
+                out.append((pts @ m[:2, :2].T + m[:2, 2], float(width)))
+        elif tag in (*CONTAINERS, "svg"):
+            for child in el:
+                self._strokes(child, style, m, out)
+
     def _text_boxes(self, text: ET.Element) -> list[shapely.Polygon]:
         """Estimated boxes of a ``<text>``'s lines in its own user space (a ``tspan`` with its
         own ``x`` or ``y`` starts a line, as Inkscape writes multi-line text)."""

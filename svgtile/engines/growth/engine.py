@@ -1,0 +1,383 @@
+"""The local-growth engine (Ijiri, Měch, Igarashi & Miller 2008): ``--engine growth``.
+
+The paper grows one arrangement from one seed, element by element (§5).  That is sequential, so
+a motif's fate would depend on everything grown before it — on the region's whole extent.  To
+keep svgtile's promises (same seed ⇒ same bytes, an edit changes only what is near it, tiled runs)
+growth runs per *world cell*:
+
+* the plane is cut into square cells anchored at the world origin (a whole number of periods of a
+  repeating tile, at least one exemplar width and 6·l wide);
+* the cells are coloured 2 × 2 into four phases; all cells of a phase are grown independently,
+  each from its own seed — for a tile, a lattice position of a motif chosen by a hash of
+  ``(key, cell)``, so every cell grows on the same lattice and the seams vanish; otherwise a
+  hashed point and reference near the cell centre;
+* a cell of a later phase grows against the motifs of its earlier-phase neighbours (they are
+  its fixed neighbours in matching and in relaxation, eq. 6), so growth fronts join across the
+  seams instead of colliding;
+* each cell is relaxed (§5.5) with its neighbours held, then its motifs are checked exactly
+  (footprints: no overlap, the distance rule, no barrier crossed) against each other and the
+  earlier motifs, and the conflicting ones leave (:func:`svgtile.core.conflicts.cull`, with
+  world-anchored priorities); the holes they leave are regrown (:data:`REFILLS` rounds) from the
+  ring slots of the motifs kept that no motif fills — §5.4's seeding, restarted.
+
+A cell's motifs are thus a function of the key and the cell alone — not of the region, which
+only chooses the cells (with the earlier-phase neighbours they need) and, in
+:func:`svgtile.engines.synthesize`, the motifs kept.  Same seed ⇒ same bytes; a far motif never
+changes when the region is edited; and the engine is tile-exact with no halo (``reach`` = 0).
+
+The growth area (``--grow-within``) and barriers (``--barrier``) cut each cell into *pieces*;
+each piece is grown from its own seed (§5.1: one seed per component), so both sides of a barrier
+are filled and growth never crosses one (a seed is made only inside its piece).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import periodic_block
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import motif_radius, world_footprints
+from svgtile.engines.base import Context, EngineParams, param
+from svgtile.engines.growth.connectivity import Rings, reference_rings
+from svgtile.engines.growth.grow import grow
+from svgtile.engines.growth.matching import Weights
+from svgtile.engines.growth.relax import relax
+from svgtile.errors import ParameterError
+
+ROTATIONS = ("auto", "none", "fit", "flow")
+_START, _RING, _NOISE, _PRIORITY = range(4)
+#: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cell`).
+REFILLS = 2
+_PRIORITY_ITEM = re.compile(r"^\s*([^=,\s][^=,]*?)\s*=\s*(-?\d+)\s*$")
+
+
+@dataclass(frozen=True)
+class GrowthParams(EngineParams):
+    """Parameters of the growth engine.
+
+    Attributes
+    ----------
+    rotation : ``auto`` (``flow`` with ``--flow``, else ``none``), ``none``, ``fit``, ``flow`` (§5.3)
+    priority : ``KIND=N,KIND=N …`` — kinds with a higher N grow first (§5.1); unnamed kinds keep
+        their default, which is by size: kinds within a factor 4 in footprint area share a level,
+        larger kinds higher (the paper grows its large stones before the fillers)
+    relax_every : relax each cell every this many growth steps (§5.5); 0 = once per cell, after
+        its growth (the final pass is always made)
+    relaxation : run relaxation at all (library only)
+    cell_widths : a cell is at least this many exemplar widths wide (library only)
+    weights : eq. (2)'s w1, w2, w3 (library only, see :class:`~.matching.Weights`)
+    """
+
+    rotation: str = param("auto", "How motifs turn (growth engine): none = as in the exemplar; fit = the best "
+                          "rotation of each neighbourhood; flow = along --flow; auto = flow with --flow, else none.",
+                          choices=ROTATIONS)  # fmt: skip
+    priority: str = param("", "Growth order of kinds (growth engine), e.g. 'stone=2,dot=0': higher grows first; "
+                          "default: larger motifs first.", metavar="KIND=N,…")  # fmt: skip
+    relax_every: int = param(0, "Relax the growing texture every N motifs (growth engine); 0 = once per cell.",
+                             interval=(0, 1_000_000), metavar="N")  # fmt: skip
+    relaxation: bool = True
+    cell_widths: float = 1.0
+    weights: Weights = dataclasses.field(default_factory=Weights)
+
+    def __post_init__(self) -> None:
+        if self.rotation not in ROTATIONS:
+            raise ParameterError(f"rotation must be one of {', '.join(ROTATIONS)}, not {self.rotation!r}")
+        if not 0 <= self.relax_every <= 1_000_000:
+            raise ParameterError(f"relax_every must be at least 0, not {self.relax_every}")
+        if not self.cell_widths > 0:
+            raise ParameterError(f"cell_widths must be positive, not {self.cell_widths:g}")
+        self.priorities()
+
+    def priorities(self) -> dict[str, int]:
+        """``--priority`` parsed: kind name → priority."""
+        out: dict[str, int] = {}
+        for item in filter(str.strip, self.priority.split(",")):
+            m = _PRIORITY_ITEM.match(item)
+            if not m:
+                raise ParameterError(f"priority: {item.strip()!r} is not KIND=N (a kind name, '=', a whole number)")
+            out[m.group(1)] = int(m.group(2))
+        return out
+
+
+class GrowthEngine:
+    """Local growth (ijiri2008) behind the engine protocol (:mod:`svgtile.engines.base`)."""
+
+    name = "growth"
+    summary = ("motifs grown one by one from the exemplar's neighbourhoods (Ijiri et al. 2008): keeps rows, "
+               "lattices and bricks; honours --flow, --barrier and --grow-within")
+    Params = GrowthParams
+    controls = frozenset({"flow", "barriers", "grow_within"})
+
+    def place(self, ctx: Context, p: GrowthParams) -> Arrangement:
+        """Grow the texture over the cells that ``ctx.region`` needs (see the module docstring)."""
+        return Growth(ctx, p).run()
+
+    def reach(self, exemplar: Exemplar, params: GrowthParams) -> float:
+        """Tile-exact with no halo: a cell's motifs are a function of the key and the cell alone."""
+        return 0.0
+
+
+GROWTH = GrowthEngine()
+
+
+def kind_priority(exemplar: Exemplar, given: dict[str, int]) -> np.ndarray:
+    """(k,) int: each kind's priority (§5.1): ``given`` by name, else by footprint area (level
+    ``floor(log4(area / smallest area))``: the largest kinds grow first)."""
+    names = [k.name for k in exemplar.kinds]
+    unknown = [n for n in given if n not in names]
+    if unknown:
+        raise ParameterError(f"priority: the exemplar has no kind {unknown[0]!r} (its kinds: {', '.join(names)})")
+    area = np.array([k.prototype.geometry().area for k in exemplar.kinds]) * np.array(
+        [exemplar.motifs.scale[exemplar.motifs.kind == i].mean() ** 2 if (exemplar.motifs.kind == i).any() else 1.0
+         for i in range(len(names))])  # fmt: skip
+    area = np.maximum(area, 1e-12)
+    level = np.floor(np.log(area / area.min()) / np.log(4.0) + 1e-9).astype(np.int64)
+    for name, value in given.items():
+        level[names.index(name)] = value
+    return level
+
+
+def centre_gaps(exemplar: Exemplar, k: int) -> np.ndarray:
+    """(k, k) float: the smallest centre distance between motifs of two kinds in the exemplar
+    (periodic for a tile), a little less; ``0`` for pairs it lacks (footprints decide)."""
+    motifs = exemplar.motifs
+    arr = periodic_block(motifs, exemplar.period) if exemplar.period is not None else motifs
+    gap = np.full((k, k), np.inf)
+    if len(arr) > 1:
+        d, j = cKDTree(arr.xy).query(arr.xy, k=min(len(arr), 24))
+        a = np.broadcast_to(arr.kind[:, None], j.shape)[:, 1:]
+        b = arr.kind[j[:, 1:]]
+        np.minimum.at(gap, (a.ravel(), b.ravel()), d[:, 1:].ravel())
+    gap = np.minimum(gap, gap.T)
+    return np.where(np.isfinite(gap), gap * 0.98, 0.0)
+
+
+class Growth:
+    """One run: the cells the region needs, grown phase by phase."""
+
+    def __init__(self, ctx: Context, p: GrowthParams) -> None:
+        self.ctx, self.p = ctx, p
+        ex = ctx.exemplar
+        self.ex, self.stats = ex, ctx.stats
+        self.rings: Rings = reference_rings(ex)
+        self.k = len(ex.kinds)
+        flow = ctx.controls.flow
+        rotation = p.rotation if p.rotation != "auto" else ("flow" if flow is not None else "none")
+        if rotation == "flow" and flow is None:
+            raise ParameterError("--rotation flow needs a flow field (--flow MAP.svg#ID)")
+        self.rotation = rotation
+        self.priority = kind_priority(ex, p.priorities())
+        self.gap = centre_gaps(ex, self.k)
+        x0, y0, x1, y1 = ex.region.bounds
+        width = max(x1 - x0, y1 - y0, 6.0 * self.rings.mean_length) * p.cell_widths
+        if ex.period is not None:
+            self.cell = np.array([math.ceil(width / ex.period[0] - 1e-9) * ex.period[0],
+                                  math.ceil(width / ex.period[1] - 1e-9) * ex.period[1]])  # fmt: skip
+        else:
+            self.cell = np.array([width, width])
+        self.radius = float(motif_radius(ex.motifs, ex.prototypes).max())
+        self.barriers = ctx.controls.barriers
+        self.within = ctx.controls.grow_within
+        self.cut = None
+        if self.barriers is not None:
+            self.cut = shapely.buffer(self.barriers, self.rings.short_length / 4)
+
+    # -- cells -------------------------------------------------------------------------------------
+    def cells(self) -> list[tuple[int, int]]:
+        """The cells to grow: those meeting the region (grown by the motif radius), with the
+        earlier-phase neighbours each needs, in phase order."""
+        region = self.ctx.region
+        domain = shapely.buffer(region.shape, self.radius + float(self.stats.distance.max()))
+        if self.within is not None:
+            domain = shapely.intersection(domain, shapely.buffer(self.within, self.radius))
+        X0, Y0, X1, Y1 = domain.bounds
+        if not np.all(np.isfinite([X0, Y0, X1, Y1])):
+            return []
+        w, h = self.cell
+        ia = np.arange(math.floor(X0 / w), math.floor(X1 / w) + 1)
+        ib = np.arange(math.floor(Y0 / h), math.floor(Y1 / h) + 1)
+        A, B = (v.ravel() for v in np.meshgrid(ia, ib))
+        hit = shapely.intersects(shapely.box(A * w, B * h, (A + 1) * w, (B + 1) * h), domain)
+        need = {(int(a), int(b)) for a, b in zip(A[hit], B[hit], strict=True)}
+        for phase in (3, 2, 1):
+            for a, b in [c for c in need if _phase(c) == phase]:
+                need |= {(a + da, b + db) for da in (-1, 0, 1) for db in (-1, 0, 1) if _phase((a + da, b + db)) < phase}
+        return sorted(need, key=lambda c: (_phase(c), c[1], c[0]))
+
+    def run(self) -> Arrangement:
+        order = self.cells()
+        self.subs: dict[tuple[int, int], np.ndarray] = {}  # the sub-id (exemplar motif) of each motif
+        done: dict[tuple[int, int], Arrangement] = {}
+        for t, c in enumerate(order):
+            self.ctx.progress("growth", t / max(len(order), 1))
+            done[c], self.subs[c] = self.grow_cell(c, done)
+        return Arrangement.concat([done[c] for c in order])
+
+    def pieces(self, a: int, b: int) -> list[shapely.Geometry]:
+        """The parts of cell ``(a, b)`` growth may fill, split by barriers, inside the growth area."""
+        w, h = self.cell
+        box = shapely.box(a * w, b * h, (a + 1) * w, (b + 1) * h)
+        if self.within is None and self.cut is None:
+            return [box]
+        shape = box if self.within is None else shapely.intersection(box, self.within)
+        if self.cut is not None:
+            shape = shapely.difference(shape, self.cut)
+        parts = [g for g in shapely.get_parts(shape) if g.area > 0.25 * self.rings.short_length**2]
+        return sorted(parts, key=lambda g: g.bounds)
+
+    def start(self, a: int, b: int, part: int, piece: shapely.Geometry) -> tuple[np.ndarray, int]:
+        """The piece's initial seed and the reference ring it becomes (§5.1)."""
+        ex, rings = self.ex, self.rings
+        u = cellrng.uniform(self.ctx.key, _START, a, b, part, np.arange(3))
+        r = min(int(u[0] * len(rings)), len(rings) - 1)
+        w, h = self.cell
+        centre = np.array([(a + 0.5) * w, (b + 0.5) * h]) + (u[1:] - 0.5) * self.rings.mean_length
+        if not shapely.contains_xy(piece, *centre):
+            centre = np.array(shapely.get_coordinates(shapely.point_on_surface(piece))[0])
+        if ex.period is None:
+            return centre, r
+        # a lattice position of the chosen motif near the centre, inside the piece
+        pw, ph = ex.period
+        base = ex.motifs.xy[rings.element[r]]
+        na, nb = np.round((centre - base) / (pw, ph))
+        da, db = (v.ravel() for v in np.meshgrid(np.arange(-2, 3), np.arange(-2, 3)))
+        cand = base + np.c_[(na + da) * pw, (nb + db) * ph]
+        ok = shapely.contains_xy(piece, cand[:, 0], cand[:, 1])
+        if ok.any():
+            cand = cand[ok]
+            return cand[np.argmin(np.hypot(*(cand - centre).T))], r
+        return centre, -1
+
+    def grow_cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> tuple[Arrangement, np.ndarray]:
+        """The motifs of cell ``c``, grown against its earlier-phase neighbours, and their sub-ids."""
+        a, b = c
+        rings, p = self.rings, self.p
+        w, h = self.cell
+        nb = [(a + da, b + db) for da in (-1, 0, 1) for db in (-1, 0, 1)
+              if _phase((a + da, b + db)) < _phase(c) and (a + da, b + db) in done]  # fmt: skip
+        before = Arrangement.concat([done[q] for q in nb])
+        bsub = np.concatenate([self.subs[q] for q in nb]) if nb else np.zeros(0, np.int64)
+        margin = rings.radius * 1.2 + 2 * self.radius + float(self.stats.distance.max())
+        near = ((before.xy[:, 0] > a * w - margin) & (before.xy[:, 0] < (a + 1) * w + margin)
+                & (before.xy[:, 1] > b * h - margin) & (before.xy[:, 1] < (b + 1) * h + margin))  # fmt: skip
+        before, bsub = before.take(near), bsub[near]
+        flow = self.ctx.controls.flow
+        flow_angle = self.flow_lookup(a, b) if flow is not None else (lambda xy: np.zeros(len(xy)))
+        key = self.ctx.key
+
+        grown: list[Arrangement] = []
+        gsub: list[np.ndarray] = []
+        for part, piece in enumerate(self.pieces(a, b)):
+            shapely.prepare(piece)
+            start, ring0 = self.start(a, b, part, piece)
+            # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
+            draws = np.random.default_rng(int(cellrng.hash64(key, _NOISE, a, b, part)))
+            kept: list[Arrangement] = []
+            ksub: list[np.ndarray] = []
+            more = more_kind = None
+            for rnd in range(1 + REFILLS):
+                fixed = Arrangement.concat([before, *grown, *kept])
+                fsub = np.concatenate([bsub, *gsub, *ksub])
+
+                def relaxer(xy, ring, theta, first):
+                    return relax(rings, xy, ring, theta, first)
+
+                g = grow(rings, piece, start, ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
+                         fixed_sub=fsub, more=more, more_kind=more_kind, rotation=self.rotation, flow_angle=flow_angle,
+                         priority=self.priority, weights=p.weights, centre_gap=self.gap,
+                         noise=lambda step, draws=draws: draws.random(len(rings)),
+                         relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
+                if not len(g.xy):
+                    break
+                xy = g.xy
+                if p.relaxation and len(xy) > 1:
+                    held = None
+                    if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
+                        held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
+                    xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
+                angle = rings.angle[g.ring] + np.degrees(g.theta)
+                arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, rings.scale[g.ring])
+                arr = arr.quantized(DECIMALS)
+                ok = self.settle(arr, fixed)
+                kept.append(arr.take(ok))
+                ksub.append(rings.element[g.ring[ok]])
+                # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
+                more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
+                                                  Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
+                if not len(more):
+                    break
+            grown.extend(kept)
+            gsub.extend(ksub)
+        return Arrangement.concat(grown), np.concatenate(gsub) if gsub else np.zeros(0, np.int64)
+
+    def flow_lookup(self, a: int, b: int):
+        """``f(xy)`` → radians: the flow field's direction, sampled once per cell on a grid of
+        spacing r_short (one interpolation per cell instead of one per seed), nearest sample."""
+        w, h = self.cell
+        step = self.rings.short_length / 2
+        pad = self.rings.radius * 1.5
+        x0, y0 = a * w - pad, b * h - pad
+        nx, ny = int(np.ceil((w + 2 * pad) / step)) + 1, int(np.ceil((h + 2 * pad) / step)) + 1
+        gx, gy = np.meshgrid(x0 + np.arange(nx) * step, y0 + np.arange(ny) * step)
+        table = np.radians(self.ctx.controls.flow.angle(np.c_[gx.ravel(), gy.ravel()])).reshape(ny, nx)
+
+        def lookup(xy: np.ndarray) -> np.ndarray:
+            i = np.clip(np.rint((xy[:, 1] - y0) / step).astype(np.int64), 0, ny - 1)
+            j = np.clip(np.rint((xy[:, 0] - x0) / step).astype(np.int64), 0, nx - 1)
+            return table[i, j]
+
+        return lookup
+
+    def free_slots(self, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, piece: shapely.Geometry,
+                   placed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+        """Seeds at the ring slots of motifs ``xy`` that no motif of ``placed`` fills (within
+        r_short), inside ``piece``: (s, 2) positions and (s,) kinds."""
+        rings = self.rings
+        if not len(xy):
+            return np.zeros((0, 2)), np.zeros(0, np.int64)
+        valid = np.arange(rings.rel.shape[1])[None, :] < rings.size[ring][:, None]
+        c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+        v = rings.rel[ring]
+        pos = xy[:, None] + np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
+        pos, kind = pos[valid], rings.nkind[ring][valid]
+        d, _ = cKDTree(placed).query(pos)
+        free = (d >= rings.short_length / 2) & shapely.contains_xy(piece, pos[:, 0], pos[:, 1])
+        return pos[free], kind[free]
+
+    def settle(self, new: Arrangement, before: Arrangement) -> np.ndarray:
+        """(n,) bool: the motifs of ``new`` that stay — no overlap, no distance-rule violation, no
+        barrier crossed, checked on footprints against each other and ``before`` (which stay)."""
+        protos, d = self.ex.prototypes, self.stats.distance
+        ok = np.ones(len(new), bool)
+        if not len(new):
+            return ok
+        if self.barriers is not None:
+            ok &= ~shapely.intersects(world_footprints(new, protos), self.barriers)
+        if self.within is not None:
+            ok &= shapely.contains_xy(self.within, new.xy[:, 0], new.xy[:, 1])
+        if len(before):
+            ok[ok] = ~cross_conflicts(new.take(ok), before, protos, d)
+        sel = np.flatnonzero(ok)
+        sub = new.take(sel)
+        grid = np.round(sub.xy * 16).astype(np.int64)
+        prio = cellrng.uniform(self.ctx.key, _PRIORITY, grid[:, 0], grid[:, 1])
+        found = find_conflicts(sub, protos, d)
+        violator = np.zeros(len(sub))
+        side = found.violation & ~found.overlap
+        violator[found.i[side]] = violator[found.j[side]] = 1.0
+        ok[sel] = cull(len(sub), found, prio, violator)
+        return ok
+
+
+def _phase(c: tuple[int, int]) -> int:
+    return (c[0] & 1) + 2 * (c[1] & 1)

@@ -1,0 +1,87 @@
+"""Relaxation of the grown motifs towards their reference ring shapes (Ijiri et al. 2008, §5.5).
+
+Each grown motif i copies a reference ring: its neighbours should sit at ``x_i + R_θi r_j^i``.
+Relaxation moves the grown motifs to minimise eq. (5),
+
+    Σ_i Σ_{j ∈ w(x_i)} ‖x_j − (x_i + r_j^i)‖²,
+
+subject to eq. (6), x_k = x_k⁰ for the constrained motifs: the first motif grown, the motifs of
+neighbouring cells grown before (they are held where they are) and motifs near a barrier.  The
+correspondence j ↔ r_j^i is the placed motif nearest to each desired ring position, within
+r_short — a motif that lost or gained an edge during growth simply has fewer terms, as the paper
+uses the current neighbourhood where the topology changed.
+
+The problem is a sparse linear least-squares problem, one for x and one for y with the same
+matrix; the constraints are eliminated (their columns move to the right-hand side — the
+Lagrange system of the paper reduced to its unknowns) and the normal equations ``AᵀA x = Aᵀb``
+are solved with a sparse direct solver.  A small pull λ·‖x − x⁰‖² keeps parts with no
+constrained motif (and the null space of a lone motif) in place.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
+from scipy.spatial import cKDTree
+
+from svgtile.engines.growth.connectivity import Rings
+
+#: Weight of the pull towards the current positions (relative to one ring term).
+PULL = 1e-3
+
+
+def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, first: int,
+          held: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+    """Relaxed positions of the grown motifs (eq. 5–6).
+
+    Parameters
+    ----------
+    rings : the reference ring shapes
+    xy : (n, 2) float array, user units — every motif: ``first`` fixed ones, then the grown ones
+    ring, theta : (n − first,) int and float arrays — each grown motif's reference ring and the
+        rotation applied to it (radians)
+    first : how many leading motifs of ``xy`` are fixed; the first grown one is fixed too
+    held : (n − first,) bool array, optional — grown motifs also held (near a barrier)
+
+    Returns
+    -------
+    (n − first, 2) float array: the grown motifs' new positions
+    """
+    n = len(xy)
+    g = n - first
+    if g <= 1:
+        return xy[first:].copy()
+    size = rings.size[ring]
+    slot = np.arange(rings.rel.shape[1])
+    valid = slot[None, :] < size[:, None]
+    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    v = rings.rel[ring]
+    want = np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)  # (g, M, 2)
+    i = np.broadcast_to((first + np.arange(g))[:, None], valid.shape)[valid]
+    want = want[valid]
+    dist, j = cKDTree(xy).query(xy[i] + want, distance_upper_bound=rings.short_length / 2)
+    ok = np.isfinite(dist) & (j != i)
+    i, j, want = i[ok], j[ok], want[ok]
+    fixed = np.zeros(n, bool)
+    fixed[: first + 1] = True
+    if held is not None:
+        fixed[first:] |= held
+    free = np.flatnonzero(~fixed)
+    if not len(free) or not len(i):
+        return xy[first:].copy()
+    col = np.full(n, -1)
+    col[free] = np.arange(len(free))
+    rows = np.arange(len(i))
+    # row e: x_j − x_i = want_e; fixed ends move to the right-hand side
+    b = want.copy()
+    b -= np.where(fixed[j, None], xy[j], 0.0)
+    b += np.where(fixed[i, None], xy[i], 0.0)
+    fj, fi = ~fixed[j], ~fixed[i]
+    A = sp.csr_matrix((np.r_[np.ones(fj.sum()), -np.ones(fi.sum())], (np.r_[rows[fj], rows[fi]],
+                       np.r_[col[j[fj]], col[i[fi]]])), shape=(len(i), len(free)))  # fmt: skip
+    N = (A.T @ A + PULL * sp.identity(len(free))).tocsc()
+    rhs = A.T @ b + PULL * xy[free]
+    out = xy.copy()
+    out[free] = np.column_stack([spsolve(N, rhs[:, 0]), spsolve(N, rhs[:, 1])])
+    return out[first:]

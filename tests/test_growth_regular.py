@@ -1,0 +1,77 @@
+"""Issue 13's done-when on every regular FGDC lithology / osm-carto area-fill tile.
+
+Which tiles are regular is decided by a documented rule, not by hand: a tile is *regular* (rows
+or a lattice) when its imported exemplar's ring shapes (Ijiri et al. 2008 §4, periodic across the
+tile's edges) fall into few classes — :func:`svgtile.engines.growth.connectivity.regularity`
+≥ :data:`~svgtile.engines.growth.connectivity.REGULAR` (0.75: at most about one ring shape per
+four motifs).  :data:`REGULAR_TILES` is that rule applied to every tile of
+``shared/data/fgdc-geologic-patterns/lithology`` and ``shared/data/osm-carto/patterns`` that
+``svgtile import`` accepts (``benchmarks/growth_likeness.py --select`` re-derives it; the first
+test below re-checks the rule on each listed tile).
+
+On each: likeness L ≥ 0.8 against the tile and random engines, 0 overlaps and 0 violators, density
+ratio in 0.9–1.1, repetition ≤ 0.2 — figures that are not met are marked ``xfail(strict=True)``
+with the measured value, never loosened.  Figures measured on 2026-12-02 (benchmarks/README.md).
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import pytest
+from growth_measure import SHARED, measure
+
+from svgtile.apps.load import load_exemplar
+from svgtile.engines.growth.connectivity import REGULAR, reference_rings, regularity
+
+FGDC = SHARED / "fgdc-geologic-patterns" / "lithology"
+OSM = SHARED / "osm-carto" / "patterns"
+#: The regular tiles by the module docstring's rule.
+REGULAR_TILES = {name: FGDC / f"{name}.svg" for name in ("619", "620", "670", "710", "711", "712", "713", "716", "721", "728", "731")} | {
+    name: OSM / f"{name}.svg" for name in ("allotments", "grave_yard_christian", "grave_yard_generic",
+                                           "grave_yard_jewish", "grave_yard_muslim", "orchard", "plant_nursery", "vineyard")}  # fmt: skip
+
+needs_data = pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real symbol sets) is not beside the checkout")
+
+#: Known failures, with the figure measured (4 periods, at least 200 units a side, seed 1).
+LOW_DENSITY = {"619": 0.770, "670": 0.665, "grave_yard_muslim": 0.059}
+#: grave_yard_muslim: two motifs of two kinds per tile, one whole ring; growth places 7 motifs.
+LOW_LIKENESS = {"grave_yard_muslim": -23.0}
+
+
+@cache
+def figures(name: str):
+    return measure(REGULAR_TILES[name])
+
+
+@needs_data
+@pytest.mark.parametrize("name", sorted(REGULAR_TILES))
+def test_the_tile_is_regular_by_the_rule(name):
+    ex, _ = load_exemplar(str(REGULAR_TILES[name]), as_tile=True, warn=lambda m: None)
+    assert regularity(reference_rings(ex)) >= REGULAR
+
+
+@needs_data
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(
+    strict=True, reason=f"likeness {LOW_LIKENESS[n]:.1f}: the tile's two motifs give one whole ring, growth stalls"))
+    if n in LOW_LIKENESS else n for n in sorted(REGULAR_TILES)])  # fmt: skip
+def test_growth_keeps_rows_and_lattices(name):
+    f = figures(name)
+    assert f.overlaps == 0 and f.violators == 0
+    assert f.likeness >= 0.8, f
+
+
+@needs_data
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(
+    strict=True, reason=f"density ratio {LOW_DENSITY[n]:.3f}: growth fronts of two cells leave gaps where their "
+                        "lattices meet out of step")) if n in LOW_DENSITY else n for n in sorted(REGULAR_TILES)])  # fmt: skip
+def test_growth_density_is_within_ten_percent(name):
+    assert 0.9 <= figures(name).density_ratio <= 1.1
+
+
+@needs_data
+@pytest.mark.parametrize("name", sorted(REGULAR_TILES))
+@pytest.mark.xfail(strict=True, reason="growth on a repeating tile reproduces the tile (each motif's ring is unique to "
+                   "it, so the best match is the exemplar's own continuation): repetition 0.5-1.0, as the tile engine")
+def test_growth_repeats_at_most_a_fifth(name):
+    assert figures(name).repetition <= 0.2
