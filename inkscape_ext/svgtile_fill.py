@@ -126,8 +126,8 @@ def find_python():
 
 #: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
 #: against the .inx and svgtile's engine parameter classes).
-ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "passes", "neighbourhood",
-                  "rotation", "priority", "relax-every")
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "rotation", "priority",
+                  "relax-every", "passes", "neighbourhood")
 
 
 class FillWithTexture(inkex.EffectExtension):
@@ -135,7 +135,7 @@ class FillWithTexture(inkex.EffectExtension):
 
     def add_arguments(self, pars):
         pars.add_argument("--tab", default="options")
-        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "optimize", "growth"])
+        pars.add_argument("--engine", default="patch", choices=["patch", "tile", "random", "growth", "optimize"])
         pars.add_argument("--grid", default="square", choices=["square", "hex", "lattice"])
         pars.add_argument("--overlap", type=float, default=0.05)
         pars.add_argument("--max-rotation", type=float, default=30.0)
