@@ -52,6 +52,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import BOUNDARY_MODES, Region
 from svgtile.engines import ENGINES, engines_with, make_params, public_params, synthesize
 from svgtile.errors import ParameterError, RegionError, SvgtileError
+from svgtile.files import read_input
 from svgtile.gis import geojson
 from svgtile.svg.mapdoc import SvgShapes
 
@@ -62,6 +63,8 @@ else:  # pragma: no cover - Python 3.10
 
 #: Keys of a class table passed to the engine: every engine's public parameters, and the boundary.
 PARAM_KEYS = tuple(public_params())
+#: A styles file is a few lines per class; a larger one is refused before it is parsed.
+MAX_STYLES_BYTES = 2**20
 ENGINE_KEYS = (*PARAM_KEYS, "boundary")
 #: Every key a class table (or the defaults) may have.
 CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit")
@@ -111,11 +114,11 @@ class Styles:
 def read_styles(path: str | Path) -> Styles:
     """Parse a styles file (see the module docstring); errors name the file and the key."""
     source = str(path)
+    raw = read_input(path, error=ParameterError, limit=MAX_STYLES_BYTES)
     try:
-        with open(path, "rb") as fh:
-            data = tomllib.load(fh)
-    except OSError as exc:
-        raise ParameterError(f"cannot read file ({exc.strerror or exc})", source=source) from None
+        data = tomllib.loads(raw.decode("utf-8"))
+    except RecursionError:
+        raise ParameterError("tables or arrays are nested too deeply", source=source) from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError(f"not a valid TOML file ({' '.join(str(exc).split())})", source=source) from None
     return parse_styles(data, source=source, folder=Path(path).parent)

@@ -18,6 +18,7 @@ import shapely
 import svgelements as se
 
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
@@ -410,7 +411,4 @@ def dot_footprint(point: np.ndarray, width: float, cap: str) -> list[shapely.Geo
 
 def read_svg_bytes(path: str | Path) -> bytes:
     """The bytes of an SVG file; an unreadable file is an :class:`ExemplarError` naming it."""
-    try:
-        return Path(path).read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+    return read_input(path, error=ExemplarError)

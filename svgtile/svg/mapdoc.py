@@ -11,6 +11,7 @@ import shapely
 
 from svgtile.core.region import FILL_RULES, winding_fill
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 from svgtile.svg.dialect import (
     CONTAINERS,
     INITIAL,
@@ -91,10 +92,7 @@ class SvgShapes:
     @classmethod
     def read(cls, path: str | Path, *, comments: bool = False) -> SvgShapes:
         path = Path(path)
-        try:
-            data = path.read_bytes()
-        except OSError as exc:
-            raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+        data = read_input(path, error=ExemplarError)
         return cls(data, str(path), comments=comments)
 
     def error(self, message: str) -> ExemplarError:

@@ -41,6 +41,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 from svgtile.svg.kinds import match_kinds
 from svgtile.svg.tilepieces import TilePieces, parse_tile
 from svgtile.tiles.repeat import radii, repeat_groups, symmetry_orders
@@ -121,10 +122,7 @@ def import_tile(path: str | Path) -> ImportedTile:
         The file cannot be read as a tile.
     """
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+    data = read_input(path, error=ExemplarError)
     return import_pieces(parse_tile(data, source=str(path)))
 
 
