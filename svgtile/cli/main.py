@@ -15,6 +15,7 @@ import threading
 import warnings
 
 import click
+import shapely
 
 from svgtile import __version__
 from svgtile.cli.analyze import analyze_cmd
@@ -135,6 +136,10 @@ def _main(argv: list[str] | None) -> int:
         return 1
     except MemoryError:
         Stderr.line("svgtile: error: out of memory; try a smaller --size")
+        return 1
+    except shapely.errors.GEOSException as exc:  # input geometry no reader caught (a map's, a region's)
+        Stderr.line(f"svgtile: error: geometry too extreme to compute with ({one_line(exc)}); check the "
+                    "coordinates and transforms of the inputs")  # fmt: skip
         return 1
     except OSError as exc:  # the system refused something no reader anticipated (ELOOP, EMFILE …)
         where = f"{exc.filename}: " if exc.filename else ""

@@ -54,11 +54,14 @@ from svgtile.svg.dialect import (
     SVG_NS,
     apply_matrix,
     cascade_style,
+    check_tree,
     describe,
     drawable_children,
+    element_matrix,
     fill_holes,
     flat_subpaths,
     fmt_number,
+    geometry_error,
     holds_motifs,
     href_of,
     inherited_items,
@@ -71,7 +74,6 @@ from svgtile.svg.dialect import (
     matrix_attr,
     number_attr,
     one_line,
-    parse_matrix,
     polygons_of,
     read_svg_bytes,
     shorten,
@@ -102,10 +104,13 @@ def parse_exemplar(data: bytes | str, *, source: str = "<exemplar>") -> Exemplar
         raise ExemplarError(f"not a well-formed XML file ({one_line(exc)})", source=source) from None
     if local_tag(root.tag) != "svg" or tag_ns(root.tag) not in ("", SVG_NS):
         raise ExemplarError(f"not an SVG document (root element is <{local_tag(root.tag)}>)", source=source)
+    check_tree(root, source)
     try:
         return DocumentReader(root, source).read()
     except RecursionError:
         raise ExemplarError("elements are nested too deeply", source=source) from None
+    except (shapely.errors.GEOSException, OverflowError, FloatingPointError) as exc:
+        raise geometry_error(exc, source) from None
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -217,7 +222,7 @@ class DocumentReader:
             cstyle = cascade_style(child, style)
             if is_hidden(cstyle):
                 continue
-            cm = m @ parse_matrix(child.attrib.get("transform"))
+            cm = m @ element_matrix(child, self.source)
             if tag == "use":
                 inst = self._use_instance(child, cm, cstyle)
                 if inst is not None:
@@ -356,7 +361,7 @@ class DocumentReader:
             return None
         tag = local_tag(el.tag)
         if tag != "symbol":
-            m = m @ parse_matrix(el.attrib.get("transform"))
+            m = m @ element_matrix(el, self.source)
         if tag in SHAPES:
             geom = leaf_footprint(el, est, self.source)
             return None if geom is None else apply_matrix(m, geom)
@@ -516,7 +521,7 @@ class DocumentReader:
             raise self.error(f"{describe(el)} cannot be the input region (use rect, circle, ellipse, polygon or path)")
         m = np.eye(3)
         for node in self._ancestors(el):
-            m = m @ parse_matrix(node.attrib.get("transform"))
+            m = m @ element_matrix(node, self.source)
         rings = [
             shapely.make_valid(shapely.Polygon(p))
             for p, _ in flat_subpaths(el, self.source, REGION_FLATNESS)

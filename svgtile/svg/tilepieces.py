@@ -24,8 +24,10 @@ from svgtile.svg.dialect import (
     absolute_length,
     apply_matrix,
     cascade_style,
+    check_tree,
     describe,
     dot_footprint,
+    element_matrix,
     fill_holes,
     flat_subpaths,
     fmt_number,
@@ -35,7 +37,6 @@ from svgtile.svg.dialect import (
     local_tag,
     number_attr,
     one_line,
-    parse_matrix,
     read_svg_bytes,
     tag_ns,
     translation,
@@ -117,6 +118,7 @@ def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
         raise ExemplarError(f"not a well-formed XML file ({one_line(exc)})", source=source) from None
     if local_tag(root.tag) != "svg" or tag_ns(root.tag) not in ("", SVG_NS):
         raise ExemplarError(f"not an SVG document (root element is <{local_tag(root.tag)}>)", source=source)
+    check_tree(root, source)
     reader = DocumentReader(root, source)
     reader.refuse_external_references()
     box = _tile_box(root, source)
@@ -187,7 +189,7 @@ class _TileWalk:
             cstyle = cascade_style(child, style)
             if is_hidden(cstyle):
                 continue
-            cm = m @ parse_matrix(child.attrib.get("transform"))
+            cm = m @ element_matrix(child, self.reader.source)
             if "clip-path" in cstyle or "mask" in cstyle:
                 self.reader.warn(f"clip paths and masks are ignored ({describe(child)}); the tile's edge is the clip")
             if tag in SHAPES:
