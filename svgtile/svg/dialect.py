@@ -60,6 +60,11 @@ MAX_DEPTH = 200
 #: The most elements an exemplar or a tile may hold (a map: ten times as many); the largest
 #: real pattern tile of ../shared/data has some 5,000.
 MAX_ELEMENTS = 100_000
+#: The most characters of path data (``d``, ``points``) one element may have: some 50,000
+#: points, far more than a motif or a map unit needs, and read in well under a second.
+MAX_PATH_CHARS = 1_000_000
+#: The most kinds of motif an exemplar may have: the analysis compares every pair of kinds.
+MAX_KINDS = 500
 #: The most a transform may stretch one direction against another (ratio of its singular values):
 #: beyond it (``skewX(89.99999)``) outlines become slivers GEOS cannot buffer or compare.
 MAX_SQUASH = 1e6
@@ -393,6 +398,10 @@ JOINS = {"round": "round", "bevel": "bevel", "miter": "mitre", "miter-clip": "mi
 
 def flat_subpaths(el: ET.Element, source: str, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
     """Flattened subpaths of a shape element in its own user space; bad data is an ExemplarError."""
+    data = el.attrib.get("d") or el.attrib.get("points") or ""
+    if len(data) > MAX_PATH_CHARS:
+        raise ExemplarError(f"{describe(el)} has {len(data):,} characters of path data (more than "
+                            f"{MAX_PATH_CHARS:,}); simplify it first", source=source)  # fmt: skip
     try:
         shape = se_shape(el)
         subpaths = flatten_path(se.Path(shape), flatness) if shape is not None else []

@@ -45,6 +45,7 @@ from svgtile.svg.dialect import (
     INITIAL,
     MAX_COORDINATE,
     MAX_COORDINATES,
+    MAX_KINDS,
     MAX_USE_DEPTH,
     ORIGIN_DECIMALS,
     PERIOD_ATTR,
@@ -397,6 +398,9 @@ class DocumentReader:
             else:
                 k, angle, scale, xy = self._plain_kind(inst, kinds, plain)
             rows.append((k, xy[0], xy[1], angle, scale))
+            if len(kinds) > MAX_KINDS:  # the analysis compares every pair of kinds
+                raise self.error(f"more than {MAX_KINDS} kinds of motif; an exemplar has a few (is it a "
+                                 "drawing or a symbol set rather than an arrangement?)")  # fmt: skip
         table = np.array(rows, dtype=np.float64)
         arrangement = Arrangement(table[:, 0].astype(np.int64), table[:, 1:3], table[:, 3], table[:, 4])
         defs = self._defs(kinds, list(zip(plain.kind, plain.rep, strict=True)))

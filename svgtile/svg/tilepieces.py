@@ -18,6 +18,7 @@ from svgtile.svg.dialect import (
     INITIAL,
     JOINS,
     MAX_COORDINATE,
+    MAX_ELEMENTS,
     MAX_USE_DEPTH,
     SHAPES,
     SVG_NS,
@@ -180,11 +181,15 @@ class _TileWalk:
         self.frames: list[str] = []
         self.filled_frame = False
         self.elements = 0
+        self.visited = 0  # elements walked, each <use> expansion counted again
 
     def visit(self, el: ET.Element, style: dict[str, str], m: np.ndarray, stack: tuple[str, ...]) -> None:
         for child in el:
             if not is_rendered(child):
                 continue
+            self.visited += 1
+            if self.visited > MAX_ELEMENTS:  # <use> fan-out: 30 levels of two make a billion
+                raise self.reader.error(f"its <use> elements expand to more than {MAX_ELEMENTS:,} elements")
             tag = local_tag(child.tag)
             cstyle = cascade_style(child, style)
             if is_hidden(cstyle):
