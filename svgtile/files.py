@@ -80,6 +80,9 @@ def read_input(path: str | Path, *, error: type[SvgtileError] = SvgtileError,
         raise error(f"cannot read file ({exc.strerror or exc})", source=source) from None
     if len(data) > limit:
         raise error(f"is more than svgtile reads ({limit / 2**20:,.0f} MB)", source=source)
+    if data[:2] == b"\x1f\x8b":
+        raise error("is gzip-compressed (an .svgz?); decompress it first: gunzip -c FILE.svgz > FILE.svg",
+                    source=source)  # fmt: skip
     return data
 
 
@@ -241,7 +244,21 @@ def _write_stdout(data: str | bytes, raw: bytes) -> None:
         raise
     except (OSError, ValueError) as exc:  # ENOSPC (``>/dev/full``), EBADF, a closed file object
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        _discard(stream)
         raise OutputError(f"cannot write to standard output ({reason})", source="-") from None
+
+
+def _discard(stream) -> None:
+    """Point ``stream``'s descriptor at the null device, so that the data still buffered is not
+    flushed again at exit (a second, Python-worded error after svgtile's one line)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, stream.fileno())
+        finally:
+            os.close(devnull)
+    except (OSError, AttributeError, ValueError):
+        pass
 
 
 def _write_stream(stream, data: str | bytes, raw: bytes) -> None:

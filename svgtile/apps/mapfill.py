@@ -353,11 +353,42 @@ def fill_map(
         for count, task in enumerate(tasks, 1):
             done(*_task(*task), count)
     else:
-        with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=jobs, initializer=_die_with_parent,
+                                                      initargs=(os.getpid(),))  # fmt: skip
+        try:
             futures = {pool.submit(_task, *task): task[0] for task in tasks}
             for count, future in enumerate(concurrent.futures.as_completed(futures), 1):
                 try:
                     done(*future.result(), count)
                 except Exception as exc:  # the worker itself died (killed, out of memory)
                     done(futures[future], None, f"worker failed: {type(exc).__name__}", count)
+        except BaseException:  # ^C, SIGTERM: stop the workers now rather than finish their regions
+            _stop(pool)
+            raise
+        pool.shutdown()
     return MapFill(regions, results, errors, doc, warnings, styles)
+
+
+def _die_with_parent(parent: int) -> None:
+    """Worker set-up: end when the parent process ends, even by SIGKILL (Linux; elsewhere the
+    pool's own check, when the next task is due, has to do)."""
+    try:
+        import ctypes
+        import signal
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:  # the parent died before the request took effect
+        os._exit(1)
+
+
+def _stop(pool: concurrent.futures.ProcessPoolExecutor) -> None:
+    """End ``pool``'s workers at once (their regions are lost anyway) and release the pool."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())  # no public handle
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        proc.kill()
+    for proc in processes:
+        proc.join(5)

@@ -89,6 +89,9 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs):
         warn(message)
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
+    if result.errors and len(result.errors) == len(result.regions):
+        raise SvgtileError(f"none of the {len(result.regions)} regions could be filled (see the warnings); "
+                           "nothing written", source=str(output))  # fmt: skip
     if kind == "geojson":
         text = placements_document(result)
     else:

@@ -186,6 +186,12 @@ def geometry_error(exc: Exception, source: str) -> ExemplarError:
                          "and transforms", source=source)  # fmt: skip
 
 
+_NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+_TRANSFORM_RE = re.compile(
+    rf"[\s,]*(?:(?:matrix|translate|scale|rotate|skewX|skewY)\s*\(\s*(?:{_NUM}(?:\s*,?\s*{_NUM})*)?\s*\)[\s,]*)*"
+)
+
+
 def parse_matrix(text: str | None) -> np.ndarray:
     """3×3 affine matrix of an SVG ``transform`` attribute.
 
@@ -198,6 +204,8 @@ def parse_matrix(text: str | None) -> np.ndarray:
     """
     if not text:
         return np.eye(3)
+    if not _TRANSFORM_RE.fullmatch(text):  # svgelements would skip what it cannot read (nan, inf …)
+        raise ValueError("unreadable")
     try:
         m = se.Matrix(text)
         out = np.array([[m.a, m.c, m.e], [m.b, m.d, m.f], [0.0, 0.0, 1.0]], dtype=np.float64)
@@ -485,3 +493,52 @@ def dot_footprint(point: np.ndarray, width: float, cap: str) -> list[shapely.Geo
 def read_svg_bytes(path: str | Path) -> bytes:
     """The bytes of an SVG file; an unreadable file is an :class:`ExemplarError` naming it."""
     return read_input(path, error=ExemplarError)
+
+
+_EXTERNAL_URL = re.compile(r"url\(\s*(?![\s'\"]*#)[^)]*\)")
+#: Properties whose ``url(…)`` is a paint server: an external one becomes ``none``; elsewhere
+#: (``mask``, ``filter``, ``clip-path``, markers) the property is removed.
+_PAINT = ("fill", "stroke")
+
+
+def neutralise_external(elements: list[ET.Element]) -> list[str]:
+    """Drop from ``elements`` (in place) every reference to outside the file a viewer could fetch.
+
+    An ``href`` that is not ``#id`` (``<image>``, ``<feImage>``, ``<a>``) is removed; a
+    ``url(…)`` that is not ``url(#id)`` makes ``fill``/``stroke`` ``none`` and removes any other
+    property (``mask``, ``filter``, ``clip-path``, ``marker-*``), in attributes and in ``style``;
+    a ``<style>`` sheet with ``@import`` or an external ``url(…)`` is emptied.  Returns one
+    description per dropped reference (``<image id="i"> href``).
+    """
+    dropped: list[str] = []
+    for el in elements:
+        for node in el.iter():
+            if not isinstance(node.tag, str):
+                continue
+            for key in [k for k in node.attrib if local_tag(k) == "href"]:
+                if not node.attrib[key].startswith("#"):
+                    dropped.append(f"{describe(node)} href")
+                    del node.attrib[key]
+            for key in list(node.attrib):
+                value = node.attrib[key]
+                if key == "style":
+                    kept = []
+                    for decl in value.split(";"):
+                        name, _, v = decl.partition(":")
+                        if _EXTERNAL_URL.search(v):
+                            dropped.append(f"{describe(node)} {name.strip()}")
+                            if name.strip() in _PAINT:
+                                kept.append(f"{name.strip()}:none")
+                        else:
+                            kept.append(decl)
+                    node.set("style", ";".join(kept))
+                elif _EXTERNAL_URL.search(value):
+                    dropped.append(f"{describe(node)} {local_tag(key)}")
+                    if local_tag(key) in _PAINT:
+                        node.set(key, "none")
+                    else:
+                        del node.attrib[key]
+            if local_tag(node.tag) == "style" and node.text and ("@import" in node.text or _EXTERNAL_URL.search(node.text)):
+                dropped.append(f"{describe(node)} @import or url()")
+                node.text = ""
+    return dropped

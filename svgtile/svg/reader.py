@@ -73,6 +73,7 @@ from svgtile.svg.dialect import (
     linear_part,
     local_tag,
     matrix_attr,
+    neutralise_external,
     number_attr,
     one_line,
     polygons_of,
@@ -486,6 +487,10 @@ class DocumentReader:
                     wrapper.set(key, value)
             wrapper.append(copy.deepcopy(rep.element))
             defs.append(symbol)
+        dropped = neutralise_external(defs)
+        if dropped:
+            self.warn(f"{len(dropped)} reference(s) to outside this file dropped from the copied symbols, so no "
+                      f"viewer fetches them ({'; '.join(dropped[:3])}{' …' if len(dropped) > 3 else ''})")  # fmt: skip
         return defs
 
     # -- region --------------------------------------------------------------------------
