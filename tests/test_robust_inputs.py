@@ -4,6 +4,7 @@ run ends cleanly (no temporary file, no fetchable reference, an exit code that s
 from __future__ import annotations
 
 import gzip
+import io
 import os
 import signal
 import subprocess
@@ -205,3 +206,19 @@ def test_map_with_every_unit_failed_writes_nothing(tmp_path, capsys):
 def test_output_clash_error_is_an_output_error():
     with pytest.raises(OutputError, match="refusing to overwrite the exemplar"):
         svgtile.files.check_paths([(__file__, "the exemplar")], [Path(__file__).parent / ".." / "tests" / Path(__file__).name])
+
+
+@pytest.mark.parametrize("transform", ["scale(1e308)", "translate(1e150 0)", "matrix(1 0 0 1 1e308 1e308) scale(10)"])
+def test_the_inkscape_extension_refuses_absurd_geometry_before_flattening(transform):
+    inkex = pytest.importorskip("inkex", reason="inkex is not installed")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "inkscape_ext"))
+    import svgtile_fill
+
+    doc = inkex.load_svg(io.BytesIO(
+        f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><g transform="{transform}">'
+        '<path id="box" d="M 0 0 C 1 0 1 1 0 1 Z"/></g></svg>'.encode()))  # fmt: skip
+    shape = doc.getroot().getElementById("box")
+    with pytest.raises(inkex.AbortExtension, match="nothing was changed"):
+        svgtile_fill._rings(shape)
+    ok = inkex.load_svg(io.BytesIO(b'<svg xmlns="http://www.w3.org/2000/svg"><path id="b" d="M 0 0 L 1 0 L 1 1 Z"/></svg>'))
+    assert len(svgtile_fill._rings(ok.getroot().getElementById("b"))[0]) >= 3

@@ -145,8 +145,13 @@ def _watch_secret(path: Path, stop: threading.Event, seen: list[bool]) -> None:
         return
 
 
-def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float, keep: bool = False) -> Outcome:
-    """Run one case in a fresh folder and classify it."""
+def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float, keep: bool = False,
+             command: list[str] | None = None) -> Outcome:
+    """Run one case in a fresh folder and classify it.
+
+    ``command`` replaces ``-m svgtile ARGS`` (placeholders filled): the runner's own test runs a
+    stand-in that misbehaves, to show each outcome can be seen.
+    """
     root = Path(tempfile.mkdtemp(prefix="svgtile-robust-"))
     work, outside = root / "work", root / "outside"
     work.mkdir()
@@ -181,7 +186,8 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
     err_path = root / "stderr"
     start = time.monotonic()
     with open(err_path, "wb") as err:
-        proc = subprocess.Popen([sys.executable, "-m", "svgtile", *args], cwd=work, stdin=subprocess.DEVNULL,
+        argv = [_fill(a, values) for a in command] if command else ["-m", "svgtile", *args]
+        proc = subprocess.Popen([sys.executable, *argv], cwd=work, stdin=subprocess.DEVNULL,
                                 stdout=stdout, stderr=err, preexec_fn=limits)  # fmt: skip
         if case.stdout == "head":
             proc.stdout.read(100)
