@@ -222,3 +222,40 @@ def test_the_inkscape_extension_refuses_absurd_geometry_before_flattening(transf
         svgtile_fill._rings(shape)
     ok = inkex.load_svg(io.BytesIO(b'<svg xmlns="http://www.w3.org/2000/svg"><path id="b" d="M 0 0 L 1 0 L 1 1 Z"/></svg>'))
     assert len(svgtile_fill._rings(ok.getroot().getElementById("b"))[0]) >= 3
+
+
+def _running(pid: int) -> bool:
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    return "\nState:\tZ" not in status
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="needs /proc (Linux)")
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM])
+def test_map_workers_end_with_their_parent(tmp_path, sig):
+    import time
+
+    (tmp_path / "ex.svg").write_text(TINY)
+    units = "".join(f'<rect class="a" x="{i * 1300}" width="1200" height="1200"/>' for i in range(4))
+    (tmp_path / "m.svg").write_text(svg(units))
+    (tmp_path / "s.toml").write_text('[classes.a]\nexemplar = "ex.svg"\n')
+    proc = subprocess.Popen([sys.executable, "-m", "svgtile", "map", "m.svg", "--styles", "s.toml", "-o", "o.svg",
+                             "--seed", "1", "--jobs", "2"], cwd=tmp_path, stderr=subprocess.DEVNULL)  # fmt: skip
+    workers: list[int] = []
+    deadline = time.monotonic() + 60
+    while len(workers) < 2 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.2)
+        children = Path(f"/proc/{proc.pid}/task/{proc.pid}/children")
+        workers = [int(p) for p in children.read_text().split()] if children.exists() else []
+    assert len(workers) >= 2, "the map ended before its workers could be seen"
+    proc.send_signal(sig)
+    proc.wait(30)
+    deadline = time.monotonic() + 15
+    while any(_running(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert not any(_running(w) for w in workers)
+    assert not (tmp_path / "o.svg").exists() and not list(tmp_path.glob(".o.svg*"))
+    if sig == signal.SIGTERM:
+        assert proc.returncode == 143
