@@ -60,9 +60,9 @@ MAX_DEPTH = 200
 #: The most elements an exemplar or a tile may hold (a map: ten times as many); the largest
 #: real pattern tile of ../shared/data has some 5,000.
 MAX_ELEMENTS = 100_000
-#: The most characters of path data (``d``, ``points``) one element may have: some 50,000
-#: points, far more than a motif or a map unit needs, and read in well under a second.
-MAX_PATH_CHARS = 1_000_000
+#: The most characters of path data (``d``, ``points``) one element may have: some 500,000
+#: points (osm-carto marsh.svg flattened has 2 million characters in one path).
+MAX_PATH_CHARS = 8_000_000
 #: The most kinds of motif an exemplar may have: the analysis compares every pair of kinds.
 MAX_KINDS = 500
 #: The most a transform may stretch one direction against another (ratio of its singular values):

@@ -64,7 +64,7 @@ TOUCH = 2e-4
 #: Pairs of pieces (on the 3 × 3 block) whose boxes come within joining reach, at most: the real
 #: tiles of ../shared/data have at most some 250,000 (FGDC 661: 3,137 motifs drawn over each other),
 #: and the grouping costs about 50 µs a pair.
-MAX_NEAR_PIECES = 600_000
+MAX_NEAR_PIECES = 1_000_000
 #: Coordinates are compared at this many decimals when dropping duplicate pieces (relative to the
 #: tile size, 1e-5 of it).
 DUPLICATE_DECIMALS = 5
@@ -249,8 +249,8 @@ def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, source: str) 
     b = shapely.bounds(geoms)
     near = tree.query(shapely.box(b[:, 0] - reach, b[:, 1] - reach, b[:, 2] + reach, b[:, 3] + reach))
     if near.shape[1] > MAX_NEAR_PIECES:  # boxes only: cheap, and an upper bound of the work below
-        raise TileRefused(f"its pieces are drawn over each other throughout ({near.shape[1] // 9:,} near pairs "
-                          "per tile); not a pattern of separate motifs", source=source)  # fmt: skip
+        raise TileRefused(f"not discrete motifs: its pieces are drawn over each other throughout "
+                          f"({near.shape[1] // 9:,} near pairs per tile)", source=source)  # fmt: skip
     i, j = tree.query(geoms, predicate="dwithin", distance=reach)
     keep = i < j
     i, j = i[keep], j[keep]
