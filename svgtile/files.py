@@ -7,6 +7,7 @@ makes XML text, this module puts text or bytes on disk.
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 import sys
@@ -41,6 +42,12 @@ def check_output(out: str | Path, *, protect: tuple[str | Path, ...] = ()) -> No
             raise OutputError("refusing to overwrite an input file", source=str(out))
     if out.is_dir():
         raise OutputError("is a folder; give a file name", source=str(out))
+    if out.is_symlink():
+        try:
+            os.stat(out)
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:  # written through, the loop would be replaced by a file
+                raise OutputError("is a symbolic link that loops; give another name", source=str(out)) from None
     folder = out.parent
     if not folder.is_dir():
         problem = "is a file, not a folder" if folder.exists() else "does not exist"

@@ -259,3 +259,11 @@ def test_map_workers_end_with_their_parent(tmp_path, sig):
     assert not (tmp_path / "o.svg").exists() and not list(tmp_path.glob(".o.svg*"))
     if sig == signal.SIGTERM:
         assert proc.returncode == 143
+
+
+def test_an_output_that_is_a_symlink_loop_is_refused_and_kept(tmp_path, capsys):
+    (tmp_path / "ex.svg").write_text(TINY)
+    (tmp_path / "o.svg").symlink_to("o.svg")
+    rc = main(["synth", str(tmp_path / "ex.svg"), "--size", "30", "--seed", "1", "-o", str(tmp_path / "o.svg")])
+    assert rc == 1 and "loops" in capsys.readouterr().err
+    assert (tmp_path / "o.svg").is_symlink()
