@@ -267,3 +267,11 @@ def test_an_output_that_is_a_symlink_loop_is_refused_and_kept(tmp_path, capsys):
     rc = main(["synth", str(tmp_path / "ex.svg"), "--size", "30", "--seed", "1", "-o", str(tmp_path / "o.svg")])
     assert rc == 1 and "loops" in capsys.readouterr().err
     assert (tmp_path / "o.svg").is_symlink()
+
+
+@pytest.mark.parametrize("codec", ["utf-8", "utf-8-sig", "utf-16"])
+def test_names_are_read_in_the_encodings_spreadsheets_write(tmp_path, codec):
+    from svgtile.apps.swatches import read_names
+
+    (tmp_path / "n.csv").write_bytes("name,code\nGrès,601\n".encode(codec))
+    assert read_names(tmp_path / "n.csv") == {"601": "Grès"}

@@ -87,7 +87,8 @@ def read_names(path: str | Path) -> dict[str, str]:
     against the tile's file stem), like the FGDC set's ``INDEX.csv``."""
     text = read_input(path, error=ExemplarError, limit=MAX_NAMES_BYTES)
     try:
-        rows = list(csv.DictReader(io.StringIO(text.decode("utf-8-sig"), newline="")))
+        utf16 = text[:2] in (b"\xff\xfe", b"\xfe\xff")  # a spreadsheet's "Unicode text" export
+        rows = list(csv.DictReader(io.StringIO(text.decode("utf-16" if utf16 else "utf-8-sig"), newline="")))
     except (UnicodeDecodeError, csv.Error) as exc:
         raise ExemplarError(f"cannot read the names ({exc})", source=str(path)) from None
     names = {}
