@@ -36,6 +36,8 @@ XLINK_NS = "http://www.w3.org/1999/xlink"
 XLINK_HREF = f"{{{XLINK_NS}}}href"
 CONTAINER_TYPES = (inkex.PathElement, inkex.Rectangle, inkex.Circle, inkex.Ellipse, inkex.Polygon, inkex.Polyline)
 MOTIF_TAGS = {"use", "path", "rect", "circle", "ellipse", "line", "polyline", "polygon"}
+#: Coordinates and transform entries beyond this are refused (as by svgtile's reader).
+MAX_COORDINATE = 1e100
 #: Curves become polylines this close to the true outline, as a fraction of the shape's size.
 FLATNESS = 1e-4
 URL = re.compile(r"url\(\s*#([^)\s]+)\s*\)")
@@ -97,10 +99,22 @@ def _fill_rule(el):
 
 
 def _rings(shape):
-    """The shape's subpaths as polylines in document coordinates: [[[x, y], …], …]."""
-    path = shape.path.to_absolute().transform(_composed_transform(shape))
+    """The shape's subpaths as polylines in document coordinates: [[[x, y], …], …].
+
+    Absurd geometry (``scale(1e308)``, NaN) is refused before it is flattened: inkex's
+    subdivision never ends on coordinates that overflow.
+    """
+    transform = _composed_transform(shape)
+    if not all(abs(v) <= MAX_COORDINATE for row in transform.matrix for v in row):  # also NaN
+        raise inkex.AbortExtension(f"svgtile: the shape {_name(shape)} has a transform that is not finite or "
+                                   f"scales beyond {MAX_COORDINATE:g}; nothing was changed.")  # fmt: skip
+    path = shape.path.to_absolute().transform(transform)
     box = path.bounding_box()
     size = max(box.width, box.height) if box is not None else 0.0
+    corners = (box.left, box.top, box.right, box.bottom) if box is not None else ()
+    if not all(abs(v) <= MAX_COORDINATE for v in (size, *corners)):
+        raise inkex.AbortExtension(f"svgtile: the shape {_name(shape)} has coordinates that are not finite or "
+                                   f"beyond ±{MAX_COORDINATE:g}; nothing was changed.")  # fmt: skip
     csp = path.to_superpath()
     cspsubdiv(csp, max(size * FLATNESS, 1e-9))
     return [[[float(node[1][0]), float(node[1][1])] for node in sub] for sub in csp if len(sub) > 1]

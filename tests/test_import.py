@@ -431,7 +431,7 @@ def test_tile_of_overflowing_size_is_refused(head, message):
 def test_shape_blown_up_by_a_transform_is_refused():
     svg = ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 50 50">'
            '<g transform="scale(1e150)"><circle r="1"/></g><circle cx="5" cy="5" r="1"/></svg>')  # fmt: skip
-    with pytest.raises(ExemplarError, match="degenerate viewBox or transform"):
+    with pytest.raises(ExemplarError, match="transform"):
         parse_tile(svg, source="t.svg")
 
 

@@ -112,6 +112,8 @@ def test_swatch_above_the_motif_limit_is_refused(tiles, tmp_path, capsys, monkey
 
     monkeypatch.setattr(svgtile.cli.tiles, "MAX_MOTIFS", 50)  # a 30 x 30 swatch of GOOD holds about 18
     out = tmp_path / "s.svg"
-    assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--size", "100"]) == 0
-    assert "0 of 1 pattern(s) synthesized, 1 refused" in capsys.readouterr().err
-    assert "would hold about 200 motifs (limit 50)" in " ".join("".join(ET.parse(out).getroot().itertext()).split())
+    # every pattern refused: no sheet, and the exit code says so (issue 16), with the reason
+    assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--size", "100"]) == 1
+    err = capsys.readouterr().err
+    assert "none of the 1 pattern(s) could be synthesized" in err and "would hold about 200 motifs (limit 50)" in err
+    assert not out.exists()

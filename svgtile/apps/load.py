@@ -8,6 +8,7 @@ import os
 from collections.abc import Callable
 from functools import lru_cache
 
+from svgtile.analysis.crowding import check_crowding
 from svgtile.analysis.stats import Stats, analyze, motif_estimate
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
@@ -33,6 +34,7 @@ def _read(path: str, as_tile: bool, stamp: tuple[int, int] | None) -> tuple[Exem
     else:
         exemplar = read_exemplar(path)
         notes = exemplar.warnings
+    check_crowding(exemplar, imported=as_tile)  # before the analysis, which would run away
     stats = analyze(exemplar)
     if stats.overlaps:
         notes = (*notes, f"{stats.overlaps} pair(s) of motifs overlap in the exemplar; continuing")

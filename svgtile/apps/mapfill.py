@@ -54,6 +54,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import BOUNDARY_MODES, Region
 from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
 from svgtile.errors import ParameterError, RegionError, SvgtileError
+from svgtile.files import read_input
 from svgtile.gis import geojson, layers
 from svgtile.runners.schedule import Unit, run
 from svgtile.runners.tiling import WHOLE, Bands, Tile, plan, synthesize_tile, tile_region
@@ -66,6 +67,8 @@ else:  # pragma: no cover - Python 3.10
 
 #: Keys of a class table passed to the engine: every engine's public parameters, and the boundary.
 PARAM_KEYS = tuple(public_params())
+#: A styles file is a few lines per class; a larger one is refused before it is parsed.
+MAX_STYLES_BYTES = 2**20
 ENGINE_KEYS = (*PARAM_KEYS, "boundary")
 #: Every key a class table (or the defaults) may have.
 CLASS_KEYS = (*ENGINE_KEYS, "exemplar", "engine", "seed", "unit", "refine")
@@ -123,11 +126,11 @@ def read_styles(path: str | Path, *, boundary: str = "clip") -> Styles:
     ``boundary`` is the boundary mode of the classes that give none (``inside`` for point outputs).
     """
     source = str(path)
+    raw = read_input(path, error=ParameterError, limit=MAX_STYLES_BYTES)
     try:
-        with open(path, "rb") as fh:
-            data = tomllib.load(fh)
-    except OSError as exc:
-        raise ParameterError(f"cannot read file ({exc.strerror or exc})", source=source) from None
+        data = tomllib.loads(raw.decode("utf-8"))
+    except RecursionError:
+        raise ParameterError("tables or arrays are nested too deeply", source=source) from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError(f"not a valid TOML file ({' '.join(str(exc).split())})", source=source) from None
     return parse_styles(data, source=source, folder=Path(path).parent, boundary=boundary)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import copy
 import csv
+import io
 import math
 import re
 import textwrap
@@ -24,6 +25,7 @@ from svgtile.apps.load import check_motif_count
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.errors import ExemplarError, SvgtileError
+from svgtile.files import read_input
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.window import in_window, interior
 from svgtile.svg.dialect import SVG_NS, XLINK_NS
@@ -33,6 +35,8 @@ from svgtile.tiles.importer import import_tile
 
 #: Side of each panel on the sheet, sheet units.
 PANEL = 150.0
+#: A names CSV (FGDC's INDEX.csv is 40 kB) larger than this is refused before it is read.
+MAX_NAMES_BYTES = 16 * 2**20
 #: Space between panels and around cells, sheet units.
 GAP = 12.0
 #: Height of a cell's label, sheet units.
@@ -85,10 +89,11 @@ def collect(inputs: list[str] | tuple[str, ...]) -> list[Path]:
 def read_names(path: str | Path) -> dict[str, str]:
     """Pattern names from a CSV with a ``name`` column and a ``code`` or ``file`` column (matched
     against the tile's file stem), like the FGDC set's ``INDEX.csv``."""
+    text = read_input(path, error=ExemplarError, limit=MAX_NAMES_BYTES)
     try:
-        with open(path, newline="", encoding="utf-8") as handle:
-            rows = list(csv.DictReader(handle))
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        utf16 = text[:2] in (b"\xff\xfe", b"\xfe\xff")  # a spreadsheet's "Unicode text" export
+        rows = list(csv.DictReader(io.StringIO(text.decode("utf-16" if utf16 else "utf-8-sig"), newline="")))
+    except (UnicodeDecodeError, csv.Error) as exc:
         raise ExemplarError(f"cannot read the names ({exc})", source=str(path)) from None
     names = {}
     for row in rows:
@@ -163,7 +168,7 @@ def swatch_sheet(
 def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf):
     """(Swatch, original panel, texture panel); panels are (content root, viewBox) or None."""
     try:
-        data = path.read_bytes()
+        data = read_input(path, error=ExemplarError)
         original_root = ET.fromstring(data)
         box = _box(original_root)
     except (OSError, ET.ParseError, ValueError) as exc:

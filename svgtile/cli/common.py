@@ -63,6 +63,44 @@ def showwarning(message, category, filename, lineno, file=None, line=None) -> No
     warn(f"{message} ({category.__name__})")
 
 
+#: Parameters that name what a command writes; every other parameter naming an existing file
+#: (``MAP.svg#ID`` specs included) is taken for an input.
+OUTPUT_PARAMS = ("output",)
+
+
+def command_paths(ctx: click.Context) -> tuple[list[tuple[str, str]], list[str]]:
+    """(inputs, outputs) of the command ``ctx`` runs, from its parameters.
+
+    An output is a parameter of :data:`OUTPUT_PARAMS`; an input is any other parameter value
+    (or item of a repeated option) naming an existing file, after a ``#ID`` suffix is cut, paired
+    with how the message names it (``the exemplar``, ``an input file (--region map.svg#qal)``).
+    Folders are left to their command, which knows which of their files it reads or writes.
+    """
+    options = {p.name: p for p in ctx.command.params}
+    inputs, outputs = [], []
+    for name, value in ctx.params.items():
+        values = value if isinstance(value, (tuple, list)) else (value,)
+        for v in values:
+            if not isinstance(v, str) or not v or v == "-":
+                continue
+            if name in OUTPUT_PARAMS:
+                outputs.append(v)
+                continue
+            path = v.partition("#")[0] if "#" in v and not Path(v).exists() else v
+            try:
+                if not Path(path).is_file():
+                    continue
+            except (OSError, ValueError):  # a symlink loop, a NUL byte: its reader will say
+                continue
+            param = options.get(name)
+            if isinstance(param, click.Argument):
+                what = f"the {name.split('_')[0]}" if len(values) == 1 else f"the input {v}"
+            else:
+                what = f"an input file ({param.opts[-1] if param else name} {v})"
+            inputs.append((path, what))
+    return inputs, outputs
+
+
 def load(path: str, *, as_tile: bool = False) -> tuple[Exemplar, Stats]:
     """The exemplar and its analysis (:func:`svgtile.apps.load.load_exemplar`), warnings on stderr."""
     return load_exemplar(path, as_tile=as_tile, warn=warn)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import click
@@ -13,8 +14,8 @@ from svgtile.apps.load import MAX_MOTIFS, check_motif_count
 from svgtile.apps.preview import contact_sheet, render_png, require_renderer
 from svgtile.cli.common import Stderr, json_safe, load, parse_size, warn_if_few
 from svgtile.core.region import Region
-from svgtile.errors import OutputError
-from svgtile.files import write_file
+from svgtile.errors import ExemplarError, OutputError
+from svgtile.files import check_paths, read_input, write_file
 from svgtile.svg.writer import fmt, svg_document
 
 #: Pixels per user unit of the contact sheet are chosen so a texture panel is this wide.
@@ -40,6 +41,8 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         if folder.exists() and not folder.is_dir():
             raise OutputError("is a file, not a folder", source=png_dir)
         require_renderer()
+        planned = [folder / f"{n}.{suffix}" for n in (*names, "contact-sheet") for suffix in ("svg", "png")]
+        check_paths([exemplar], planned)  # before any of them is written
     ex, stats = load(exemplar)
     region = Region.rectangle(width, height)
     check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them, and the scoring
@@ -65,7 +68,7 @@ def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) ->
         raise OutputError(f"cannot create the folder ({exc.strerror or exc})", source=str(folder)) from None
     x0, y0, x1, y1 = region.bounds
     scale = max(MIN_SCALE, SHEET_PANEL / max(x1 - x0, y1 - y0))
-    ex_text = path.read_text(encoding="utf-8")
+    ex_text = _svg_text(read_input(path, error=ExemplarError))
     panels = [(f"exemplar {path.stem}", ex_text)]
     for r in results:
         meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement)}
@@ -77,3 +80,12 @@ def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) ->
     sheet, width = contact_sheet(panels, scale)
     write_file(sheet, folder / "contact-sheet.svg", protect=(path,))
     write_file(render_png(sheet, width), folder / "contact-sheet.png", protect=(path,))
+
+
+def _svg_text(data: bytes) -> str:
+    """The exemplar as text for the contact sheet: as is when UTF-8 (most files), else
+    re-serialised by ElementTree, which reads any encoding the exemplar reader reads."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return ET.tostring(ET.fromstring(data), encoding="unicode")

@@ -7,17 +7,22 @@ line and an exit code.
 
 from __future__ import annotations
 
+import functools
 import importlib
 import os
+import signal
 import sys
+import threading
 import warnings
 from collections.abc import Iterator, MutableMapping
 
 import click
+import shapely
 
 from svgtile import __version__
-from svgtile.cli.common import Stderr, one_line, showwarning
+from svgtile.cli.common import Stderr, command_paths, one_line, showwarning
 from svgtile.errors import SvgtileError
+from svgtile.files import check_paths
 
 #: Every command, as ``name: "module:attribute"``; a command's module is imported only when the
 #: command is looked up (run, or listed by ``--help``), so ``svgtile score`` does not pay for
@@ -48,12 +53,12 @@ class LazyCommands(MutableMapping):
     def __getitem__(self, name: str) -> click.Command:
         if name not in self._loaded:
             module, _, attr = self._specs[name].partition(":")
-            self._loaded[name] = getattr(importlib.import_module(module), attr)
+            self._loaded[name] = _guarded(getattr(importlib.import_module(module), attr))
         return self._loaded[name]
 
     def __setitem__(self, name: str, command: click.Command) -> None:
         self._specs.setdefault(name, "")
-        self._loaded[name] = command
+        self._loaded[name] = _guarded(command)
 
     def __delitem__(self, name: str) -> None:
         del self._specs[name]
@@ -76,13 +81,57 @@ def cli() -> None:
     """Fill any region with small vector motifs so it looks like a small exemplar you drew."""
 
 
+def _guarded(command: click.Command) -> click.Command:
+    """``command`` (and a group's subcommands) checking, before it reads or writes anything, that
+    no output is one of its inputs (:func:`svgtile.cli.common.command_paths`): the one place a
+    command added later is covered without a line of its own."""
+    if isinstance(command, click.Group):
+        for sub in command.commands.values():
+            _guarded(sub)
+        return command
+    callback = command.callback
+
+    @functools.wraps(callback)
+    def run(*args, **kwargs):
+        check_paths(*command_paths(click.get_current_context()))
+        return callback(*args, **kwargs)
+
+    command.callback = run
+    return command
+
+
+class Terminated(BaseException):
+    """SIGTERM or SIGHUP arrived: unwind like ^C, so temporary files are removed on the way."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def _terminate(signum, frame) -> None:
+    raise Terminated(signum)
+
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point: every expected failure is one line on stderr and a non-zero exit.
 
     Exit codes: 0 success (also for help), 1 bad input or unwritable output, 2 bad command line,
-    70 internal error (a bug; ``--debug`` anywhere shows the traceback), 130 interrupted.
+    70 internal error (a bug; ``--debug`` anywhere shows the traceback), 130 interrupted (^C),
+    128 + N ended by signal N (143: SIGTERM).  Only 0 means the output is complete; after any
+    other code no output file was written, except by ``map`` with failed units (exit 1, the
+    message says the others were written).
     """
+    if threading.current_thread() is not threading.main_thread():  # signals are the main thread's
+        return _main(argv)
+    old = {s: signal.signal(s, _terminate) for s in (signal.SIGTERM, signal.SIGHUP)}
+    try:
+        return _main(argv)
+    finally:
+        for signum, handler in old.items():
+            signal.signal(signum, handler)
+
+
+def _main(argv: list[str] | None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
     args = [a for a in argv if a != "--debug"]
@@ -111,6 +160,9 @@ def main(argv: list[str] | None = None) -> int:
     except (KeyboardInterrupt, click.exceptions.Abort):
         Stderr.line("svgtile: interrupted")
         return 130
+    except Terminated as exc:
+        Stderr.line(f"svgtile: stopped by {exc}")
+        return 128 + exc.signum
     except BrokenPipeError:  # ``svgtile synth … -o - | head``: the reader left, nothing to report
         devnull = os.open(os.devnull, os.O_WRONLY)
         try:
@@ -122,6 +174,14 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     except MemoryError:
         Stderr.line("svgtile: error: out of memory; try a smaller --size")
+        return 1
+    except shapely.errors.GEOSException as exc:  # input geometry no reader caught (a map's, a region's)
+        Stderr.line(f"svgtile: error: geometry too extreme to compute with ({one_line(exc)}); check the "
+                    "coordinates and transforms of the inputs")  # fmt: skip
+        return 1
+    except OSError as exc:  # the system refused something no reader anticipated (ELOOP, EMFILE …)
+        where = f"{exc.filename}: " if exc.filename else ""
+        Stderr.line(f"svgtile: error: {where}{one_line(exc.strerror or exc)}")
         return 1
     except Exception as exc:  # a bug, not bad input: still one line, traceback on request
         if debug:

@@ -122,7 +122,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
-        _warn_about(result)
+        _warn_about(result, output)
         exemplars = filled_exemplars(result)
         write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
         if with_style:
@@ -135,7 +135,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
                               max_motifs=MAX_MOTIFS, scheduler=scheduler, tile_size=tile_size,
                               sink=_sink(bands, kind, styles), bar=bar)  # fmt: skip
             Stderr.clear()
-            _warn_about(result)
+            _warn_about(result, output)
             params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
                       "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
             write_map_svg(output, result, bands, params, protect=inputs)
@@ -161,9 +161,13 @@ def _sink(bands: BandWriter, kind: str, styles):
     return sink
 
 
-def _warn_about(result) -> None:
-    """The fill's warnings and failed regions, a line each."""
+def _warn_about(result, output: str) -> None:
+    """The fill's warnings and failed regions, a line each; an error, before anything is
+    written, when no region could be filled."""
     for message in result.warnings:
         warn(message)
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
+    if result.errors and not any(result.filled):
+        raise SvgtileError(f"none of the {len(result.regions)} regions could be filled (see the warnings); "
+                           "nothing written", source=str(output))  # fmt: skip

@@ -8,7 +8,7 @@ import click
 
 from svgtile.apps.load import MAX_MOTIFS
 from svgtile.cli.common import parse_size, warn
-from svgtile.errors import ParameterError
+from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.tiles.importer import import_tile
 
@@ -77,6 +77,10 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
     swatch = parse_size(size) if size is not None else None
     table = read_names(names) if names else None
     sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS)
+    if sheet.accepted == 0:  # a sheet of refusals is no legend; the exit code says nothing was made
+        reasons = "; ".join(f"{s.path.name}: {s.refused}" for s in sheet.swatches[:3])
+        raise SvgtileError(f"none of the {len(files)} pattern(s) could be synthesized ({reasons}"
+                           f"{' …' if len(files) > 3 else ''}); nothing written", source=str(output))  # fmt: skip
     if png_path is not None:
         write_file(render_png(sheet.text, png_width), png_path, protect=tuple(files))
     write_file(sheet.text, output, protect=tuple(files))

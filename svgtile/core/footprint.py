@@ -81,14 +81,34 @@ class Prototype:
         radius = float(np.hypot(pts[:, 0], pts[:, 1]).max())
         excess = 0.0
         if tol > 0:  # simplified, then grown with mitred corners: measured, not bounded
-            outline = shapely.segmentize(shapely.MultiLineString(list(rings)), tol / 4)
-            excess = float(shapely.distance(shapely.points(shapely.get_coordinates(outline)), exact).max()) + tol / 4
+            outline = shapely.get_coordinates(shapely.segmentize(shapely.MultiLineString(list(rings)), tol / 4))
+            excess = _farthest_outside(outline, exact) + tol / 4
         return cls(rings, float(exact.area), radius, inner, excess)
 
     def geometry(self) -> shapely.Geometry:
         """The footprint as one shapely geometry in the local frame."""
         polys = [shapely.polygons(r) for r in self.rings]
         return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
+
+
+def _farthest_outside(pts: np.ndarray, shape: shapely.Geometry) -> float:
+    """max over ``pts`` ((k, 2) float array) of the distance to ``shape`` (0 inside it).
+
+    The same figure as ``shapely.distance(points, shape).max()``, from a tree of the outline's
+    segments instead of a walk of every segment per point: an outline of 10,000 vertices
+    sampled at 50,000 points (osm-carto flowerbed_mid_zoom.svg) took a minute.
+    """
+    shapely.prepare(shape)
+    outside = pts[~shapely.contains_xy(shape, pts[:, 0], pts[:, 1])]
+    if len(outside) == 0:
+        return 0.0
+    segments = []
+    for ring in shapely.get_rings(shapely.get_parts(shape)):
+        xy = shapely.get_coordinates(ring)
+        segments.append(np.stack([xy[:-1], xy[1:]], axis=1))
+    tree = shapely.STRtree(shapely.linestrings(np.concatenate(segments)))
+    _, dist = tree.query_nearest(shapely.points(outside), return_distance=True, all_matches=False)
+    return float(dist.max())
 
 
 def rotation(angle_deg: np.ndarray) -> np.ndarray:

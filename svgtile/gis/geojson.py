@@ -31,6 +31,7 @@ import shapely
 
 from svgtile.core.arrangement import Arrangement
 from svgtile.errors import RegionError
+from svgtile.files import read_input
 
 #: Decimals written for coordinates (map units can be metres or feet: sub-millimetre).
 COORD_DECIMALS = 6
@@ -50,9 +51,7 @@ class Feature:
 def load(path: str | Path) -> dict:
     """The parsed GeoJSON object; a RegionError naming the file if it is not JSON."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise RegionError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+        text = read_input(path, error=RegionError).decode("utf-8")
     except UnicodeDecodeError:
         raise RegionError("not a UTF-8 text file", source=str(path)) from None
     try:

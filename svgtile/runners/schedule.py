@@ -18,8 +18,12 @@ calling process, and are dropped by the scheduler once handed over: nothing hold
 
 from __future__ import annotations
 
+import concurrent.futures
 import contextlib
 import logging
+import multiprocessing
+import os
+import signal
 import sys
 import uuid
 from collections.abc import Callable, Sequence
@@ -115,13 +119,18 @@ def _run_local(units: Sequence[Unit], on_done: Done, workers: int, progress: boo
     tasks = [dask.delayed(guarded, pure=False)(u.fn, *u.args, dask_key_name=f"{u.name}-{tag}-{n}")
              for n, u in enumerate(units)]  # fmt: skip
     store = _Handover({t.key: n for n, t in enumerate(tasks)}, on_done)
-    how = {"scheduler": "synchronous"} if workers <= 1 or len(units) == 1 else {"scheduler": "processes", "num_workers": workers}
-    # forked workers start at once (spawned ones import svgtile again, seconds each); the
-    # home-made pool this replaces forked too
-    context = "fork" if sys.platform == "linux" else dask.config.get("multiprocessing.context", "spawn")
+    pool = None
+    how: dict[str, object] = {"scheduler": "synchronous"}
+    if workers > 1 and len(units) > 1:
+        # forked workers start at once (spawned ones import svgtile again, seconds each); our own
+        # pool, so that its workers end with this process (_die_with_parent) and on ^C (_stop)
+        context = multiprocessing.get_context("fork" if sys.platform == "linux" else None)
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                                                      initializer=_die_with_parent, initargs=(os.getpid(),))  # fmt: skip
+        how = {"scheduler": "processes", "pool": pool}
     bar = _local_bar() if progress else None
     try:
-        with dask.config.set({"multiprocessing.context": context}), bar or contextlib.nullcontext():
+        with bar or contextlib.nullcontext():
             dask.compute(*tasks, cache=store, optimize_graph=False, **how)
     except Exception as exc:  # the pool itself broke (a worker killed): the units not done fail
         if store.failure is not None:  # not the pool: the caller's writer failed
@@ -130,6 +139,37 @@ def _run_local(units: Sequence[Unit], on_done: Done, workers: int, progress: boo
             if n not in store.handed:
                 store.handed.add(n)
                 on_done(n, None, f"worker failed: {type(exc).__name__}")
+    except BaseException:  # ^C, SIGTERM: stop the workers now rather than let them finish
+        if pool is not None:
+            _stop(pool)
+        raise
+    finally:
+        if pool is not None:
+            pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _die_with_parent(parent: int) -> None:
+    """Worker set-up: end when the parent process ends, even by SIGKILL (Linux's
+    ``PR_SET_PDEATHSIG``; elsewhere the pool's own check, when the next task is due, has to do)."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:  # the parent died before the request took effect
+        os._exit(1)
+
+
+def _stop(pool: concurrent.futures.ProcessPoolExecutor) -> None:
+    """End ``pool``'s workers at once (their units are lost anyway) and release the pool."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())  # no public handle
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        proc.kill()
+    for proc in processes:
+        proc.join(5)
 
 
 def _local_bar():

@@ -18,6 +18,7 @@ import shapely
 import svgelements as se
 
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
@@ -53,6 +54,20 @@ MAX_COORDINATES = 200_000
 MAX_COORDINATE = 1e100
 #: Deepest chain of ``<use>`` references followed.
 MAX_USE_DEPTH = 32
+#: Elements nested deeper than this are refused before any walk (maps and exemplars alike): no
+#: drawing needs it, and the walks recurse.
+MAX_DEPTH = 200
+#: The most elements an exemplar or a tile may hold (a map: ten times as many); the largest
+#: real pattern tile of ../shared/data has some 5,000.
+MAX_ELEMENTS = 100_000
+#: The most characters of path data (``d``, ``points``) one element may have: some 500,000
+#: points (osm-carto marsh.svg flattened has 2 million characters in one path).
+MAX_PATH_CHARS = 8_000_000
+#: The most kinds of motif an exemplar may have: the analysis compares every pair of kinds.
+MAX_KINDS = 500
+#: The most a transform may stretch one direction against another (ratio of its singular values):
+#: beyond it (``skewX(89.99999)``) outlines become slivers GEOS cannot buffer or compare.
+MAX_SQUASH = 1e6
 #: Presentation properties that are not inherited but change how a plain motif looks.
 OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
 #: Attribute of the region element giving the period of a repeating tile (see Exemplar.period).
@@ -153,12 +168,67 @@ def absolute_length(text: str) -> float:
     return float(number) * _UNITS[unit.lower()]
 
 
+def check_tree(root: ET.Element, source: str, *, max_elements: int = MAX_ELEMENTS) -> None:
+    """Refuse a document nested deeper than :data:`MAX_DEPTH` or larger than ``max_elements``
+    elements, before anything walks it (without recursion, so any depth is measured)."""
+    stack, count = [(root, 1)], 0
+    while stack:
+        el, depth = stack.pop()
+        count += 1
+        if depth > MAX_DEPTH:
+            raise ExemplarError(f"elements are nested too deeply (over {MAX_DEPTH} levels, at {describe(el)})", source=source)
+        if count > max_elements:
+            raise ExemplarError(f"more than {max_elements:,} elements; svgtile reads smaller files", source=source)
+        stack.extend((c, depth + 1) for c in el)
+
+
+def geometry_error(exc: Exception, source: str) -> ExemplarError:
+    """The error for input geometry the geometry engine (GEOS) or float arithmetic cannot handle."""
+    return ExemplarError(f"geometry too extreme to compute with ({one_line(exc)}); check the coordinates "
+                         "and transforms", source=source)  # fmt: skip
+
+
+_NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+_TRANSFORM_RE = re.compile(
+    rf"[\s,]*(?:(?:matrix|translate|scale|rotate|skewX|skewY)\s*\(\s*(?:{_NUM}(?:\s*,?\s*{_NUM})*)?\s*\)[\s,]*)*"
+)
+
+
 def parse_matrix(text: str | None) -> np.ndarray:
-    """3×3 affine matrix of an SVG ``transform`` attribute."""
+    """3×3 affine matrix of an SVG ``transform`` attribute.
+
+    Raises
+    ------
+    ValueError
+        The transform is unreadable, not finite, scales beyond :data:`MAX_COORDINATE` or squashes
+        beyond :data:`MAX_SQUASH` (``skewX(90)``, ``rotate(nan)``, ``scale(1e308)``); a singular
+        matrix (``scale(0)``) is accepted: it draws nothing, and its element is ignored.
+    """
     if not text:
         return np.eye(3)
-    m = se.Matrix(text)
-    return np.array([[m.a, m.c, m.e], [m.b, m.d, m.f], [0.0, 0.0, 1.0]])
+    if not _TRANSFORM_RE.fullmatch(text):  # svgelements would skip what it cannot read (nan, inf …)
+        raise ValueError("unreadable")
+    try:
+        m = se.Matrix(text)
+        out = np.array([[m.a, m.c, m.e], [m.b, m.d, m.f], [0.0, 0.0, 1.0]], dtype=np.float64)
+    except (ValueError, TypeError, IndexError, ArithmeticError):  # svgelements' bare errors on bad data
+        raise ValueError("unreadable") from None
+    if not (np.abs(out) <= MAX_COORDINATE).all():  # also NaN
+        raise ValueError(f"not finite, or beyond ±{MAX_COORDINATE:g}")
+    sv = np.linalg.svd(out[:2, :2], compute_uv=False)
+    if sv[1] > 0 and sv[0] / sv[1] > MAX_SQUASH:
+        raise ValueError(f"skews or squashes by more than {MAX_SQUASH:g} to 1")
+    return out
+
+
+def element_matrix(el: ET.Element, source: str) -> np.ndarray:
+    """:func:`parse_matrix` of ``el``'s ``transform``; a bad one is an ExemplarError naming ``el``."""
+    text = el.attrib.get("transform")
+    try:
+        return parse_matrix(text)
+    except ValueError as exc:
+        raise ExemplarError(f"{describe(el)} has a transform {shorten(text or '', 60)!r} that is {exc}",
+                            source=source) from None  # fmt: skip
 
 
 def translation(x: float, y: float) -> np.ndarray:
@@ -338,12 +408,22 @@ JOINS = {"round": "round", "bevel": "bevel", "miter": "mitre", "miter-clip": "mi
 
 def flat_subpaths(el: ET.Element, source: str, flatness: float = FLATNESS) -> list[tuple[np.ndarray, bool]]:
     """Flattened subpaths of a shape element in its own user space; bad data is an ExemplarError."""
+    data = el.attrib.get("d") or el.attrib.get("points") or ""
+    if len(data) > MAX_PATH_CHARS:
+        raise ExemplarError(f"{describe(el)} has {len(data):,} characters of path data (more than "
+                            f"{MAX_PATH_CHARS:,}); simplify it first", source=source)  # fmt: skip
     try:
         shape = se_shape(el)
-        return flatten_path(se.Path(shape), flatness) if shape is not None else []
+        subpaths = flatten_path(se.Path(shape), flatness) if shape is not None else []
     except Exception as exc:  # svgelements raises bare ValueErrors/TypeErrors on bad data
         detail = "malformed path data" if local_tag(el.tag) == "path" else one_line(exc) or type(exc).__name__
         raise ExemplarError(f"cannot read the geometry of {describe(el)} ({detail})", source=source) from None
+    if sum(len(pts) for pts, _ in subpaths) > MAX_COORDINATES:
+        raise ExemplarError(f"{describe(el)} is too complex (over {MAX_COORDINATES} outline points)", source=source)
+    if not all((np.abs(pts) <= MAX_COORDINATE).all() for pts, _ in subpaths):  # also NaN
+        raise ExemplarError(f"{describe(el)} has coordinates that are not finite or beyond ±{MAX_COORDINATE:g}",
+                            source=source)  # fmt: skip
+    return subpaths
 
 
 def leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapely.Geometry | None:
@@ -361,6 +441,8 @@ def leaf_footprint(el: ET.Element, style: dict[str, str], source: str) -> shapel
     cap = CAPS.get(style.get("stroke-linecap", "butt"), "flat")
     join = JOINS.get(style.get("stroke-linejoin", "miter"), "mitre")
     limit = number_attr(style.get("stroke-miterlimit"), 4.0)
+    if stroked and not width <= MAX_COORDINATE:
+        raise ExemplarError(f"{describe(el)} has a stroke width beyond {MAX_COORDINATE:g}", source=source)
     parts = []
     for pts, closed in subpaths:
         distinct = len(np.unique(np.round(pts, 12), axis=0))
@@ -412,7 +494,53 @@ def dot_footprint(point: np.ndarray, width: float, cap: str) -> list[shapely.Geo
 
 def read_svg_bytes(path: str | Path) -> bytes:
     """The bytes of an SVG file; an unreadable file is an :class:`ExemplarError` naming it."""
-    try:
-        return Path(path).read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+    return read_input(path, error=ExemplarError)
+
+
+_EXTERNAL_URL = re.compile(r"url\(\s*(?![\s'\"]*#)[^)]*\)")
+#: Properties whose ``url(…)`` is a paint server: an external one becomes ``none``; elsewhere
+#: (``mask``, ``filter``, ``clip-path``, markers) the property is removed.
+_PAINT = ("fill", "stroke")
+
+
+def neutralise_external(elements: list[ET.Element]) -> list[str]:
+    """Drop from ``elements`` (in place) every reference to outside the file a viewer could fetch.
+
+    An ``href`` that is not ``#id`` (``<image>``, ``<feImage>``, ``<a>``) is removed; a
+    ``url(…)`` that is not ``url(#id)`` makes ``fill``/``stroke`` ``none`` and removes any other
+    property (``mask``, ``filter``, ``clip-path``, ``marker-*``), in attributes and in ``style``;
+    a ``<style>`` sheet with ``@import`` or an external ``url(…)`` is emptied.  Returns one
+    description per dropped reference (``<image id="i"> href``).
+    """
+    dropped: list[str] = []
+    for el in elements:
+        for node in el.iter():
+            if not isinstance(node.tag, str):
+                continue
+            for key in [k for k in node.attrib if local_tag(k) == "href"]:
+                if not node.attrib[key].startswith("#"):
+                    dropped.append(f"{describe(node)} href")
+                    del node.attrib[key]
+            for key in list(node.attrib):
+                value = node.attrib[key]
+                if key == "style":
+                    kept = []
+                    for decl in value.split(";"):
+                        name, _, v = decl.partition(":")
+                        if _EXTERNAL_URL.search(v):
+                            dropped.append(f"{describe(node)} {name.strip()}")
+                            if name.strip() in _PAINT:
+                                kept.append(f"{name.strip()}:none")
+                        else:
+                            kept.append(decl)
+                    node.set("style", ";".join(kept))
+                elif _EXTERNAL_URL.search(value):
+                    dropped.append(f"{describe(node)} {local_tag(key)}")
+                    if local_tag(key) in _PAINT:
+                        node.set(key, "none")
+                    else:
+                        del node.attrib[key]
+            if local_tag(node.tag) == "style" and node.text and ("@import" in node.text or _EXTERNAL_URL.search(node.text)):
+                dropped.append(f"{describe(node)} @import or url()")
+                node.text = ""
+    return dropped

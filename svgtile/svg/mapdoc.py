@@ -11,10 +11,12 @@ import shapely
 
 from svgtile.core.region import FILL_RULES, winding_fill
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 from svgtile.svg.dialect import (
     CONTAINERS,
     INITIAL,
     LENGTH_RE,
+    MAX_ELEMENTS,
     NOT_RENDERED,
     REGION_FLATNESS,
     SHAPES,
@@ -22,7 +24,9 @@ from svgtile.svg.dialect import (
     absolute_length,
     apply_matrix,
     cascade_style,
+    check_tree,
     describe,
+    element_matrix,
     flat_subpaths,
     is_hidden,
     is_svg,
@@ -30,7 +34,6 @@ from svgtile.svg.dialect import (
     local_tag,
     number_attr,
     one_line,
-    parse_matrix,
     shorten,
     tag_ns,
 )
@@ -84,6 +87,7 @@ class SvgShapes:
             raise ExemplarError(f"not a well-formed XML file ({one_line(exc)})", source=source) from None
         if local_tag(root.tag) != "svg" or tag_ns(root.tag) not in ("", SVG_NS):
             raise ExemplarError(f"not an SVG document (root element is <{local_tag(root.tag)}>)", source=source)
+        check_tree(root, source, max_elements=10 * MAX_ELEMENTS)  # a map may be large, never deep
         self.root, self.source = root, source
         self.reader = DocumentReader(root, source)
         self.parents = {c: p for p in root.iter() for c in p}
@@ -91,10 +95,7 @@ class SvgShapes:
     @classmethod
     def read(cls, path: str | Path, *, comments: bool = False) -> SvgShapes:
         path = Path(path)
-        try:
-            data = path.read_bytes()
-        except OSError as exc:
-            raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+        data = read_input(path, error=ExemplarError)
         return cls(data, str(path), comments=comments)
 
     def error(self, message: str) -> ExemplarError:
@@ -117,7 +118,7 @@ class SvgShapes:
         """(3, 3) matrix from ``el``'s own user space to the root's (its transform included)."""
         m = np.eye(3)
         for node in self.chain(el)[1:]:
-            m = m @ parse_matrix(node.attrib.get("transform"))
+            m = m @ element_matrix(node, self.source)
         return m
 
     def style(self, el: ET.Element) -> dict[str, str]:
@@ -147,7 +148,7 @@ class SvgShapes:
         # as in _keep_clear, id="region" is an ordinary element here: it only marks an exemplar's region
         if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
             return None
-        m = m @ parse_matrix(el.attrib.get("transform"))
+        m = m @ element_matrix(el, self.source)
         tag = local_tag(el.tag)
         if tag in SHAPES:
             rings = [pts for pts, _ in flat_subpaths(el, self.source, REGION_FLATNESS)]
@@ -182,7 +183,7 @@ class SvgShapes:
         style = cascade_style(el, parent_style)
         if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
             return
-        m = m @ parse_matrix(el.attrib.get("transform"))
+        m = m @ element_matrix(el, self.source)
         tag = local_tag(el.tag)
         if tag in SHAPES:
             geom = leaf_footprint(el, style, self.source)
@@ -217,7 +218,7 @@ class SvgShapes:
         style = cascade_style(el, parent_style)
         if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
             return
-        m = m @ parse_matrix(el.attrib.get("transform"))
+        m = m @ element_matrix(el, self.source)
         tag = local_tag(el.tag)
         if tag in SHAPES:
             painted = style.get("stroke", INITIAL["stroke"]).strip() not in ("none", "")

@@ -47,6 +47,7 @@ from svgtile.svg.dialect import (
     INITIAL,
     MAX_COORDINATE,
     MAX_COORDINATES,
+    MAX_KINDS,
     MAX_USE_DEPTH,
     ORIGIN_DECIMALS,
     PERIOD_ATTR,
@@ -56,11 +57,14 @@ from svgtile.svg.dialect import (
     SVG_NS,
     apply_matrix,
     cascade_style,
+    check_tree,
     describe,
     drawable_children,
+    element_matrix,
     fill_holes,
     flat_subpaths,
     fmt_number,
+    geometry_error,
     holds_motifs,
     href_of,
     inherited_items,
@@ -71,9 +75,9 @@ from svgtile.svg.dialect import (
     linear_part,
     local_tag,
     matrix_attr,
+    neutralise_external,
     number_attr,
     one_line,
-    parse_matrix,
     polygons_of,
     read_svg_bytes,
     shorten,
@@ -104,10 +108,13 @@ def parse_exemplar(data: bytes | str, *, source: str = "<exemplar>") -> Exemplar
         raise ExemplarError(f"not a well-formed XML file ({one_line(exc)})", source=source) from None
     if local_tag(root.tag) != "svg" or tag_ns(root.tag) not in ("", SVG_NS):
         raise ExemplarError(f"not an SVG document (root element is <{local_tag(root.tag)}>)", source=source)
+    check_tree(root, source)
     try:
         return DocumentReader(root, source).read()
     except RecursionError:
         raise ExemplarError("elements are nested too deeply", source=source) from None
+    except (shapely.errors.GEOSException, OverflowError, FloatingPointError) as exc:
+        raise geometry_error(exc, source) from None
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -240,7 +247,7 @@ class DocumentReader:
             cstyle = cascade_style(child, style)
             if is_hidden(cstyle):
                 continue
-            cm = m @ parse_matrix(child.attrib.get("transform"))
+            cm = m @ element_matrix(child, self.source)
             if tag == "use":
                 inst = self._use_instance(child, cm, cstyle)
                 if inst is not None:
@@ -379,7 +386,7 @@ class DocumentReader:
             return None
         tag = local_tag(el.tag)
         if tag != "symbol":
-            m = m @ parse_matrix(el.attrib.get("transform"))
+            m = m @ element_matrix(el, self.source)
         if tag in SHAPES:
             geom = leaf_footprint(el, est, self.source)
             return None if geom is None else apply_matrix(m, geom)
@@ -415,6 +422,9 @@ class DocumentReader:
             else:
                 k, angle, scale, xy = self._plain_kind(inst, kinds, plain)
             rows.append((k, xy[0], xy[1], angle, scale))
+            if len(kinds) > MAX_KINDS:  # the analysis compares every pair of kinds
+                raise self.error(f"more than {MAX_KINDS} kinds of motif; an exemplar has a few (is it a "
+                                 "drawing or a symbol set rather than an arrangement?)")  # fmt: skip
         table = np.array(rows, dtype=np.float64)
         arrangement = Arrangement(table[:, 0].astype(np.int64), table[:, 1:3], table[:, 3], table[:, 4])
         defs = self._defs(kinds, list(zip(plain.kind, plain.rep, strict=True)))
@@ -500,6 +510,10 @@ class DocumentReader:
                     wrapper.set(key, value)
             wrapper.append(copy.deepcopy(rep.element))
             defs.append(symbol)
+        dropped = neutralise_external(defs)
+        if dropped:
+            self.warn(f"{len(dropped)} reference(s) to outside this file dropped from the copied symbols, so no "
+                      f"viewer fetches them ({'; '.join(dropped[:3])}{' …' if len(dropped) > 3 else ''})")  # fmt: skip
         return defs
 
     # -- region --------------------------------------------------------------------------
@@ -539,7 +553,7 @@ class DocumentReader:
             raise self.error(f"{describe(el)} cannot be the input region (use rect, circle, ellipse, polygon or path)")
         m = np.eye(3)
         for node in self._ancestors(el):
-            m = m @ parse_matrix(node.attrib.get("transform"))
+            m = m @ element_matrix(node, self.source)
         rings = [
             shapely.make_valid(shapely.Polygon(p))
             for p, _ in flat_subpaths(el, self.source, REGION_FLATNESS)

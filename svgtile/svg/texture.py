@@ -33,6 +33,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.errors import ExemplarError, RegionError
+from svgtile.files import MAX_TEXTURE_BYTES, read_input
 from svgtile.svg.dialect import SVG_NS, XLINK_NS, drawable_children
 from svgtile.svg.reader import DocumentReader, read_exemplar
 
@@ -67,8 +68,8 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
     """
     root = own = None
     try:
-        data = Path(path).read_bytes()
-    except OSError:
+        data = read_input(path, error=ExemplarError, limit=MAX_TEXTURE_BYTES)
+    except ExemplarError:
         data = None  # the exemplar reader reports it
     cut = _own_use_block(data) if data is not None else None
     if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines

@@ -24,8 +24,10 @@ from svgtile.svg.dialect import (
     absolute_length,
     apply_matrix,
     cascade_style,
+    check_tree,
     describe,
     dot_footprint,
+    element_matrix,
     fill_holes,
     flat_subpaths,
     fmt_number,
@@ -35,7 +37,6 @@ from svgtile.svg.dialect import (
     local_tag,
     number_attr,
     one_line,
-    parse_matrix,
     read_svg_bytes,
     tag_ns,
     translation,
@@ -117,6 +118,7 @@ def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
         raise ExemplarError(f"not a well-formed XML file ({one_line(exc)})", source=source) from None
     if local_tag(root.tag) != "svg" or tag_ns(root.tag) not in ("", SVG_NS):
         raise ExemplarError(f"not an SVG document (root element is <{local_tag(root.tag)}>)", source=source)
+    check_tree(root, source)
     reader = DocumentReader(root, source)
     reader.refuse_external_references()
     box = _tile_box(root, source)
@@ -162,6 +164,11 @@ def _tile_box(root: ET.Element, source: str) -> tuple[float, float, float, float
     return (x, y, w, h)
 
 
+#: The most elements a tile may draw, each ``<use>`` expansion counted: the largest real tile of
+#: ../shared/data (osm-carto reef.svg) has 6,727 elements, some 30,000 when expanded.
+MAX_EXPANDED = 100_000
+
+
 class _TileWalk:
     """Collects the pieces of a tile (see :func:`parse_tile`)."""
 
@@ -178,16 +185,21 @@ class _TileWalk:
         self.frames: list[str] = []
         self.filled_frame = False
         self.elements = 0
+        self.visited = 0  # elements walked, each <use> expansion counted again
+        self.local: dict[tuple, list] = {}  # (element, paint) -> [(points, closed, footprint)], own frame
 
     def visit(self, el: ET.Element, style: dict[str, str], m: np.ndarray, stack: tuple[str, ...]) -> None:
         for child in el:
             if not is_rendered(child):
                 continue
+            self.visited += 1
+            if self.visited > MAX_EXPANDED:  # <use> fan-out: 30 levels of two make a billion
+                raise self.reader.error(f"its <use> elements expand to more than {MAX_EXPANDED:,} elements")
             tag = local_tag(child.tag)
             cstyle = cascade_style(child, style)
             if is_hidden(cstyle):
                 continue
-            cm = m @ parse_matrix(child.attrib.get("transform"))
+            cm = m @ element_matrix(child, self.reader.source)
             if "clip-path" in cstyle or "mask" in cstyle:
                 self.reader.warn(f"clip paths and masks are ignored ({describe(child)}); the tile's edge is the clip")
             if tag in SHAPES:
@@ -224,15 +236,15 @@ class _TileWalk:
         stroked = is_painted(style.get("stroke", INITIAL["stroke"])) and width > 0
         if not (filled or stroked):
             return  # draws nothing (e.g. a fill:none frame or mapnik_workaround rect)
-        subpaths = flat_subpaths(el, self.reader.source)
-        if not subpaths:
-            return
         cap = CAPS.get(style.get("stroke-linecap", "butt"), "flat")
         join = JOINS.get(style.get("stroke-linejoin", "miter"), "mitre")
         limit = max(number_attr(style.get("stroke-miterlimit"), 4.0), 1.0)
+        key = (el, filled, width if stroked else 0.0, cap, join, limit)
+        if key not in self.local:  # a <use>d shape is measured once, however often it is drawn
+            self.local[key] = [(pts, closed, _subpath_footprint(pts, closed, *key[1:]))
+                               for pts, closed in flat_subpaths(el, self.reader.source)]  # fmt: skip
         geoms, kept = [], []
-        for pts, closed in subpaths:
-            geom = _subpath_footprint(pts, closed, filled, width if stroked else 0.0, cap, join, limit)
+        for pts, closed, geom in self.local[key]:
             if geom is not None:
                 geoms.append(apply_matrix(m, geom))
                 kept.append((pts @ m[:2, :2].T + m[:2, 2], closed))

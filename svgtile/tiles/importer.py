@@ -43,6 +43,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from svgtile.errors import ExemplarError
+from svgtile.files import read_input
 from svgtile.svg.kinds import match_kinds
 from svgtile.svg.tilepieces import TilePieces, parse_tile
 from svgtile.tiles.repeat import radii, repeat_groups, symmetry_orders
@@ -73,6 +74,10 @@ TOUCH = 2e-4
 #: area): FGDC 626 draws two pieces 0.014 units apart (1.7 % of the smaller), which the redrawn
 #: symbols then made overlap.
 TOUCH_SIZE = 0.05
+#: Pairs of pieces (on the 3 × 3 block) whose boxes come within joining reach, at most: the real
+#: tiles of ../shared/data have at most some 250,000 (FGDC 661: 3,137 motifs drawn over each other),
+#: and the grouping costs about 50 µs a pair.
+MAX_NEAR_PIECES = 1_000_000
 #: Coordinates are compared at this many decimals when dropping duplicate pieces (relative to the
 #: tile size, 1e-5 of it).
 DUPLICATE_DECIMALS = 5
@@ -137,10 +142,7 @@ def import_tile(path: str | Path) -> ImportedTile:
         The file cannot be read as a tile.
     """
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise ExemplarError(f"cannot read file ({exc.strerror or exc})", source=str(path)) from None
+    data = read_input(path, error=ExemplarError)
     tile = parse_tile(data, source=str(path))
     try:
         return import_pieces(tile)
@@ -194,7 +196,8 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     # subpaths of one element (an icon drawn as one <path>) in one copy, and the spacing of pieces
     element = np.where(_icons(tile, idx)[base], tile.element[idx][base] * 9 + copy, -1 - np.arange(len(base)))
     spacing = float(np.sqrt(w * h / n))
-    comp = _components(block, lines, scale=float(max(w, h)), element=element, near=ELEMENT_JOIN * spacing)
+    comp = _components(block, lines, scale=float(max(w, h)), element=element, near=ELEMENT_JOIN * spacing,
+                       source=tile.source)
     _refuse_continuous(tile, idx, comp, base, copy)
 
     # 4. one copy per part: the component whose lowest piece lies in the central tile
@@ -291,7 +294,7 @@ def _icons(tile: TilePieces, idx: np.ndarray) -> np.ndarray:
     return (span <= ICON_SPAN).all(axis=1)[el[idx]]
 
 
-def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, element: np.ndarray | None = None,
+def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, source: str, element: np.ndarray | None = None,
                 near: float = 0.0) -> np.ndarray:  # fmt: skip
     """(m,) component label of each footprint: joined when they touch or overlap (gap below
     :data:`TOUCH` × ``scale`` or :data:`TOUCH_SIZE` × the smaller one's size), when they are a pair of parallel strokes (:meth:`_Lines.paired`),
@@ -299,6 +302,11 @@ def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, element: np.n
     touch = TOUCH * scale
     reach = max(touch, JOIN_RATIO * float(lines.length.max(initial=0.0)), near)
     tree = shapely.STRtree(geoms)
+    b = shapely.bounds(geoms)
+    boxed = tree.query(shapely.box(b[:, 0] - reach, b[:, 1] - reach, b[:, 2] + reach, b[:, 3] + reach))
+    if boxed.shape[1] > MAX_NEAR_PIECES:  # boxes only: cheap, and an upper bound of the work below
+        raise TileRefused(f"not discrete motifs: its pieces are drawn over each other throughout "
+                          f"({boxed.shape[1] // 9:,} near pairs per tile)", source=source)  # fmt: skip
     i, j = tree.query(geoms, predicate="dwithin", distance=reach)
     keep = i < j
     i, j = i[keep], j[keep]
