@@ -1,9 +1,10 @@
 """Import every pattern tile of the shared symbol sets and write docs/patterns.md (issue 4).
 
 For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), then a texture of
-3 × 3 tile sizes synthesized with the patch engine (seed 1) and its figures from
-:func:`svgtile.metrics.score` (likeness L among them: on a 3 × 3 texture, one tile of interior,
-a rough figure).  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+3 × 3 tile sizes synthesized with the default engine, ``auto`` (seed 1; the engine it chose is in
+the table), and its figures from :func:`svgtile.metrics.score` (likeness L among them: on a
+3 × 3 texture, one tile of interior, a rough figure).  A bedded or brick tile imported as cells
+(the cellular engine) reports its cells; the motif figures do not apply to it.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
 (the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
 
 Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
@@ -49,7 +50,13 @@ def row(path: Path, names: dict[str, str]) -> dict:
     stats = analyze(ex)
     x0, y0, w, h = imported.box
     region = Region.rectangle(TILES * w, TILES * h, x0, y0)
-    arr = synthesize(ex, region, "patch", seed=SEED, stats=stats).arrangement
+    made = synthesize(ex, region, "auto", seed=SEED, stats=stats)
+    arr = made.arrangement
+    out.update(engine=made.engine)
+    if made.cells is not None:
+        out.update(motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
+                   cells=len(made.cells.cells))  # fmt: skip
+        return out
     figures = score(ex, stats, arr, region)
     out.update(
         motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
@@ -66,12 +73,17 @@ def fmt(v, digits=2) -> str:
 
 def table(rows: list[dict]) -> list[str]:
     lines = [
-        "| pattern | name | motifs | kinds | cut & reassembled | result | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage | likeness L |",
-        "|---|---|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|",
+        "| pattern | name | motifs | kinds | cut & reassembled | result | engine | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage | likeness L |",
+        "|---|---|--:|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|",
     ]
     for r in rows:
         if "refused" in r:
-            lines.append(f"| {r['pattern']} | {r['name']} | | | | refused: {r['refused']} | | | | | | | |")
+            lines.append(f"| {r['pattern']} | {r['name']} | | | | refused: {r['refused']} | | | | | | | | |")
+        elif "cells" in r:
+            lines.append(
+                f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted as cells | "
+                f"{r['engine']} | {r['texture']} in {r['cells']} cells | | | | | | |"
+            )
         else:
             lines.append(
                 f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted | "
@@ -91,7 +103,7 @@ def main() -> None:
         names = fgdc_names if "FGDC" in title else equinor
         rows = [row(p, names) for p in files]
         accepted = [r for r in rows if "refused" not in r]
-        clean = [r for r in accepted if r["overlaps"] == 0 and r["violators"] == 0]
+        clean = [r for r in accepted if r.get("overlaps", 0) == 0 and r.get("violators", 0) == 0]
         summary.append(
             f"| {title} | {len(rows)} | {len(accepted)} | {len(clean)} | {len(rows) - len(accepted)} |"
         )
