@@ -99,7 +99,7 @@ Part = tuple[Exemplar, Arrangement, "str | None", "str | None"]
 def filled_exemplars(result: MapFill) -> dict[str, Exemplar]:
     """The exemplar of each class at least one region of a map fill was filled with, by class
     (sorted), each loaded once: what :func:`map_parts` and :func:`write_style` need."""
-    used = sorted({r.cls for r, arr in zip(result.regions, result.results, strict=True) if arr is not None})
+    used = sorted({r.cls for r, ok in zip(result.regions, result.filled, strict=True) if ok})
     return {cls: load_exemplar(str(result.styles.classes[cls].exemplar))[0] for cls in used}
 
 

@@ -18,7 +18,7 @@ from svgtile.apps.gisout import (
 )
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
 from svgtile.apps.mapfill import default_jobs, fill_map, read_styles
-from svgtile.apps.mapwrite import BandWriter, class_prefix, write_map_svg
+from svgtile.apps.mapwrite import BandWriter, class_prefix, write_geojson, write_map_svg
 from svgtile.cli.common import (
     POINT_FORMATS,
     Stderr,
@@ -118,7 +118,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         seed = 0  # every class has its own seed: the run's is never used
     check_scheduler(scheduler)
     bar = sys.stderr.isatty() and output != "-"
-    if kind in POINT_FORMATS:  # GIS layers are written by GDAL at the end, from every region's motifs
+    if kind in POINT_FORMATS and (kind != "geojson" or crs is not None):  # GDAL writes the layer at the end
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
@@ -127,7 +127,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
         if with_style:
             write_style(output, exemplars, protect=inputs)
-    else:  # an SVG map is streamed: each band spooled as it is done, the file assembled in world order
+    else:  # SVG (and GeoJSON with no CRS) is streamed: bands spooled as they are done, assembled in world order
         folder = None if output == "-" else str(Path(output).resolve().parent)
         with Spool(folder) as spool:
             bands = BandWriter(spool, kind)
@@ -136,9 +136,14 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
                               sink=_sink(bands, kind, styles), bar=bar)  # fmt: skip
             Stderr.clear()
             _warn_about(result, output)
-            params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
-                      "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
-            write_map_svg(output, result, bands, params, protect=inputs)
+            if kind == "geojson":
+                write_geojson(output, [n for n, ok in enumerate(result.filled) if ok], bands, protect=inputs)
+                if with_style:
+                    write_style(output, filled_exemplars(result), protect=inputs)
+            else:
+                params = {"map": Path(map_file).name, "styles": Path(styles_file).name, "seed": used_text,
+                          "regions": len(result.regions), "failed": len(result.errors)}  # fmt: skip
+                write_map_svg(output, result, bands, params, protect=inputs)
     if result.errors:
         tiles = any(ident not in {r.ident for r in result.regions} for ident in result.errors)
         what = f"{len(result.errors)} regions or tiles" if tiles else f"{len(result.errors)} of {len(result.regions)} regions"
