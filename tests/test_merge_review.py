@@ -1,0 +1,43 @@
+"""Combinations of options that the merges of issues 11–19 brought together (merge review)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from test_cellular_import import bricks
+
+from svgtile.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[1]
+GRAVEL = ROOT / "exemplars" / "gravel.svg"
+
+
+def test_a_cellular_texture_keeps_its_cells_with_scheduler_or_tile_size(tmp_path, capsys):
+    # the tiled writers draw motifs only: the cells must not be dropped on the way
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    whole = tmp_path / "whole.svg"
+    assert main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(whole)]) == 0
+    assert whole.read_text().count('class="svgtile-face"') > 10
+    for n, extra in enumerate([("--scheduler", "local"), ("--tile-size", "30")]):
+        out = tmp_path / f"tiled{n}.svg"
+        assert main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(out), *extra]) == 0
+        assert out.read_bytes() == whole.read_bytes()
+        assert "draws cells" in capsys.readouterr().err
+
+
+def test_with_style_is_written_by_a_tiled_run_and_refused_for_cells(tmp_path, capsys):
+    out = tmp_path / "t.geojson"
+    args = ["synth", str(GRAVEL), "--engine", "tile", "--size", "60x60", "--seed", "1", "--with-style"]
+    assert main([*args, "-o", str(out), "--tile-size", "30"]) == 0
+    assert out.exists() and out.with_suffix(".qml").exists()
+    assert any(out.with_name("t-symbols").iterdir())
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    cells = tmp_path / "c.geojson"
+    capsys.readouterr()
+    rc = main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "--engine", "cellular", "--with-style",
+              "-o", str(cells)])
+    err = capsys.readouterr().err
+    assert rc != 0 and not cells.exists() and "--with-style" in err and err.count("\n") == 1
+
