@@ -41,3 +41,11 @@ def test_with_style_is_written_by_a_tiled_run_and_refused_for_cells(tmp_path, ca
     err = capsys.readouterr().err
     assert rc != 0 and not cells.exists() and "--with-style" in err and err.count("\n") == 1
 
+
+def test_a_cellular_exemplar_without_motifs_gives_no_warnings(tmp_path, capsys):
+    # the crowding check (issue 16) took the median of no radii for a brick tile of lines only (issue 15)
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    out = tmp_path / "out.svg"
+    assert main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(out)]) == 0
+    assert "warning" not in capsys.readouterr().err
