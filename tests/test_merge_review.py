@@ -49,3 +49,28 @@ def test_a_cellular_exemplar_without_motifs_gives_no_warnings(tmp_path, capsys):
     out = tmp_path / "out.svg"
     assert main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(out)]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_refine_crosses_no_barrier_and_stays_in_the_growth_area():
+    # --refine (issue 14) moved growth's motifs (issue 13) across a --barrier: seed 1 put one on it
+    import numpy as np
+    import shapely
+
+    from svgtile import analyze, read_exemplar
+    from svgtile.core.footprint import world_footprints
+    from svgtile.core.region import Region
+    from svgtile.engines import Controls, synthesize
+
+    ex = read_exemplar(GRAVEL)
+    st = analyze(ex)
+    bar = shapely.LineString([(40, -5), (42, 105)])
+    spray = shapely.Point(40, 40).buffer(30)
+    for controls, inside in ((Controls(barriers=bar), None), (Controls(grow_within=spray), spray)):
+        runs = [synthesize(ex, Region.rectangle(80, 80), "growth", seed=1, stats=st, controls=controls, refine=r)
+                for r in (0, 3)]  # fmt: skip
+        plain, refined = (r.arrangement for r in runs)
+        assert len(refined) == len(plain) and not np.array_equal(refined.xy, plain.xy)  # refine did move motifs
+        if inside is None:
+            assert not shapely.intersects(world_footprints(refined, ex.prototypes), bar).any()
+        else:
+            assert shapely.contains_xy(inside, refined.xy[:, 0], refined.xy[:, 1]).all()

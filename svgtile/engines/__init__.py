@@ -24,6 +24,7 @@ from collections.abc import Mapping
 from importlib.metadata import entry_points
 
 import numpy as np
+import shapely
 
 from svgtile.analysis.stats import Stats, analyze
 from svgtile.core import cellrng
@@ -218,12 +219,29 @@ def synthesize(
     else:
         arr = engine.place(ctx, p)
     arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
-    if refine:
-        arr, _ = _refine(arr, exemplar, stats, region, boundary, iterations=refine, key=ctx.key,
+    if refine and len(arr) >= 2:  # (fewer: nothing to refine)
+        arr, _ = _refine(arr, exemplar, stats, _steered(region, controls), boundary, iterations=refine, key=ctx.key,
                          flow=controls.flow, progress=report)  # fmt: skip
     arr = reading_order(arr)
     report("done", 1.0)
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine=refine, cells=cells)
+
+
+def _steered(region: Region, controls: Controls) -> Region:
+    """``region`` with the map controls' no-go areas as avoid zones, for ``refine``: its moves
+    then cross no ``--barrier`` (a line, grown by a hair to have an area) and leave no
+    ``--grow-within`` area, as the engine's motifs do not (a move that would is undone)."""
+    zones = [] if region.avoid is None else [region.avoid]
+    x0, y0, x1, y1 = region.bounds
+    hair = 1e-9 * max(x1 - x0, y1 - y0)
+    if controls.barriers is not None:
+        zones.append(shapely.buffer(controls.barriers, hair))
+    if controls.grow_within is not None:
+        big = max(x1 - x0, y1 - y0)
+        zones.append(shapely.difference(shapely.box(x0 - big, y0 - big, x1 + big, y1 + big), controls.grow_within))
+    if len(zones) == (region.avoid is not None):
+        return region
+    return Region(region.shape, shapely.union_all(zones))
 
 
 __all__ = ["AUTO", "ENGINES", "CellularParams", "Choice", "Context", "Controls", "Engine", "EngineParams",
