@@ -74,3 +74,13 @@ def test_refine_crosses_no_barrier_and_stays_in_the_growth_area():
             assert not shapely.intersects(world_footprints(refined, ex.prototypes), bar).any()
         else:
             assert shapely.contains_xy(inside, refined.xy[:, 0], refined.xy[:, 1]).all()
+
+
+def test_a_refined_tiled_run_says_why_it_runs_whole(tmp_path, capsys):
+    # the tile engine is tile-exact: it is --refine that makes the run whole
+    out = tmp_path / "r.svg"
+    args = ["synth", str(GRAVEL), "--engine", "tile", "--size", "60x60", "--seed", "1", "--tile-size", "30"]
+    assert main([*args, "--refine", "1", "-o", str(out)]) == 0
+    assert "--refine 1 is not tile-exact" in capsys.readouterr().err
+    assert main([*args, "-o", str(tmp_path / "t.svg")]) == 0
+    assert "not tile-exact" not in capsys.readouterr().err

@@ -159,8 +159,8 @@ def _tiled(output, kind, ex, stats, region, engine, *, seed, boundary, params, r
 
     def on_plan(tiles) -> None:
         if tile_size is not None and len(tiles) == 1 and tiles[0].whole:
-            click.echo(f"svgtile: engine {engine!r} is not tile-exact (its reach is unbounded): running the region whole",
-                       err=True)  # fmt: skip
+            why = f"--refine {refine} is" if refine else f"engine {engine!r} is"
+            click.echo(f"svgtile: {why} not tile-exact (its reach is unbounded): running the region whole", err=True)
 
     run = synthesize_to_file(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params,
                              refine=refine, tile_size=tile_size, where={"exemplar": Path(exemplar_path).name, **where_meta},
