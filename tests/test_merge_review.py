@@ -84,3 +84,17 @@ def test_a_refined_tiled_run_says_why_it_runs_whole(tmp_path, capsys):
     assert "--refine 1 is not tile-exact" in capsys.readouterr().err
     assert main([*args, "-o", str(tmp_path / "t.svg")]) == 0
     assert "not tile-exact" not in capsys.readouterr().err
+
+
+def test_a_label_map_is_an_input_the_output_may_not_overwrite(tmp_path, capsys):
+    # the input guard (issue 16) read option values as paths, but --label (issue 15) is NAME=MAP.svg#ID
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    m = tmp_path / "map.svg"
+    m.write_text('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 60 60"><path id="river" d="M0 30 H60" '
+                 'fill="none" stroke="#00f"/></svg>')  # fmt: skip
+    before = m.read_bytes()
+    rc = main(["synth", str(src), "--import", "--engine", "cellular", "--size", "60x60", "--seed", "1",
+               "--label", f"edge={m}#river", "-o", str(m)])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 1 and m.read_bytes() == before and "refusing to overwrite an input file (--label" in err
