@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from test_cellular_import import bricks
 
 from svgtile.cli.main import main
@@ -98,3 +99,17 @@ def test_a_label_map_is_an_input_the_output_may_not_overwrite(tmp_path, capsys):
                "--label", f"edge={m}#river", "-o", str(m)])  # fmt: skip
     err = capsys.readouterr().err
     assert rc == 1 and m.read_bytes() == before and "refusing to overwrite an input file (--label" in err
+
+
+@pytest.mark.parametrize("extra", [("--engine", "patch"), ("--engine", "growth"), ("--engine", "tile", "--tile-size", "30")])
+def test_a_motif_engine_refuses_a_pattern_of_cells_only_in_one_line(tmp_path, capsys, extra):
+    # issue 15 lets an imported brick tile have no motif; the motif engines crashed on it (exit 70)
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    ex = tmp_path / "ex.svg"
+    assert main(["import", str(src), "-o", str(ex)]) == 0
+    out = tmp_path / "out.svg"
+    capsys.readouterr()
+    rc = main(["synth", str(ex), "--size", "60x60", "--seed", "1", "-o", str(out), *extra])
+    err = capsys.readouterr().err
+    assert rc == 1 and not out.exists() and err.count("\n") == 1 and "use --engine cellular" in err

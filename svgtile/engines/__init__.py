@@ -50,7 +50,7 @@ from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
-from svgtile.errors import ParameterError
+from svgtile.errors import ExemplarError, ParameterError
 
 #: The entry-point group plug-in engines register under.
 ENTRY_POINT_GROUP = "svgtile.engines"
@@ -196,6 +196,7 @@ def synthesize(
         picked = choose(exemplar, stats, available=steerable(ENGINES, given))
         engine, params = picked.engine, with_choice(picked, None if isinstance(params, EngineParams) else params)
     engine = get_engine(engine) if isinstance(engine, str) else engine
+    check_motifs(exemplar, engine)
     p = make_params(engine, params)
     if boundary not in BOUNDARY_MODES:
         raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}")
@@ -227,6 +228,19 @@ def synthesize(
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine=refine, cells=cells)
 
 
+def check_motifs(exemplar: Exemplar, engine: Engine) -> None:
+    """Refuse an engine that places motifs for an exemplar with none (an imported pattern of
+    cells and lines only, which the cellular engine draws), before any work.
+
+    Raises
+    ------
+    ExemplarError
+    """
+    if len(exemplar.motifs) == 0 and not hasattr(engine, "place_cells"):
+        raise ExemplarError(f"engine {engine.name!r} places motifs, and this pattern of cells has none: "
+                            "use --engine cellular (or auto)", source=exemplar.source)  # fmt: skip
+
+
 def _steered(region: Region, controls: Controls) -> Region:
     """``region`` with the map controls' no-go areas as avoid zones, for ``refine``: its moves
     then cross no ``--barrier`` (a line, grown by a hair to have an area) and leave no
@@ -245,5 +259,5 @@ def _steered(region: Region, controls: Controls) -> Region:
 
 
 __all__ = ["AUTO", "ENGINES", "CellularParams", "Choice", "Context", "Controls", "Engine", "EngineParams",
-           "GrowthParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "choose", "engines_with",
-           "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
+           "GrowthParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "check_motifs",
+           "choose", "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
