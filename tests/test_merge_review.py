@@ -113,3 +113,13 @@ def test_a_motif_engine_refuses_a_pattern_of_cells_only_in_one_line(tmp_path, ca
     rc = main(["synth", str(ex), "--size", "60x60", "--seed", "1", "-o", str(out), *extra])
     err = capsys.readouterr().err
     assert rc == 1 and not out.exists() and err.count("\n") == 1 and "use --engine cellular" in err
+
+
+def test_analyze_rings_of_a_pattern_of_cells_only_is_one_line(tmp_path, capsys):
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    assert main(["analyze", str(src), "--import"]) == 0
+    capsys.readouterr()
+    assert main(["analyze", str(src), "--import", "--rings"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--rings shows the rings of motifs" in err
