@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -123,3 +126,33 @@ def test_analyze_rings_of_a_pattern_of_cells_only_is_one_line(tmp_path, capsys):
     assert main(["analyze", str(src), "--import", "--rings"]) == 1
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--rings shows the rings of motifs" in err
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+def test_a_tree_description_is_read_with_the_input_bound(tmp_path, capsys):
+    # --tree (issue 15) read its file whole and unchecked; inputs are read by files.read_input (issue 16)
+    ex = tmp_path / "ex.svg"
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    assert main(["import", str(src), "-o", str(ex)]) == 0
+    fifo = tmp_path / "tree.toml"
+    os.mkfifo(fifo)
+
+    def feed() -> None:  # a writer for as long as a reader might come (else a read would block)
+        end = time.monotonic() + 5
+        while time.monotonic() < end:
+            try:
+                fd = os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)
+            except OSError:
+                time.sleep(0.05)
+                continue
+            os.write(fd, b"x = [")
+            os.close(fd)
+            return
+
+    threading.Thread(target=feed, daemon=True).start()
+    capsys.readouterr()
+    rc = main(["synth", str(ex), "--engine", "cellular", "--size", "60x60", "--seed", "1", "--tree", str(fifo),
+               "-o", str(tmp_path / "out.svg")])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 1 and "not a regular file" in err and err.count("\n") == 1
