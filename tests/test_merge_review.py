@@ -156,3 +156,16 @@ def test_a_tree_description_is_read_with_the_input_bound(tmp_path, capsys):
                "-o", str(tmp_path / "out.svg")])  # fmt: skip
     err = capsys.readouterr().err
     assert rc == 1 and "not a regular file" in err and err.count("\n") == 1
+
+
+def test_score_says_a_cellular_texture_is_not_measured(tmp_path, capsys):
+    # score (issue 12.1) read a cellular texture's cells (issue 15) as motifs of unknown kinds
+    src = tmp_path / "tile.svg"
+    src.write_text(bricks())
+    ex, out = tmp_path / "ex.svg", tmp_path / "out.svg"
+    assert main(["import", str(src), "-o", str(ex)]) == 0
+    assert main(["synth", str(ex), "--size", "60x60", "--seed", "1", "-o", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["score", str(ex), str(out)]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a cellular texture" in err
