@@ -16,7 +16,7 @@ from pyogrio import raw
 from svgtile.apps import qgis as qg
 from svgtile.apps.load import load_exemplar
 from svgtile.cli.main import main
-from svgtile.engines import public_params
+from svgtile.engines import ENGINES, engines_with, public_params
 from svgtile.errors import RegionError
 from svgtile.gis import geojson, layers, symbols
 
@@ -268,7 +268,11 @@ def test_qgis_install_records_python_and_every_engine_parameter(tmp_path, capsys
     target = profile / "python" / "plugins" / "svgtile_qgis"
     assert {p.name for p in target.iterdir()} >= {*qg.PLUGIN_FILES, qg.CONFIG_NAME}
     config = json.loads((target / qg.CONFIG_NAME).read_text())
-    assert [p["name"] for p in config["params"]] == list(public_params())
+    # every engine but those of cells (cellular: the plugin writes points), and their parameters
+    cells = {n for n, e in ENGINES.items() if hasattr(e, "place_cells")}
+    assert cells and set(config["engines"]) == set(ENGINES) - cells
+    assert [p["name"] for p in config["params"]] == [n for n in public_params() if set(engines_with(n)) - cells]
+    assert "tree" not in [p["name"] for p in config["params"]]
     assert "patch" in config["engines"] and "inside" in config["boundary_modes"]
     ini = (profile / "QGIS" / "QGIS3.ini").read_text()
     assert "x=1" in ini and "other=true" in ini and "svgtile_qgis=true" in ini

@@ -57,6 +57,8 @@ def check_crowding(exemplar: Exemplar, *, imported: bool = False) -> None:
     """
     arr, protos = exemplar.motifs, exemplar.prototypes
     n = len(arr)
+    if n < 2:  # nothing to crowd: a cellular exemplar (svgtile import of a bedded tile) may have no motif
+        return
     radius = motif_radius(arr, protos)
     what = ("its motifs are drawn over each other; it is not an arrangement svgtile can measure" if imported else
             "is it a pattern tile or a drawing? Import it first: 'svgtile import FILE -o exemplar.svg', "

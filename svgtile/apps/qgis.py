@@ -74,14 +74,17 @@ def plugin_config(python: str | None = None) -> dict:
     from svgtile import __version__
 
     type_names = {float: "float", int: "int", bool: "bool", str: "str"}
+    # the plugin writes motif points: an engine of cells (cellular) is not offered, nor its parameters
+    offered = [e.name for e in ENGINES.values() if not hasattr(e, "place_cells")]
     params = [
         {"name": p.name, "type": type_names[p.type], "default": p.default, "help": p.help, "option": p.option,
          "choices": list(p.choices) if p.choices else None, "interval": list(p.interval) if p.interval else None,
-         "engines": engines_with(p.name)}
+         "engines": [e for e in engines_with(p.name) if e in offered]}
         for p in public_params().values()
+        if any(e in offered for e in engines_with(p.name))
     ]  # fmt: skip
     return {"python": python or sys.executable, "svgtile": __version__, "boundary_modes": list(BOUNDARY_MODES),
-            "engines": {e.name: e.summary for e in ENGINES.values()}, "params": params}  # fmt: skip
+            "engines": {n: ENGINES[n].summary for n in offered}, "params": params}  # fmt: skip
 
 
 def enable_plugin(profile: Path) -> None:

@@ -13,6 +13,7 @@ from svgtile.cli.common import json_safe, load
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines import ENGINES
 from svgtile.engines.choose import choose
+from svgtile.errors import ExemplarError
 
 
 @click.command(name="analyze")
@@ -29,6 +30,9 @@ def analyze_cmd(exemplar, as_json, show_rings, png, as_tile):
     ``--engine auto`` picks for it."""
     ex, stats = load(exemplar, as_tile=as_tile)
     report = stats_report(ex, stats)
+    if show_rings and len(ex.motifs) == 0:
+        raise ExemplarError("--rings shows the rings of motifs, and this pattern of cells has none",
+                            source=exemplar)  # fmt: skip
     if show_rings:
         from svgtile.apps.rings import rings_report
 

@@ -86,19 +86,31 @@ def command_paths(ctx: click.Context) -> tuple[list[tuple[str, str]], list[str]]
             if name in OUTPUT_PARAMS:
                 outputs.append(v)
                 continue
-            path = v.partition("#")[0] if "#" in v and not Path(v).exists() else v
-            try:
-                if not Path(path).is_file():
+            for spec in _named_specs(v):
+                path = spec.partition("#")[0] if "#" in spec and not Path(spec).exists() else spec
+                try:
+                    if not Path(path).is_file():
+                        continue
+                except (OSError, ValueError):  # a symlink loop, a NUL byte: its reader will say
                     continue
-            except (OSError, ValueError):  # a symlink loop, a NUL byte: its reader will say
-                continue
-            param = options.get(name)
-            if isinstance(param, click.Argument):
-                what = f"the {name.split('_')[0]}" if len(values) == 1 else f"the input {v}"
-            else:
-                what = f"an input file ({param.opts[-1] if param else name} {v})"
-            inputs.append((path, what))
+                param = options.get(name)
+                if isinstance(param, click.Argument):
+                    what = f"the {name.split('_')[0]}" if len(values) == 1 else f"the input {v}"
+                else:
+                    what = f"an input file ({param.opts[-1] if param else name} {v})"
+                inputs.append((path, what))
     return inputs, outputs
+
+
+def _named_specs(value: str) -> list[str]:
+    """The file specs in an option value: the value itself, or those of ``NAME=SPEC[,NAME=SPEC…]``
+    (``--label edge=map.svg#river``) when it names no file as a whole."""
+    try:
+        if "=" not in value or Path(value).exists():
+            return [value]
+    except (OSError, ValueError):
+        return [value]
+    return [value, *(item.partition("=")[2].strip() for item in value.split(",") if "=" in item)]
 
 
 def load(path: str, *, as_tile: bool = False) -> tuple[Exemplar, Stats]:

@@ -32,7 +32,7 @@ from svgtile.cli.common import (
     warn,
 )
 from svgtile.core.region import BOUNDARY_MODES
-from svgtile.engines import synthesize
+from svgtile.engines import get_engine, synthesize
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
@@ -108,12 +108,22 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
+    cellular = hasattr(get_engine(engine), "place_cells")
+    if cellular and with_style:
+        raise ParameterError(f"{output}: --with-style styles motif points, not a cellular texture's cells")
+    if (scheduler is not None or tile_size is not None) and cellular:
+        # the tiled writers draw motifs only, and a cellular engine is not tile-exact anyway
+        click.echo(f"svgtile: engine {engine!r} draws cells, which tiles cannot carry: running the region whole here",
+                   err=True)  # fmt: skip
+        scheduler = tile_size = None
     if scheduler is not None or tile_size is not None:
         if controls.given():
             raise ParameterError("--flow, --barrier and --grow-within do not go with --scheduler or --tile-size yet")
         _tiled(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params, refine=refine,
                tile_size=tile_size, scheduler=scheduler or "local", jobs=jobs, where=where, region_spec=region_spec,
                exemplar_path=exemplar, size=size, crs=crs, protect=inputs)  # fmt: skip
+        if with_style:
+            write_style(output, {None: ex}, protect=inputs)
         return
     result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, progress=progress_line(),
                         params=params, refine=refine, controls=controls)  # fmt: skip
@@ -149,8 +159,8 @@ def _tiled(output, kind, ex, stats, region, engine, *, seed, boundary, params, r
 
     def on_plan(tiles) -> None:
         if tile_size is not None and len(tiles) == 1 and tiles[0].whole:
-            click.echo(f"svgtile: engine {engine!r} is not tile-exact (its reach is unbounded): running the region whole",
-                       err=True)  # fmt: skip
+            why = f"--refine {refine} is" if refine else f"engine {engine!r} is"
+            click.echo(f"svgtile: {why} not tile-exact (its reach is unbounded): running the region whole", err=True)
 
     run = synthesize_to_file(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params,
                              refine=refine, tile_size=tile_size, where={"exemplar": Path(exemplar_path).name, **where_meta},

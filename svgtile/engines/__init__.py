@@ -24,6 +24,7 @@ from collections.abc import Mapping
 from importlib.metadata import entry_points
 
 import numpy as np
+import shapely
 
 from svgtile.analysis.stats import Stats, analyze
 from svgtile.core import cellrng
@@ -49,7 +50,7 @@ from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
-from svgtile.errors import ParameterError
+from svgtile.errors import ExemplarError, ParameterError
 
 #: The entry-point group plug-in engines register under.
 ENTRY_POINT_GROUP = "svgtile.engines"
@@ -195,6 +196,7 @@ def synthesize(
         picked = choose(exemplar, stats, available=steerable(ENGINES, given))
         engine, params = picked.engine, with_choice(picked, None if isinstance(params, EngineParams) else params)
     engine = get_engine(engine) if isinstance(engine, str) else engine
+    check_motifs(exemplar, engine)
     p = make_params(engine, params)
     if boundary not in BOUNDARY_MODES:
         raise ParameterError(f"--boundary must be one of {', '.join(BOUNDARY_MODES)}, not {boundary!r}")
@@ -218,14 +220,44 @@ def synthesize(
     else:
         arr = engine.place(ctx, p)
     arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
-    if refine:
-        arr, _ = _refine(arr, exemplar, stats, region, boundary, iterations=refine, key=ctx.key,
+    if refine and len(arr) >= 2:  # (fewer: nothing to refine)
+        arr, _ = _refine(arr, exemplar, stats, _steered(region, controls), boundary, iterations=refine, key=ctx.key,
                          flow=controls.flow, progress=report)  # fmt: skip
     arr = reading_order(arr)
     report("done", 1.0)
     return Result(arr, exemplar, stats, region, boundary, engine.name, p, seed, refine=refine, cells=cells)
 
 
+def check_motifs(exemplar: Exemplar, engine: Engine) -> None:
+    """Refuse an engine that places motifs for an exemplar with none (an imported pattern of
+    cells and lines only, which the cellular engine draws), before any work.
+
+    Raises
+    ------
+    ExemplarError
+    """
+    if len(exemplar.motifs) == 0 and not hasattr(engine, "place_cells"):
+        raise ExemplarError(f"engine {engine.name!r} places motifs, and this pattern of cells has none: "
+                            "use --engine cellular (or auto)", source=exemplar.source)  # fmt: skip
+
+
+def _steered(region: Region, controls: Controls) -> Region:
+    """``region`` with the map controls' no-go areas as avoid zones, for ``refine``: its moves
+    then cross no ``--barrier`` (a line, grown by a hair to have an area) and leave no
+    ``--grow-within`` area, as the engine's motifs do not (a move that would is undone)."""
+    zones = [] if region.avoid is None else [region.avoid]
+    x0, y0, x1, y1 = region.bounds
+    hair = 1e-9 * max(x1 - x0, y1 - y0)
+    if controls.barriers is not None:
+        zones.append(shapely.buffer(controls.barriers, hair))
+    if controls.grow_within is not None:
+        big = max(x1 - x0, y1 - y0)
+        zones.append(shapely.difference(shapely.box(x0 - big, y0 - big, x1 + big, y1 + big), controls.grow_within))
+    if len(zones) == (region.avoid is not None):
+        return region
+    return Region(region.shape, shapely.union_all(zones))
+
+
 __all__ = ["AUTO", "ENGINES", "CellularParams", "Choice", "Context", "Controls", "Engine", "EngineParams",
-           "GrowthParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "choose", "engines_with",
-           "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip
+           "GrowthParams", "OptimizeParams", "PatchParams", "RandomParams", "Result", "TileParams", "check_motifs",
+           "choose", "engines_with", "get_engine", "make_params", "public_params", "synthesize"]  # fmt: skip

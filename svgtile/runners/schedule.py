@@ -129,6 +129,7 @@ def _run_local(units: Sequence[Unit], on_done: Done, workers: int, progress: boo
                                                       initializer=_die_with_parent, initargs=(os.getpid(),))  # fmt: skip
         how = {"scheduler": "processes", "pool": pool}
     bar = _local_bar() if progress else None
+    stopped = False
     try:
         with bar or contextlib.nullcontext():
             dask.compute(*tasks, cache=store, optimize_graph=False, **how)
@@ -142,10 +143,13 @@ def _run_local(units: Sequence[Unit], on_done: Done, workers: int, progress: boo
     except BaseException:  # ^C, SIGTERM: stop the workers now rather than let them finish
         if pool is not None:
             _stop(pool)
+            stopped = True
         raise
     finally:
-        if pool is not None:
-            pool.shutdown(wait=False, cancel_futures=True)
+        if pool is not None and not stopped:
+            # waited for (the workers are idle or gone): a pool left to close itself races the
+            # interpreter's exit on Python 3.11 ("Exception ignored … Bad file descriptor")
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _die_with_parent(parent: int) -> None:

@@ -34,7 +34,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
-from svgtile.engines import get_engine, make_params, synthesize
+from svgtile.engines import check_motifs, get_engine, make_params, synthesize
 from svgtile.engines.base import Engine, EngineParams, reading_order
 from svgtile.errors import ParameterError
 
@@ -107,6 +107,7 @@ def plan(region: Region, exemplar: Exemplar, engine: Engine | str, tile_size: fl
         return [WHOLE]
     if not (tile_size > 0 and math.isfinite(tile_size)):
         raise ParameterError(f"--tile-size must be a positive number, not {tile_size!r}")
+    check_motifs(exemplar, get_engine(engine) if isinstance(engine, str) else engine)  # no motif: no halo
     h = halo(engine, exemplar, params)
     if not math.isfinite(h):
         return [WHOLE]

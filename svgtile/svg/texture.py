@@ -71,6 +71,9 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
         data = read_input(path, error=ExemplarError, limit=MAX_TEXTURE_BYTES)
     except ExemplarError:
         data = None  # the exemplar reader reports it
+    if data is not None and _CELL_PATH.search(data):
+        raise ExemplarError("a cellular texture (cells and lines, svgtile's cellular engine): only textures of "
+                            "motifs are measured", source=str(path))  # fmt: skip
     cut = _own_use_block(data) if data is not None else None
     if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines
         skeleton, lines = cut
@@ -117,6 +120,8 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
 # ----------------------------------------------------------------------------- svgtile's own form
 
 _USE = f"{{{SVG_NS}}}use"
+#: A cell or line as :func:`svgtile.svg.writer.cell_elements` writes it.
+_CELL_PATH = re.compile(rb'<path class="svgtile-(?:corner|edge|face|line)" ')
 _HREF = f"{{{XLINK_NS}}}href"
 #: A number as :func:`svgtile.svg.writer.fmt_array` writes it (no exponent, no leading ``+``).
 _FIXED = r"-?\d+(?:\.\d+)?"

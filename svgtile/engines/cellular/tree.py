@@ -54,6 +54,7 @@ from typing import Any
 import tomllib
 
 from svgtile.errors import ParameterError
+from svgtile.files import read_input
 
 #: Generators by the feature type they texture (§5.2).
 GENERATORS = {
@@ -253,10 +254,11 @@ def _test(name: str, value: Any, bad) -> Any:
 def read_description(path: str | Path) -> Description:
     """A description from a ``.toml`` or ``.json`` file (by its suffix; TOML otherwise)."""
     path = Path(path)
+    data = read_input(path, error=ParameterError)  # bounded: a FIFO or /dev/zero is refused, not read
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(f"{path}: cannot read the tree description ({getattr(exc, 'strerror', None) or exc})") from None
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ParameterError(f"{path}: cannot read the tree description ({exc})") from None
     try:
         data = json.loads(text) if path.suffix.lower() == ".json" else tomllib.loads(text)
     except (json.JSONDecodeError, tomllib.TOMLDecodeError) as exc:
