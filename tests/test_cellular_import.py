@@ -76,11 +76,14 @@ def test_a_zigzag_is_still_refused_with_the_reason(tmp_path):
         imported(text, tmp_path)
 
 
-def test_synth_imports_and_draws_the_bricks(tmp_path):
+def test_synth_imports_and_draws_the_bricks(tmp_path, capsys):
     src = tmp_path / "tile.svg"
     src.write_text(bricks())
     out = tmp_path / "out.svg"
-    assert main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(out)]) == 0
+    # once, in a whole-suite run on a loaded machine, this exited 70 (not reproduced since): the
+    # message says why if it happens again
+    rc = main(["synth", str(src), "--import", "--size", "100x60", "--seed", "2", "-o", str(out)])
+    assert rc == 0, capsys.readouterr().err
     text = out.read_text()
     assert 'engine="cellular"' in text and text.count('class="svgtile-face"') > 10
     ex = tmp_path / "ex.svg"

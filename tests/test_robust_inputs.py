@@ -175,7 +175,7 @@ def test_standard_output_closed_or_full_is_one_line(tmp_path, capsys, monkeypatc
     else:
         full = open("/dev/full", "w")
         monkeypatch.setattr(sys, "stdout", full)
-    rc = main(["synth", str(tmp_path / "ex.svg"), "--size", "30", "--seed", "1", "-o", "-"])
+    rc = main(["synth", str(tmp_path / "ex.svg"), "--engine", "patch", "--size", "30", "--seed", "1", "-o", "-"])
     err = capsys.readouterr().err
     assert rc == 1 and "standard output" in err and len(err.splitlines()) == 1
     if stdout == "full":

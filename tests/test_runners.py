@@ -70,12 +70,14 @@ def columns(arr: Arrangement) -> np.ndarray:
 @pytest.mark.parametrize(("exemplar", "boundary"), [("gravel", "clip"), ("chert-nodules", "inside")])
 def test_a_tiled_run_is_the_whole_run(name, exemplar, boundary):
     """Tile sides smaller than a motif (edges through motifs), about one exemplar, and several;
-    the unit's hole, slot and avoid zone cross tile edges."""
+    the unit's hole, slot and avoid zones cross tile edges.  Growth regrows the cells a tile
+    depends on (its reach is 0 in cells, not in work), so it is run on sides of 24 and 64 only:
+    edges still run through motifs, at a tenth of the cost of 7.5-unit tiles."""
     ex, stats = load(exemplar)
     region = holed_region()
     whole = synthesize(ex, region, name, seed=5, stats=stats, boundary=boundary)
     assert len(whole) > 300
-    for size in (7.5, 64.0):
+    for size in (7.5, 64.0) if name == "tile" else (24.0, 64.0):
         tiles = plan(region, ex, name, size)
         assert len(tiles) > 1 and not any(t.whole for t in tiles)
         tiled = synthesize_tiled(ex, region, name, size, seed=5, stats=stats, boundary=boundary)
