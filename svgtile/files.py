@@ -151,40 +151,8 @@ def write_file(data: str | bytes, out: str | Path, *, protect: tuple[str | Path,
     if str(out) == "-":
         _write_stdout(data, raw)
         return
-    check_output(out, protect=protect)
-    out = Path(out)
-    try:
-        special = not stat.S_ISREG(os.stat(out).st_mode)  # follows symlinks
-    except OSError:  # no such file (yet)
-        special = False
-    if special:  # a device (/dev/null) or a FIFO: a rename would replace it with a regular file
-        try:
-            with open(out, "wb") as fh:
-                fh.write(raw)
-        except OSError as exc:
-            raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
-        return
-    if out.is_symlink():  # replace the file the link points to, not the link
-        out = Path(os.path.realpath(out))
-    mode = _file_mode(out)
-    sweep_temporary(out)
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}{TMP_TAG}{os.getpid()}-", suffix=".tmp", dir=out.parent)
-    except OSError as exc:
-        raise OutputError(f"cannot write here ({exc.strerror or exc})", source=str(out)) from None
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, out)
-    except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
-        raise OutputError(f"cannot write ({exc.strerror or exc})", source=str(out)) from None
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_output(out, protect=protect) as fh:
+        fh.write(raw)
 
 
 def sweep_temporary(out: str | Path) -> list[Path]:
