@@ -143,13 +143,7 @@ def read_regions(path: str | Path, *, class_property: str | None = None, feature
 def read_zones(path: str | Path, margin: float, *, feature: str | None = None) -> shapely.Geometry:
     """Avoid zones from GeoJSON, working frame: polygons as they are, everything grown by ``margin``."""
     source = str(path)
-    parts = []
-    for n, f in enumerate(_features(load(path), source)):
-        ident = _ident(f, n)
-        if feature is None or ident == feature:
-            parts.append(_geometry(f.get("geometry"), source, ident))
-    if not parts:
-        raise RegionError("no feature to avoid" + (f" with id {feature!r}" if feature else ""), source=source)
+    parts = _geometries(path, feature, "no feature to avoid")
     zone = shapely.union_all(shapely.buffer(np.array(parts, dtype=object), margin, quad_segs=4))
     if zone.is_empty or zone.area <= 0:
         raise RegionError("the features give no zone to avoid (lines with margin 0?)", source=source)
@@ -159,15 +153,18 @@ def read_zones(path: str | Path, margin: float, *, feature: str | None = None) -
 def read_geometry(path: str | Path, *, feature: str | None = None) -> shapely.Geometry:
     """Every geometry of a GeoJSON file (or the feature with id ``feature``), merged into one
     collection, in the working frame; a RegionError if there is none."""
+    return shapely.GeometryCollection(_geometries(path, feature, "no feature"))
+
+
+def _geometries(path: str | Path, feature: str | None, none: str) -> list[shapely.Geometry]:
+    """The geometries of every feature of a GeoJSON file (or of the one with id ``feature``), in
+    the working frame; a RegionError starting with ``none`` if there is none."""
     source = str(path)
-    parts = []
-    for n, f in enumerate(_features(load(path), source)):
-        ident = _ident(f, n)
-        if feature is None or ident == feature:
-            parts.append(_geometry(f.get("geometry"), source, ident))
+    named = [(_ident(f, n), f) for n, f in enumerate(_features(load(path), source))]
+    parts = [_geometry(f.get("geometry"), source, ident) for ident, f in named if feature in (None, ident)]
     if not parts:
-        raise RegionError("no feature" + (f" with id {feature!r}" if feature else ""), source=source)
-    return shapely.GeometryCollection(parts)
+        raise RegionError(none + (f" with id {feature!r}" if feature else ""), source=source)
+    return parts
 
 
 def to_working(geom: shapely.Geometry, unit: float) -> shapely.Geometry:
