@@ -461,3 +461,18 @@ def test_fgdc_626_pieces_that_almost_touch_are_one_motif_and_nothing_overlaps():
     t = import_tile(FGDC / "626.svg")
     stats = analyze(parse_exemplar(t.text, source="626.svg"))
     assert stats.overlaps == 0
+
+
+def test_import_writes_svgtile_prefixes_whatever_was_imported_first(tmp_path):
+    """ElementTree's prefixes are process-wide: registered where the namespaces are defined
+    (svg/dialect), so an import run in a fresh process (as ``svgtile import`` is, its command
+    loaded alone) writes ``svgtile:period``, never ``ns0:``/``ns1:`` — found by this suite when
+    test_import ran first."""
+    import subprocess
+    import sys
+
+    src = tmp_path / "tile.svg"
+    src.write_text(HEAD + f'<circle cx="1" cy="5" r="0.5" {STROKE}/><circle cx="8.5" cy="5" r="0.5" {STROKE}/></svg>')
+    code = f"from svgtile.tiles.importer import import_tile; print(import_tile({str(src)!r}).text)"
+    text = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "svgtile:period=" in text and "ns0:" not in text and "ns1:" not in text

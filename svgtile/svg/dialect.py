@@ -23,6 +23,17 @@ from svgtile.files import read_input
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
 INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
+SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
+#: svgtile's own namespace: run metadata, a tile's period, a cellular pattern description.
+META_NS = "urn:svgtile:run:1"
+# ElementTree's namespace registry is process-wide; these are the prefixes any SVG tool expects.
+# Registered here, where every module that writes SVG (texture, map, tile import) gets them
+# whatever else was imported first: the bytes written must not depend on import order.
+ET.register_namespace("", SVG_NS)
+ET.register_namespace("xlink", XLINK_NS)
+ET.register_namespace("svgtile", META_NS)
+ET.register_namespace("inkscape", INKSCAPE_NS)
+ET.register_namespace("sodipodi", SODIPODI_NS)
 
 SHAPES = {"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"}
 CONTAINERS = {"g", "a", "switch"}
@@ -71,7 +82,7 @@ MAX_SQUASH = 1e6
 #: Presentation properties that are not inherited but change how a plain motif looks.
 OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
 #: Attribute of the region element giving the period of a repeating tile (see Exemplar.period).
-PERIOD_ATTR = "{urn:svgtile:run:1}period"
+PERIOD_ATTR = f"{{{META_NS}}}period"
 #: A cellular pattern's description on the region element (JSON; svgtile.engines.cellular.tree).
 CELLULAR_ATTR = "{urn:svgtile:run:1}cellular"
 

@@ -21,20 +21,12 @@ from svgtile.core.cells import FEATURES, Cellwork
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.engines.base import Result
-from svgtile.svg.dialect import INKSCAPE_NS, SVG_NS, XLINK_NS
+from svgtile.svg.dialect import META_NS, SVG_NS, XLINK_NS
 from svgtile.svg.numbers import fmt, fmt_array
 
-META_NS = "urn:svgtile:run:1"
-SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
 USES_MARK = "svgtile-uses"
 # Characters XML 1.0 forbids (and lone surrogates from undecodable file names).
 _NOT_XML = re.compile("[^\x09\x0A\x0D\x20-\uD7FF\uE000-\uFFFD\U00010000-\U0010FFFF]")
-# ElementTree's namespace registry is process-wide; these are the prefixes any SVG tool expects.
-ET.register_namespace("", SVG_NS)
-ET.register_namespace("xlink", XLINK_NS)
-ET.register_namespace("svgtile", META_NS)
-ET.register_namespace("inkscape", INKSCAPE_NS)
-ET.register_namespace("sodipodi", SODIPODI_NS)
 
 
 def use_transform_suffix(kind: Kind) -> str:

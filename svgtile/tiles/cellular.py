@@ -37,7 +37,6 @@ from svgtile.svg.dialect import CELLULAR_ATTR, PERIOD_ATTR, SVG_NS
 from svgtile.svg.numbers import fmt, fmt_array
 from svgtile.svg.tilepieces import TilePieces
 
-ET.register_namespace("svgtile", "urn:svgtile:run:1")
 #: How a solid fill is drawn (the tile reader keeps no paint of a frame it drops).
 SOLID_STYLE = "fill:#000000;stroke:none"
 #: Straight: no point farther from the chord than this share of its length.
