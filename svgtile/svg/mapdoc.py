@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import xml.etree.ElementTree as ET
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -145,7 +146,7 @@ class SvgShapes:
 
     def _area(self, el: ET.Element, parent_style: dict[str, str], m: np.ndarray) -> shapely.Geometry | None:
         style = cascade_style(el, parent_style)
-        # as in _keep_clear, id="region" is an ordinary element here: it only marks an exemplar's region
+        # as in keep_clear, id="region" is an ordinary element here: it only marks an exemplar's region
         if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
             return None
         m = m @ element_matrix(el, self.source)
@@ -168,34 +169,21 @@ class SvgShapes:
         stroke), a text's estimated box (:data:`GLYPH_WIDTH` per character, :data:`ASCENT` and
         :data:`DESCENT` about each line's baseline, ``text-anchor`` honoured), a group's union.
         """
-        parent = self.parents.get(el)
-        parent_style = self.style(parent) if parent is not None else INITIAL
-        m = self.matrix(parent) if parent is not None else np.eye(3)
         parts: list[shapely.Geometry] = []
-        self._keep_clear(el, parent_style, m, parts)
+        for node, style, m, tag in self._drawn(el):
+            if tag == "text":
+                parts.extend(apply_matrix(m, box) for box in self._text_boxes(node))
+                continue
+            geom = leaf_footprint(node, style, self.source)
+            if geom is None:  # an unstroked line: the line itself, grown by the margin later
+                geom = shapely.union_all([shapely.LineString(p) if len(p) > 1 else shapely.Point(p[0])
+                                          for p, _ in flat_subpaths(node, self.source)])
+            parts.append(apply_matrix(m, geom))
         parts = [p for p in parts if not p.is_empty]
         if not parts:
             return shapely.Polygon()
         grown = shapely.buffer(np.array(parts, dtype=object), margin, quad_segs=4) if margin > 0 else parts
         return shapely.union_all(grown)
-
-    def _keep_clear(self, el, parent_style, m, out: list) -> None:
-        style = cascade_style(el, parent_style)
-        if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
-            return
-        m = m @ element_matrix(el, self.source)
-        tag = local_tag(el.tag)
-        if tag in SHAPES:
-            geom = leaf_footprint(el, style, self.source)
-            if geom is None:  # an unstroked line: the line itself, grown by the margin later
-                geom = shapely.union_all([shapely.LineString(p) if len(p) > 1 else shapely.Point(p[0])
-                                          for p, _ in flat_subpaths(el, self.source)])
-            out.append(apply_matrix(m, geom))
-        elif tag == "text":
-            out.extend(apply_matrix(m, box) for box in self._text_boxes(el))
-        elif tag in (*CONTAINERS, "svg"):
-            for child in el:
-                self._keep_clear(child, style, m, out)
 
     def strokes(self, el: ET.Element) -> list[tuple[np.ndarray, float]]:
         """The lines ``el`` draws (a shape, or a group's shapes in document order) as polylines.
@@ -207,30 +195,39 @@ class SvgShapes:
         user units (0 when unstroked), scaled by the transforms.  Hidden elements and text are
         left out.
         """
+        out: list[tuple[np.ndarray, float]] = []
+        for node, style, m, tag in self._drawn(el):
+            if tag == "text":
+                continue
+            painted = style.get("stroke", INITIAL["stroke"]).strip() not in ("none", "")
+            width = number_attr(style.get("stroke-width"), 1.0) * np.sqrt(abs(np.linalg.det(m[:2, :2]))) if painted else 0.0
+            for pts, closed in flat_subpaths(node, self.source, REGION_FLATNESS):
+                pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+                if closed and len(pts) > 1 and not np.array_equal(pts[0], pts[-1]):
+                    pts = np.vstack([pts, pts[:1]])
+                out.append((pts @ m[:2, :2].T + m[:2, 2], float(width)))
+        return out
+
+    def _drawn(self, el: ET.Element) -> Iterator[tuple[ET.Element, dict[str, str], np.ndarray, str]]:
+        """The shapes and texts ``el`` draws, in document order: ``(node, style, matrix, tag)``,
+        the matrix from the node's user space to the root's; hidden and unrendered elements (and
+        what they hold) left out."""
         parent = self.parents.get(el)
         parent_style = self.style(parent) if parent is not None else INITIAL
         m = self.matrix(parent) if parent is not None else np.eye(3)
-        out: list[tuple[np.ndarray, float]] = []
-        self._strokes(el, parent_style, m, out)
-        return out
+        yield from self._walk(el, parent_style, m)
 
-    def _strokes(self, el, parent_style, m, out: list) -> None:
+    def _walk(self, el, parent_style, m):
         style = cascade_style(el, parent_style)
         if is_hidden(style) or not is_svg(el) or local_tag(el.tag) in NOT_RENDERED:
             return
         m = m @ element_matrix(el, self.source)
         tag = local_tag(el.tag)
-        if tag in SHAPES:
-            painted = style.get("stroke", INITIAL["stroke"]).strip() not in ("none", "")
-            width = number_attr(style.get("stroke-width"), 1.0) * np.sqrt(abs(np.linalg.det(m[:2, :2]))) if painted else 0.0
-            for pts, closed in flat_subpaths(el, self.source, REGION_FLATNESS):
-                pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
-                if closed and len(pts) > 1 and not np.array_equal(pts[0], pts[-1]):
-                    pts = np.vstack([pts, pts[:1]])
-                out.append((pts @ m[:2, :2].T + m[:2, 2], float(width)))
+        if tag in SHAPES or tag == "text":
+            yield el, style, m, tag
         elif tag in (*CONTAINERS, "svg"):
             for child in el:
-                self._strokes(child, style, m, out)
+                yield from self._walk(child, style, m)
 
     def _text_boxes(self, text: ET.Element) -> list[shapely.Polygon]:
         """Estimated boxes of a ``<text>``'s lines in its own user space (a ``tspan`` with its
