@@ -62,7 +62,13 @@ def qgis_env(tmp_path):
     runtime.mkdir(mode=0o700)
     env = {**os.environ, "HOME": str(home), "XDG_DATA_HOME": str(home / "share"), "QT_QPA_PLATFORM": "offscreen",
            "XDG_RUNTIME_DIR": str(runtime)}  # fmt: skip
-    env.pop("PYTHONPATH", None)
+    # QGIS embeds Debian's libpython, which finds its standard library from the first ``python3`` on
+    # PATH: with a virtual environment (or pyenv) first, it loads that interpreter's and loses
+    # PyQGIS ("Couldn't load SIP module").  Its Python must be the system's; svgtile's is named
+    # to the plugin by absolute path.
+    for name in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV"):
+        env.pop(name, None)
+    env["PATH"] = os.pathsep.join(["/usr/bin", "/bin", *env.get("PATH", "").split(os.pathsep)])
     qg.install(home / "share" / "QGIS" / "QGIS3" / "profiles" / "default", python=sys.executable)
     return env
 
