@@ -60,3 +60,15 @@ def test_the_runner_sees_a_fetch_and_a_changed_input(fetches, tmp_path):
     outcome = run.run_case(evil, fetches, timeout=30, memory_mb=2048, command=["-c", script, "@HTTP@/x"])
     assert "fetch attempted" in outcome.flags and "input changed" in outcome.flags
     assert outcome.outcome == "fetch attempted"
+
+
+def test_the_runner_limits_cpu_time_and_waiting(fetches):
+    """A run that computes past the CPU limit and one that waits past the wall limit are both
+    timeouts; a run that waits briefly is not (the limit is CPU time, not a busy machine's wall)."""
+    case = run.Case("spin", "self-test", [], {})
+    spin = run.run_case(case, fetches, timeout=1, memory_mb=2048, command=["-c", "while True: pass"])
+    assert spin.outcome == "timeout" and spin.cpu >= 1, spin
+    wait = run.run_case(case, fetches, timeout=1, wall=2, memory_mb=2048, command=["-c", "import time; time.sleep(30)"])
+    assert wait.outcome == "timeout" and wait.cpu < 1, wait
+    nap = run.run_case(case, fetches, timeout=1, wall=20, memory_mb=2048, command=["-c", "import time; time.sleep(1.5)"])
+    assert nap.outcome == "ok" and nap.seconds >= 1.5, nap

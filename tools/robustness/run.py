@@ -13,14 +13,22 @@ fetch attempted    a request reached the runner's HTTP listener, or the watched 
                    (``@SECRET@``) was opened
 input changed      a file that was there before the run differs or is gone
 internal           exit 70, a traceback, or killed by a signal svgtile did not send
-timeout            still running after ``--timeout`` seconds (default 60)
+timeout            over ``--timeout`` seconds (default 60) of CPU time (user + system, the
+                   run and the workers it waited for), or still running after ``--wall``
+                   seconds (default four times ``--timeout``)
 memory             peak resident memory over ``--memory`` MB (default 2048), or MemoryError
 output left        a temporary file after the run, or any new file after a failed run
 clear refusal      exit 1 or 2 with one ``svgtile: error:`` line
 ok                 exit 0 (or the reader of ``| head`` left: exit 1 and nothing said)
 =================  ==================================================================
 
-The summary table (``--markdown``) is what docs/robustness.md shows.
+The limit is CPU time, not wall time: on a shared machine a run waiting for a core is not a
+run that goes on for minutes, and on a quiet machine the two are the same.  The wall limit is
+the backstop that ends a run that waits for ever (a FIFO with no writer).
+
+The summary table (``--markdown``) is what docs/robustness.md shows.  ``--json`` is written a
+line per run as runs end, and ``--resume`` skips the runs a previous ``--json`` file holds, so a
+sweep of hours survives an interruption.
 """
 
 from __future__ import annotations
@@ -67,6 +75,7 @@ class Outcome:
     seconds: float
     peak_mb: float
     message: str
+    cpu: float = 0.0
 
 
 class _Fetches:
@@ -146,12 +155,15 @@ def _watch_secret(path: Path, stop: threading.Event, seen: list[bool]) -> None:
 
 
 def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float, keep: bool = False,
-             command: list[str] | None = None) -> Outcome:
+             command: list[str] | None = None, wall: float | None = None) -> Outcome:
     """Run one case in a fresh folder and classify it.
 
     ``command`` replaces ``-m svgtile ARGS`` (placeholders filled): the runner's own test runs a
-    stand-in that misbehaves, to show each outcome can be seen.
+    stand-in that misbehaves, to show each outcome can be seen.  ``timeout`` is CPU seconds (the
+    kernel's ``RLIMIT_CPU`` ends the run a second later); ``wall`` (default ``4 * timeout``) ends
+    a run that waits.
     """
+    wall = 4 * timeout if wall is None else wall
     root = Path(tempfile.mkdtemp(prefix="svgtile-robust-"))
     work, outside = root / "work", root / "outside"
     work.mkdir()
@@ -177,6 +189,8 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
         os.setsid()
         cap = int(max(memory_mb * 2, 4096) * 2**20)  # a backstop; the classification uses the peak
         resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+        seconds = int(timeout) + 1
+        resource.setrlimit(resource.RLIMIT_CPU, (seconds, seconds + 1))
         if case.stdout == "closed":
             os.close(1)
 
@@ -197,7 +211,7 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
             pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
             if pid:
                 break
-            if time.monotonic() - start > timeout:
+            if time.monotonic() - start > wall:
                 timed_out = True
                 os.killpg(proc.pid, signal.SIGKILL)
                 pid, status, usage = os.wait4(proc.pid, 0)
@@ -214,9 +228,13 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
     stop.set()
     watcher.join(1)
     peak_mb = usage.ru_maxrss / 1024
+    cpu = usage.ru_utime + usage.ru_stime
+    timed_out = timed_out or cpu > timeout
     message = err_path.read_bytes().decode("utf-8", "replace")
     after = _snapshot(work)
     code = None if timed_out else proc.returncode
+    if proc.returncode in (-signal.SIGXCPU, -signal.SIGKILL) and cpu >= timeout:
+        timed_out, code = True, None
     flags = []
     if fetches.hits.get(case_id) or seen[0]:
         flags.append("fetch attempted")
@@ -243,7 +261,8 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
     if not keep:
         shutil.rmtree(root, ignore_errors=True)
     last = errors[-1] if errors else (lines[-1] if lines else "")
-    return Outcome(case.name, case.group, outcome, flags, code, round(seconds, 2), round(peak_mb, 1), last[:300])
+    return Outcome(case.name, case.group, outcome, flags, code, round(seconds, 2), round(peak_mb, 1), last[:300],
+                   round(cpu, 2))
 
 
 def data_cases(folder: Path) -> list[Case]:
@@ -262,18 +281,20 @@ def data_cases(folder: Path) -> list[Case]:
 def summary(results: list[Outcome]) -> str:
     """A markdown table: runs per group and outcome, then every run that is neither ok nor refused."""
     groups = sorted({r.group for r in results}, key=[r.group for r in results].index)
-    head = "| group | runs | " + " | ".join(OUTCOMES) + " | slowest s | peak MB |"
-    lines = [head, "|" + "---|" * (len(OUTCOMES) + 4)]
+    head = "| group | runs | " + " | ".join(OUTCOMES) + " | most CPU s | longest wall s | peak MB |"
+    lines = [head, "|" + "---|" * (len(OUTCOMES) + 5)]
     for g in [*groups, "all"]:
         rs = [r for r in results if g in ("all", r.group)]
         counts = collections.Counter(r.outcome for r in rs)
         cells = " | ".join(str(counts.get(o, 0)) for o in OUTCOMES)
         name = f"**{g}**" if g == "all" else g
-        lines.append(f"| {name} | {len(rs)} | {cells} | {max(r.seconds for r in rs):.1f} | {max(r.peak_mb for r in rs):.0f} |")
+        lines.append(f"| {name} | {len(rs)} | {cells} | {max(r.cpu for r in rs):.1f} | {max(r.seconds for r in rs):.1f} "
+                     f"| {max(r.peak_mb for r in rs):.0f} |")
     bad = [r for r in results if r.outcome not in ("ok", "clear refusal")]
     if bad:
-        lines += ["", "| run | outcome | exit | s | MB | message |", "|---|---|---|---|---|---|"]
-        lines += [f"| {r.name} | {r.outcome} | {r.code} | {r.seconds} | {r.peak_mb} | {r.message.replace('|', '/')} |" for r in bad]
+        lines += ["", "| run | outcome | exit | CPU s | wall s | MB | message |", "|---|---|---|---|---|---|---|"]
+        lines += [f"| {r.name} | {r.outcome} | {r.code} | {r.cpu} | {r.seconds} | {r.peak_mb} | {r.message.replace('|', '/')} |"
+                  for r in bad]
     return "\n".join(lines)
 
 
@@ -283,9 +304,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--sample", type=int, default=1, help="run every Nth case")
     ap.add_argument("--only", default=None, help="cases whose group or name contains this")
     ap.add_argument("--jobs", type=int, default=1)
-    ap.add_argument("--timeout", type=float, default=60.0, help="seconds per run")
+    ap.add_argument("--timeout", type=float, default=60.0, help="CPU seconds per run")
+    ap.add_argument("--wall", type=float, default=None, help="wall seconds per run (default 4 x --timeout)")
     ap.add_argument("--memory", type=float, default=2048.0, help="MB of peak resident memory per run")
-    ap.add_argument("--json", type=Path, help="write every outcome here (JSON lines)")
+    ap.add_argument("--json", type=Path, help="write every outcome here (JSON lines, as runs end)")
+    ap.add_argument("--resume", action="store_true", help="keep the runs --json already holds; run the rest")
     ap.add_argument("--markdown", type=Path, help="write the summary table here")
     ap.add_argument("--keep", action="store_true", help="keep each run's folder")
     args = ap.parse_args(argv)
@@ -294,19 +317,31 @@ def main(argv: list[str] | None = None) -> int:
         cases = [c for c in cases if args.only in c.group or args.only in c.name]
     cases = cases[:: max(1, args.sample)]
     fetches = _Fetches()
-    results: list[Outcome] = []
+    done: dict[str, Outcome] = {}
+    if args.resume and args.json and args.json.exists():
+        for line in args.json.read_text().splitlines():
+            if line.strip():
+                r = Outcome(**json.loads(line))
+                done[r.name] = r
+    elif args.json:
+        args.json.write_text("")
+    lock = threading.Lock()
 
     def one(case: Case) -> Outcome:
-        r = run_case(case, fetches, timeout=args.timeout, memory_mb=args.memory, keep=args.keep)
-        print(f"{r.outcome:<15} {r.seconds:6.1f}s {r.peak_mb:7.0f}MB  {r.name}  {r.message[:120]}", flush=True)
+        if case.name in done:
+            return done[case.name]
+        r = run_case(case, fetches, timeout=args.timeout, memory_mb=args.memory, keep=args.keep, wall=args.wall)
+        print(f"{r.outcome:<15} {r.cpu:6.1f}s CPU {r.seconds:6.1f}s {r.peak_mb:7.0f}MB  {r.name}  {r.message[:120]}",
+              flush=True)  # fmt: skip
+        if args.json:
+            with lock, args.json.open("a") as f:
+                f.write(json.dumps(asdict(r)) + "\n")
         return r
 
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
         results = list(pool.map(one, cases))
     table = summary(results)
     print(table)
-    if args.json:
-        args.json.write_text("".join(json.dumps(asdict(r)) + "\n" for r in results))
     if args.markdown:
         args.markdown.write_text(table + "\n")
     bad = [r for r in results if r.outcome not in ("ok", "clear refusal")]
