@@ -437,3 +437,22 @@ def test_kind_pair_rows_keep_their_columns_with_long_names(capsys, tmp_path):
     assert rc == 0 and "motifs centred in its region" in out
     rows = out[out.index("structure per kind pair"):].splitlines()[1:]
     assert len(rows) == 4 and len({len(r) for r in rows}) == 1  # every row as wide: the columns line up
+
+
+@pytest.mark.parametrize("scale, refused", [("1e-7", False), ("0", True)])
+def test_a_use_scaled_to_nothing_reads_as_the_exemplar_reader_reads_it(tmp_path, scale, refused):
+    """The fast reader of svgtile's own output hands such a texture to the general reader, which
+    drops a <use> too small to draw (with a warning) and refuses a singular transform."""
+    region = Region.rectangle(120, 90)
+    ex, _, _ = write_texture(tmp_path / "t.svg", "gravel", region)
+    text = (tmp_path / "t.svg").read_text()
+    m = re.search(r'<use [^>]*transform="translate\([2-8]\d\.\d+ [2-6]\d\.\d+\)[^"]*"', text)  # well inside
+    (tmp_path / "e.svg").write_text(text.replace(m.group(0), m.group(0)[: -1] + f' scale({scale})"', 1))
+    assert read_own_texture(ET.parse(tmp_path / "e.svg").getroot(), "e.svg") is None
+    if refused:
+        with pytest.raises(ExemplarError, match="singular"):
+            read_texture(tmp_path / "e.svg", ex)
+    else:
+        orig, _ = read_texture(tmp_path / "t.svg", ex)
+        back, _ = read_texture(tmp_path / "e.svg", ex)
+        assert len(back) == len(orig) - 1

@@ -56,9 +56,33 @@ def test_hostile_coordinates_are_refused_naming_the_element(shape):
         parse_exemplar(text, source="x.svg")
 
 
-def test_a_singular_transform_still_draws_nothing_rather_than_failing():
-    ex = parse_exemplar(svg(SYMBOL + USES + '<use xlink:href="#d" transform="scale(0)"/>'))
+@pytest.mark.parametrize("transform", ["scale(0)", "scale(0 1)", "matrix(1 2 2 4 0 0)", "matrix(0 0 0 0 5 5)"])
+@pytest.mark.parametrize("where", ["use", "group", "tile"])
+def test_a_singular_transform_is_refused_naming_the_element(transform, where):
+    """SVG draws nothing under a singular transform: refused, not a motif silently gone."""
+    if where == "use":
+        text, element = svg(SYMBOL + USES + f'<use id="bad" xlink:href="#d" transform="{transform}"/>'), "<use id='bad'>"
+    else:
+        text, element = svg(SYMBOL + f'<g id="bad" transform="{transform}">{USES}</g>'), "<g id='bad'>"
+    read = parse_tile if where == "tile" else parse_exemplar
+    with pytest.raises(ExemplarError, match="is singular") as info:
+        read(text, source="x.svg")
+    assert element in str(info.value) and "that is singular" in str(info.value)
+
+
+def test_a_use_scaled_to_nothing_by_its_ancestors_is_dropped_with_a_warning():
+    """Each transform is lawful (scale(1e-7)); together they leave nothing to draw."""
+    ex = parse_exemplar(svg(SYMBOL + USES + '<g transform="scale(1e-7)"><use xlink:href="#d" transform="scale(1e-7)"/></g>'))
     assert len(ex.motifs) == 3 and any("scaled to nothing" in w for w in ex.warnings)
+
+
+def test_a_map_element_with_a_singular_transform_is_refused(tmp_path, capsys):
+    (tmp_path / "map.svg").write_text(svg('<g transform="scale(0)"><rect id="r" width="90" height="90"/></g>'))
+    (tmp_path / "ex.svg").write_text(TINY)
+    rc = main(["synth", str(tmp_path / "ex.svg"), "--region", f"{tmp_path / 'map.svg'}#r", "-o", str(tmp_path / "o.svg")])
+    err = capsys.readouterr().err
+    assert rc == 1 and "map.svg" in err and "singular" in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "o.svg").exists()
 
 
 def test_depth_and_size_limits_apply_to_maps_too(tmp_path, capsys):

@@ -212,22 +212,27 @@ def parse_matrix(text: str | None) -> np.ndarray:
     ------
     ValueError
         The transform is unreadable, not finite, scales beyond :data:`MAX_COORDINATE` or squashes
-        beyond :data:`MAX_SQUASH` (``skewX(90)``, ``rotate(nan)``, ``scale(1e308)``); a singular
-        matrix (``scale(0)``) is accepted: it draws nothing, and its element is ignored.
+        beyond :data:`MAX_SQUASH` (``skewX(90)``, ``rotate(nan)``, ``scale(1e308)``), or is
+        singular (``scale(0)``, ``matrix(1 2 2 4 0 0)``): SVG draws nothing under a singular
+        transform, and what the author meant by it is unknowable — a motif silently gone, a map
+        unit silently empty, are worse than a refusal naming the element.  The message completes
+        "has a transform '…' that …".
     """
     if not text:
         return np.eye(3)
     if not _TRANSFORM_RE.fullmatch(text):  # svgelements would skip what it cannot read (nan, inf …)
-        raise ValueError("unreadable")
+        raise ValueError("cannot be read")
     try:
         m = se.Matrix(text)
         out = np.array([[m.a, m.c, m.e], [m.b, m.d, m.f], [0.0, 0.0, 1.0]], dtype=np.float64)
     except (ValueError, TypeError, IndexError, ArithmeticError):  # svgelements' bare errors on bad data
-        raise ValueError("unreadable") from None
+        raise ValueError("cannot be read") from None
     if not (np.abs(out) <= MAX_COORDINATE).all():  # also NaN
-        raise ValueError(f"not finite, or beyond ±{MAX_COORDINATE:g}")
+        raise ValueError(f"is not finite, or reaches beyond ±{MAX_COORDINATE:g}")
     sv = np.linalg.svd(out[:2, :2], compute_uv=False)
-    if sv[1] > 0 and sv[0] / sv[1] > MAX_SQUASH:
+    if not sv[0] > 0 or sv[1] <= sv[0] * 1e-12:
+        raise ValueError("is singular (it collapses what it draws to a line or a point, so SVG draws nothing)")
+    if sv[0] / sv[1] > MAX_SQUASH:
         raise ValueError(f"skews or squashes by more than {MAX_SQUASH:g} to 1")
     return out
 
@@ -238,7 +243,7 @@ def element_matrix(el: ET.Element, source: str) -> np.ndarray:
     try:
         return parse_matrix(text)
     except ValueError as exc:
-        raise ExemplarError(f"{describe(el)} has a transform {shorten(text or '', 60)!r} that is {exc}",
+        raise ExemplarError(f"{describe(el)} has a transform {shorten(text or '', 60)!r} that {exc}",
                             source=source) from None  # fmt: skip
 
 

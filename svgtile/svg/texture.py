@@ -378,9 +378,8 @@ def _split(
     mat = np.eye(3) @ mat @ np.eye(3)
     lin = mat[:, :2, :2]
     det = np.linalg.det(lin)
-    keep = ~(np.abs(det) < 1e-12)  # the reader drops a <use> scaled to nothing
-    if not keep.all():
-        mat, lin, det, kind = mat[keep], lin[keep], det[keep], kind[keep]
+    if (np.abs(det) < 1e-12).any():
+        return None  # scaled to nothing: the reader drops it with a warning, or refuses a singular transform
     scale = np.sqrt(np.abs(det))
     angle = np.fromiter(map(math.degrees, map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist())),
                         np.float64, len(det))  # fmt: skip
