@@ -575,3 +575,45 @@ def test_a_png_output_is_a_picture_not_svg_text(capsys, tiny, tmp_path):
 def test_map_refuses_a_png_output(capsys, tiny, tmp_path):
     rc = main(["map", str(tiny), "--styles", str(tmp_path / "none.toml"), "-o", str(tmp_path / "m.png")])
     assert rc == 1 and "svgtile writes .svg, .geojson" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("engine", ["growth", "optimize"])
+def test_work_limit_refuses_a_run_of_minutes_before_it_starts(capsys, tiny, tmp_path, engine):
+    """Under the motif limit, yet minutes of work for this engine: refused at once with the estimate.
+    (For patch, tile and random the motif limit comes first.)"""
+    from svgtile.engines import get_engine
+    from svgtile.engines.base import seconds_per_motif
+
+    stats = analyze(read_exemplar(tiny))
+    motifs = 3 * svgtile.apps.load.MAX_WORK_SECONDS / seconds_per_motif(get_engine(engine))  # three times the limit
+    assert motifs < svgtile.apps.load.MAX_MOTIFS, "the motif limit would refuse it first"
+    side = (motifs / stats.count_density) ** 0.5
+    out = tmp_path / "out.svg"
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", engine, size=f"{side:.0f}x{side:.0f}")
+    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--force", f"engine {engine!r}", "of work")
+
+
+def test_work_limit_counts_refinement_and_is_forced(capsys, tiny, tmp_path, monkeypatch):
+    stats = analyze(read_exemplar(tiny))
+    side = (2000 / stats.count_density) ** 0.5  # a few seconds of patch, minutes with 50 iterations of refinement
+    out = tmp_path / "out.svg"
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", "patch", size=f"{side:.0f}x{side:.0f}")
+    assert rc == 0, err
+    out.unlink()
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", "patch", "--refine", "500", size=f"{side:.0f}x{side:.0f}")
+    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "--refine 500", "--force")
+    monkeypatch.setattr(svgtile.cli.synth, "MAX_WORK_SECONDS", 0.0)  # every run is over it
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1")
+    assert rc == 1 and "of work" in err and not out.exists()
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--force")
+    assert rc == 0 and out.exists()
+
+
+def test_every_engine_declares_what_a_motif_costs():
+    """The work guard's figures come from benchmarks/work_per_motif.py; an engine without one would
+    be guessed at."""
+    from svgtile.engines import ENGINES
+
+    for name, engine in ENGINES.items():
+        assert 0 < getattr(engine, "seconds_per_motif", 0) < 1, name
+    assert 0 < ENGINES["optimize"].refine_seconds_per_motif < 1

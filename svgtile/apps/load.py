@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from functools import lru_cache
 
 from svgtile.analysis.crowding import check_crowding
@@ -21,6 +21,10 @@ from svgtile.svg.reader import parse_exemplar, read_exemplar
 MAX_MOTIFS = 2_000_000
 #: Refused even when forced: no machine holds this many motifs (about 1 kB each) in memory.
 HARD_MAX_MOTIFS = 1e9
+#: Above this estimated work (CPU seconds on the reference machine) synthesis is refused unless
+#: forced: a run the user did not expect to take minutes is stopped before it starts, with the
+#: estimate, instead of running away (issue 16).
+MAX_WORK_SECONDS = 60.0
 
 
 @lru_cache(maxsize=32)
@@ -94,3 +98,44 @@ def check_motif_count(exemplar: Exemplar, stats: Stats, region: Region, where: s
         raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs (limit {limit:,.0f})"
                              + "".join(f"; {h}" for h in hints))  # fmt: skip
     return estimate
+
+
+def check_work(estimate: float, engines: str | Sequence[str], where: str, *, refine: int = 0, workers: int = 1,
+               limit: float = MAX_WORK_SECONDS, forceable: bool = False) -> float:  # fmt: skip
+    """Refuse a run whose estimated work is over ``limit`` seconds.
+
+    The work is ``estimate`` motifs (:func:`check_motif_count`) times the engine's declared
+    :func:`~svgtile.engines.base.seconds_per_motif` (summed over ``engines`` when a command runs
+    several), plus ``refine`` iterations of the optimize solver's per-motif cost, shared among
+    ``workers`` for a tiled run.  The declarations are CPU seconds on the machine of
+    ``benchmarks/work_per_motif.py`` (2 cores, see benchmarks/README.md), rounded up: a faster
+    machine finishes sooner; the refusal is about minutes, not seconds.
+
+    Parameters
+    ----------
+    estimate : motifs the run will place
+    engines : the engine's name (resolved, not ``auto``), or the names of each engine run
+    where : names the region in the message (``--size 800x600``)
+    limit : ``math.inf`` with ``--force``
+    forceable : the caller has ``--force``: say so
+
+    Returns
+    -------
+    The estimated seconds.
+    """
+    from svgtile.engines import get_engine
+    from svgtile.engines.base import seconds_per_motif
+
+    names = (engines,) if isinstance(engines, str) else tuple(engines)
+    per_motif = sum(seconds_per_motif(get_engine(n)) for n in names)
+    if refine:
+        per_motif += refine * len(names) * float(get_engine("optimize").refine_seconds_per_motif)
+    seconds = estimate * per_motif / max(1, workers)
+    if seconds > limit:
+        hints = ["use --force to run anyway" if forceable else "", f"choose a smaller {where.split()[0]}"]
+        about = f"{seconds / 60:.0f} min" if seconds >= 120 else f"{seconds:.0f} s"
+        who = f"engine {names[0]!r}" if len(names) == 1 else "engines " + ", ".join(map(repr, names))
+        extra = f" with --refine {refine}" if refine else ""
+        raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs: about {about} of work for {who}{extra} "
+                             f"(limit {limit:.0f} s)" + "".join(f"; {h}" for h in hints if h))  # fmt: skip
+    return seconds

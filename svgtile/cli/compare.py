@@ -10,7 +10,7 @@ import click
 
 from svgtile.apps.compare import compare as run_compare
 from svgtile.apps.compare import format_table
-from svgtile.apps.load import MAX_MOTIFS, check_motif_count
+from svgtile.apps.load import MAX_MOTIFS, check_motif_count, check_work
 from svgtile.apps.preview import contact_sheet, render_png, require_renderer
 from svgtile.cli.common import Stderr, json_safe, load, parse_size, warn_if_few
 from svgtile.core.region import Region
@@ -45,7 +45,8 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         check_paths([exemplar], planned)  # before any of them is written
     ex, stats = load(exemplar)
     region = Region.rectangle(width, height)
-    check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them, and the scoring
+    estimate = check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them
+    check_work(estimate, names, f"--size {size}")
     results = run_compare(ex, stats, region, engines=names, seed=seed)
     Stderr.clear()
     warn_if_few(min(r.score.motifs for r in results), f"--size {size}")

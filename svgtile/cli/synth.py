@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps.gisout import check_style, write_placements, write_style
-from svgtile.apps.load import MAX_MOTIFS, check_motif_count
+from svgtile.apps.load import MAX_MOTIFS, MAX_WORK_SECONDS, check_motif_count, check_work
 from svgtile.apps.mapfill import default_jobs
 from svgtile.apps.mapread import read_controls, synth_region
 from svgtile.apps.preview import render_png
@@ -67,7 +67,8 @@ from svgtile.svg.writer import fmt, result_document
               help="Then improve any engine's texture by N iterations of optimisation (Ma, Wei & Tong 2011): every motif's surroundings pulled towards the exemplar's.")
 @click.option("--seed", type=click.IntRange(min=0), default=None,
               help="Random seed; the same exemplar, options and seed give the same file. Without it a seed is chosen and printed.")
-@click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,}.")
+@click.option("--force", is_flag=True, help=f"Run even when the estimated motif count exceeds {MAX_MOTIFS:,} or the "
+              f"estimated work {MAX_WORK_SECONDS:.0f} s.")
 @click.option("--scheduler", default=None, metavar="local|processes|ADDRESS",
               help="Run the region as tiles on Dask: local = Dask's local scheduler, processes = a LocalCluster of --jobs workers, or a cluster's address (tcp://host:8786). The output is the same as without it.")
 @click.option("--tile-size", type=click.FloatRange(min=0, min_open=True), default=None, metavar="SIZE",
@@ -102,9 +103,12 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     if with_style:
         check_style(output, protect=inputs)
     ex, stats = load(exemplar, as_tile=as_tile)
-    check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
+    estimate = check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if engine == AUTO:
         engine, params = auto_params(ex, stats, params, controls.given())
+    tiled = scheduler is not None or tile_size is not None
+    check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if tiled else 1,
+               limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True)  # fmt: skip
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)

@@ -19,7 +19,11 @@ An engine is an object with
 * ``reach(exemplar, params) -> float`` — how far, in user units, what happens outside a tile can
   change the motifs inside it; a tiled run (one tile synthesized with a halo this wide, keeping
   only the motifs anchored in the tile) equals the whole run exactly when the reach is finite.
-  ``math.inf`` says the engine is not tile-exact and must be run whole.
+  ``math.inf`` says the engine is not tile-exact and must be run whole;
+* ``seconds_per_motif`` (optional) — what one motif costs ``svgtile synth`` end to end with this
+  engine (CPU seconds on the reference machine of ``benchmarks/work_per_motif.py``, rounded up):
+  the work guard (:func:`svgtile.apps.load.check_work`) refuses a run estimated at over a minute
+  unless forced, rather than let it run away.
 
 :func:`svgtile.engines.synthesize` does what every engine shares: it checks the parameters (a
 parameter the engine does not have is an error), draws the run's world-anchored key from the
@@ -196,6 +200,15 @@ class Engine(Protocol):
     def place(self, ctx: Context, params: EngineParams) -> Arrangement: ...
 
     def reach(self, exemplar: Exemplar, params: EngineParams) -> float: ...
+
+
+#: What an engine that does not declare ``seconds_per_motif`` is taken to cost per motif.
+DEFAULT_SECONDS_PER_MOTIF = 1e-4
+
+
+def seconds_per_motif(engine: Engine) -> float:
+    """CPU seconds per motif of a run with ``engine`` (its declaration, else a cautious default)."""
+    return float(getattr(engine, "seconds_per_motif", DEFAULT_SECONDS_PER_MOTIF))
 
 
 def honoured(engine: Engine) -> frozenset[str]:

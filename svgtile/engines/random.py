@@ -110,6 +110,8 @@ class RandomEngine:
     """The Random strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "random"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 2.5e-5
     summary = ("motifs scattered by dart throwing to the exemplar's statistics, a baseline for svgtile score "
                "and compare: no repetition and only the structure the distance rule imposes")
     Params = RandomParams

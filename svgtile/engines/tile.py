@@ -61,6 +61,8 @@ class TileEngine:
     """The Tiling strategy behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "tile"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 5e-6
     summary = ("plain repeated copies of the exemplar's bounding box, a baseline for svgtile score and "
                "compare: the most faithful structure and obvious repetition (a round exemplar leaves holes "
                "between its copies)")

@@ -91,6 +91,8 @@ class CellularEngine:
     """Cellular textures behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "cellular"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 1.5e-3
     summary = ("cells in courses — bricks, blocks, random ashlar, rhombs, bedding lines, motifs set in cells — "
                "turning the unit's corners and following its edges (Legakis et al. 2001)")
     Params = CellularParams

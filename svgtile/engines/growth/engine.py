@@ -113,6 +113,8 @@ class GrowthEngine:
     """Local growth (ijiri2008) behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "growth"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 1.5e-3
     summary = ("motifs grown one by one from the exemplar's neighbourhoods (Ijiri et al. 2008): keeps rows, "
                "lattices and bricks; honours --flow, --barrier and --grow-within")
     Params = GrowthParams

@@ -143,6 +143,8 @@ class PatchEngine:
     """The patch engine behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
     name = "patch"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 2.5e-5
     summary = "copies of the exemplar blended without seams (AlMeraj et al. 2013)"
     Params = PatchParams
 
