@@ -87,8 +87,9 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
     turn = local_turn(flow, arr.xy)
     match = None
-    known = conflict_codes(arr, exemplar, stats)[0]  # none for an engine's output
-    lax = flawed(arr, exemplar, stats)
+    start = conflict_codes(arr, exemplar, stats)
+    known = start[0]  # none for an engine's output
+    lax = flawed(arr, exemplar, stats, start)
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
         hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
