@@ -57,14 +57,16 @@ def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats,
 
 
 def _local_update(arr: Arrangement, changed: np.ndarray, codes: np.ndarray, overlap: np.ndarray,
-                  exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+                  exemplar: Exemplar, stats: Stats, paths: tuple[cKDTree, float]) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The conflicts of ``arr`` from those before ``changed`` (n,) bool elements changed.
 
     Only pairs with a changed end are tested again: each changed element against the elements
     whose bounding discs come within its distance rule (:func:`svgtile.core.footprint.
     near_pairs`' bound), by :func:`svgtile.core.conflicts.pair_conflicts`, the tests of
     :func:`svgtile.core.conflicts.find_conflicts` — pairs of two unchanged neighbours of a
-    changed element are not tested again.
+    changed element are not tested again.  ``paths`` is a k-d tree of points every element
+    stays within a distance of (the middles of the segments from the previous to the new
+    positions, and the largest half-length plus rounding), built once per :func:`settle`.
     """
     n = len(arr)
     protos = exemplar.prototypes
@@ -72,9 +74,11 @@ def _local_update(arr: Arrangement, changed: np.ndarray, codes: np.ndarray, over
     eps = slack(protos)
     idx = np.flatnonzero(changed)
     reach = 2 * float(radius.max()) + float(stats.distance.max()) + eps
-    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(cKDTree(arr.xy), reach, output_type="ndarray")
+    tree, spread = paths
+    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(tree, reach + spread, output_type="ndarray")
     i, j = idx[pairs["i"]], pairs["j"].astype(np.int64)
-    near = (i != j) & (pairs["v"] - radius[i] - radius[j] < stats.distance[arr.kind[i], arr.kind[j]] + eps)
+    centre = np.hypot(*(arr.xy[i] - arr.xy[j]).T)
+    near = (i != j) & (centre - radius[i] - radius[j] < stats.distance[arr.kind[i], arr.kind[j]] + eps)
     # a pair of two changed elements comes twice: keep it once
     i, j = i[near], j[near]
     once = ~changed[j] | (i < j)
@@ -108,6 +112,9 @@ def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats
     n = len(new)
     cur = new
     codes, overlap = conflict_codes(cur, exemplar, stats)
+    # every position a relaxation round gives lies on the segment from prev to new (rounded)
+    half = np.hypot(*(new.xy - prev.xy).T) / 2
+    paths = cKDTree((prev.xy + new.xy) / 2), float(half.max(initial=0.0)) + 10.0**-DECIMALS
     dropped = np.zeros(n, dtype=bool)
     changed = np.ones(n, dtype=bool)
     step = 0
@@ -131,5 +138,5 @@ def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats
             kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
         cur = Arrangement(kind, xy, angle, scale)
         changed = bad
-        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats)
+        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats, paths)
         step += 1
