@@ -79,7 +79,9 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     and the mean energy per element at each iteration's search (squared spacings)
     """
     energies: list[float] = []
-    if iterations <= 0 or len(arr) < 2 or len(exemplar.motifs) < 2:
+    # one motif has a neighbourhood only as a repeating tile (its copies are its neighbours)
+    lone = len(exemplar.motifs) < 2 and getattr(exemplar, "period", None) is None
+    if iterations <= 0 or len(arr) < 2 or len(exemplar.motifs) == 0 or lone:
         return arr, energies
     s = settings
     # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
