@@ -101,6 +101,18 @@ def _conflicts(arr, protos, distance, geoms, group, junction) -> Conflicts:
     eps = slack(protos)
     widest = distance if junction is None else junction
     i, j = near_pairs(arr.xy, motif_radius(arr, protos), widest + eps, arr.kind)
+    return pair_conflicts(arr, protos, distance, i, j, geoms, group, junction)
+
+
+def pair_conflicts(arr: Arrangement, protos: list[Prototype], distance: np.ndarray, i: np.ndarray,
+                   j: np.ndarray, geoms: np.ndarray | None = None, group: np.ndarray | None = None,
+                   junction: np.ndarray | None = None) -> Conflicts:  # fmt: skip
+    """The conflicts among the candidate pairs ``(i, j)`` (p,) int of ``arr`` (distinct motifs,
+    each pair once): :func:`find_conflicts`'s tests on given pairs, e.g. only those that touch
+    the motifs that moved (the optimize engine's non-penetration step).  ``junction`` is
+    already the larger of itself and ``distance``."""
+    eps = slack(protos)
+    i, j = np.asarray(i, np.int64).copy(), np.asarray(j, np.int64).copy()
     swap = i > j
     i[swap], j[swap] = j[swap], i[swap]
     # pairs whose inscribed discs overlap surely share area: no footprint needed

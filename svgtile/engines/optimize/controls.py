@@ -21,7 +21,7 @@ from scipy.spatial import cKDTree
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import find_conflicts, slack
+from svgtile.core.conflicts import find_conflicts, pair_conflicts, slack
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.footprint import motif_radius
@@ -45,32 +45,46 @@ def conflict_codes(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> tuple[
     return c.i.astype(np.int64) * len(arr) + c.j, c.overlap
 
 
-def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats) -> np.ndarray:
+def flawed(arr: Arrangement, exemplar: Exemplar, stats: Stats,
+           conflicts: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:  # fmt: skip
     """(n,) bool: elements in a distance-rule violation (not an overlap) — a start that is not
-    an engine's output, such as a jittered lattice, whose elements must pass each other by."""
-    codes, overlap = conflict_codes(arr, exemplar, stats)
+    an engine's output, such as a jittered lattice, whose elements must pass each other by.
+    ``conflicts`` is :func:`conflict_codes` of ``arr`` if already known."""
+    codes, overlap = conflicts or conflict_codes(arr, exemplar, stats)
     out = np.zeros(len(arr), dtype=bool)
     out[codes[~overlap] // len(arr)] = out[codes[~overlap] % len(arr)] = True
     return out
 
 
 def _local_update(arr: Arrangement, changed: np.ndarray, codes: np.ndarray, overlap: np.ndarray,
-                  exemplar: Exemplar, stats: Stats) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
-    """The conflicts of ``arr`` from those before ``changed`` (n,) bool elements changed: pairs
-    touching a changed element are searched again among it and its neighbours only."""
+                  exemplar: Exemplar, stats: Stats, paths: tuple[cKDTree, float]) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """The conflicts of ``arr`` from those before ``changed`` (n,) bool elements changed.
+
+    Only pairs with a changed end are tested again: each changed element against the elements
+    whose bounding discs come within its distance rule (:func:`svgtile.core.footprint.
+    near_pairs`' bound), by :func:`svgtile.core.conflicts.pair_conflicts`, the tests of
+    :func:`svgtile.core.conflicts.find_conflicts` — pairs of two unchanged neighbours of a
+    changed element are not tested again.  ``paths`` is a k-d tree of points every element
+    stays within a distance of (the middles of the segments from the previous to the new
+    positions, and the largest half-length plus rounding), built once per :func:`settle`.
+    """
     n = len(arr)
     protos = exemplar.prototypes
-    reach = 2 * float(motif_radius(arr, protos).max()) + float(stats.distance.max()) + 2 * slack(protos)
+    radius = motif_radius(arr, protos)
+    eps = slack(protos)
     idx = np.flatnonzero(changed)
-    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(cKDTree(arr.xy), reach, output_type="ndarray")
-    sub = np.unique(np.r_[idx, pairs["j"].astype(np.int64)])
-    c = find_conflicts(arr.take(sub), protos, stats.distance)
-    i, j = sub[c.i], sub[c.j]
-    touch = changed[i] | changed[j]
-    lo, hi = np.minimum(i, j)[touch], np.maximum(i, j)[touch]
-    old_i, old_j = codes // n, codes % n
-    keep = ~(changed[old_i] | changed[old_j])
-    return np.r_[codes[keep], lo * n + hi], np.r_[overlap[keep], c.overlap[touch]]
+    reach = 2 * float(radius.max()) + float(stats.distance.max()) + eps
+    tree, spread = paths
+    pairs = cKDTree(arr.xy[idx]).sparse_distance_matrix(tree, reach + spread, output_type="ndarray")
+    i, j = idx[pairs["i"]], pairs["j"].astype(np.int64)
+    centre = np.hypot(*(arr.xy[i] - arr.xy[j]).T)
+    near = (i != j) & (centre - radius[i] - radius[j] < stats.distance[arr.kind[i], arr.kind[j]] + eps)
+    # a pair of two changed elements comes twice: keep it once
+    i, j = i[near], j[near]
+    once = ~changed[j] | (i < j)
+    c = pair_conflicts(arr, protos, stats.distance, i[once], j[once])
+    keep = ~(changed[codes // n] | changed[codes % n])
+    return np.r_[codes[keep], c.i * n + c.j], np.r_[overlap[keep], c.overlap]
 
 
 def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
@@ -98,6 +112,9 @@ def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats
     n = len(new)
     cur = new
     codes, overlap = conflict_codes(cur, exemplar, stats)
+    # every position a relaxation round gives lies on the segment from prev to new (rounded)
+    half = np.hypot(*(new.xy - prev.xy).T) / 2
+    paths = cKDTree((prev.xy + new.xy) / 2), float(half.max(initial=0.0)) + 10.0**-DECIMALS
     dropped = np.zeros(n, dtype=bool)
     changed = np.ones(n, dtype=bool)
     step = 0
@@ -121,5 +138,5 @@ def settle(prev: Arrangement, new: Arrangement, exemplar: Exemplar, stats: Stats
             kind[bad], xy[bad], angle[bad], scale[bad] = prev.kind[bad], prev.xy[bad], prev.angle[bad], prev.scale[bad]
         cur = Arrangement(kind, xy, angle, scale)
         changed = bad
-        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats)
+        codes, overlap = _local_update(cur, changed, codes, overlap, exemplar, stats, paths)
         step += 1

@@ -43,7 +43,7 @@ class OptimizeParams(EngineParams):
     anchor, sweeps, similar, alpha : solver settings (:class:`.solver.Settings`)
     """
 
-    passes: int = param(5, "Optimisation iterations (search, then assignment) after the patch-copy start.",
+    passes: int = param(10, "Optimisation iterations (search, then assignment) after the patch-copy start.",
                         interval=(0, 100))
     neighbourhood: int = param(6, "Neighbours each motif's surroundings are compared by (2 to 24; 6 = one ring).",
                                interval=(2, 24))

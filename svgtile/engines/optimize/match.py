@@ -29,26 +29,34 @@ def _pair(po, ko, pe, kee, alpha, slots, d, used, rowmin, rowarg, start=0.0, bou
     in the inner loop)."""
     k = po.shape[0]
     ke = pe.shape[0]
+    # each row's smallest distance to a free exemplar neighbour: a pass picks the smallest row
+    # minimum (ties: lowest row, then lowest column, as a scan of the whole matrix would) and
+    # only rows whose minimum was the taken column look again.  Every present output neighbour
+    # costs at least its row minimum or, unpaired, |p̂|² + α: their sum bounds the cost from
+    # below, so a candidate whose bound passes ``bound`` is dropped before any pairing (the
+    # margin keeps a candidate the rounding of the two sums could wrongly drop)
+    lower = start
+    limit = bound + 1e-9 * (1.0 + abs(bound))
     for a in range(k):
         slots[a] = -1
+        m = np.inf
+        arg = -1
         for b in range(ke):
             dx = po[a, 0] - pe[b, 0]
             dy = po[a, 1] - pe[b, 1]
             v = dx * dx + dy * dy
-            d[a, b] = v if v == v else np.inf  # NaN (an absent neighbour) never pairs
-    # each row's smallest distance to a free exemplar neighbour: a pass picks the smallest row
-    # minimum (ties: lowest row, then lowest column, as a scan of the whole matrix would) and
-    # only rows whose minimum was the taken column look again
-    used[:] = False
-    for a in range(k):
-        m = np.inf
-        arg = -1
-        for b in range(ke):
-            if d[a, b] < m:
-                m = d[a, b]
+            v = v if v == v else np.inf  # NaN (an absent neighbour) never pairs
+            d[a, b] = v
+            if v < m:
+                m = v
                 arg = b
         rowmin[a] = m
         rowarg[a] = arg
+        if po[a, 0] == po[a, 0]:
+            lower += min(m, po[a, 0] * po[a, 0] + po[a, 1] * po[a, 1] + alpha)
+            if lower > limit:
+                return np.inf
+    used[:] = False
     cost = start
     for _ in range(k):
         best = np.inf
@@ -126,14 +134,18 @@ def pairings(rel_o, kind_o, chosen, rel_e, kind_e, alpha):  # pragma: no cover -
 def best_candidates(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alpha):  # pragma: no cover
     """The best of each element's candidates by eq. (1): (n,) index into ``cand``'s row (the first
     of equal costs) and (n,) its cost.  Arguments as :func:`candidate_costs`; a candidate met
-    again in a row is skipped, and one whose partial cost reaches the best so far is abandoned."""
+    again in a row is skipped, and one whose partial cost reaches the best so far is abandoned
+    (branch and bound: :func:`_pair`).
+
+    A sequential loop (the greedy pairing is), so numba; the elements are independent, but a
+    ``prange`` over them measured no faster on the shared 2-core machine."""
     n, c = cand.shape
     best = np.empty(n, dtype=np.int64)
     cost = np.empty(n)
     k, ke = rel_o.shape[1], rel_e.shape[1]
+    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
     for i in range(n):
-        slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
-        rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
         bi = 0
         bc = np.inf
         for j in range(c):

@@ -79,7 +79,9 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     and the mean energy per element at each iteration's search (squared spacings)
     """
     energies: list[float] = []
-    if iterations <= 0 or len(arr) < 2 or len(exemplar.motifs) < 2:
+    # one motif has a neighbourhood only as a repeating tile (its copies are its neighbours)
+    lone = len(exemplar.motifs) < 2 and getattr(exemplar, "period", None) is None
+    if iterations <= 0 or len(arr) < 2 or len(exemplar.motifs) == 0 or lone:
         return arr, energies
     s = settings
     # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
@@ -87,8 +89,9 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
     turn = local_turn(flow, arr.xy)
     match = None
-    known = conflict_codes(arr, exemplar, stats)[0]  # none for an engine's output
-    lax = flawed(arr, exemplar, stats)
+    start = conflict_codes(arr, exemplar, stats)
+    known = start[0]  # none for an engine's output
+    lax = flawed(arr, exemplar, stats, start)
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
         hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
