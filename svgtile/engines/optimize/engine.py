@@ -73,7 +73,7 @@ class OptimizeEngine:
 
     name = "optimize"
     #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
-    seconds_per_motif = 1.5e-4
+    seconds_per_motif = 3e-4
     #: … and of each iteration of ``--refine`` on another engine's texture
     refine_seconds_per_motif = 1e-4
     summary = ("copies of the exemplar, then every motif's neighbourhood pulled towards the exemplar's "
