@@ -135,21 +135,17 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     exy[:f], ekind[:f], esub[:f] = fixed_xy, fixed_kind, fixed_sub
     enext = np.full(ecap, -1, np.int64)
     ehead = np.full(int(egrid[3] * egrid[4]), -1, np.int64)
-    for i in kept:
-        b = kernel.bucket(egrid, exy[i, 0], exy[i, 1])
-        enext[i], ehead[b] = ehead[b], i
+    kernel.link(egrid, ehead, enext, exy, kept)
     state = [exy, ekind, esub, np.zeros(ecap, np.int64), np.zeros(ecap), enext, ehead, egrid,
              np.zeros((scap, 2)), np.zeros(scap, np.int64), np.zeros(scap, np.bool_), np.zeros(scap),
              np.full(scap, -1, np.int64), np.full(len(ehead), -1, np.int64),
              np.full(int(wgrid[3] * wgrid[4]), -1, np.int64), np.full(scap, -1, np.int64), wgrid,
              np.zeros(scap), np.zeros(scap, np.int64)]  # fmt: skip
-    ns = hn = 0
     seeds = np.r_[np.reshape(start, (1, 2)), more]
-    kinds = np.r_[int(rings.kind[start_ring]) if start_ring >= 0 else -1, more_kind]
-    for q, ((px, py), kk) in enumerate(zip(seeds, kinds, strict=True)):
-        key = 0.0 if q == 0 else float(np.hypot(px - start[0], py - start[1]))
-        ns = kernel._add_seed(tuple(state), ns, float(px), float(py), int(kk), key, levels or q == 0)
-        hn = kernel._heap_push(state[17], state[18], hn, key, q)
+    kinds = np.r_[int(rings.kind[start_ring]) if start_ring >= 0 else -1, more_kind].astype(np.int64)
+    keys = np.r_[0.0, np.hypot(more[:, 0] - start[0], more[:, 1] - start[1])]
+    ns = len(seeds)
+    hn = kernel.plant(tuple(state), seeds, kinds, keys, levels)
     mode = ROTATION_MODES[rotation]
     ivars = np.array([f, ns, hn, start_ring, f, limit, relax_every if relax is not None else 0, mode, ALTERNATIVES,
                       levels, int(priority.max()) if len(priority) else 0, M], np.int64)  # fmt: skip

@@ -247,6 +247,16 @@ def bucket(grid, x, y):  # pragma: no cover
 
 
 @numba.njit(cache=True)
+def link(grid, head, nxt, xy, ids):  # pragma: no cover
+    """Puts the points ``xy[ids]`` into the buckets of ``grid`` (``head``: each bucket's last id,
+    ``nxt``: the id before it in its bucket)."""
+    for i in ids:
+        b = bucket(grid, xy[i, 0], xy[i, 1])
+        nxt[i] = head[b]
+        head[b] = i
+
+
+@numba.njit(cache=True)
 def _near(grid, head, nxt, x, y, out):  # pragma: no cover
     """The ids in the 3 × 3 buckets round ``(x, y)``, written to ``out``; their number returned."""
     size = grid[0]
@@ -425,6 +435,18 @@ def run(state, ivars, fvars, rel, size, rkind, relem, nkind, nsub, priority, cen
             return RELAX
     ivars[0], ivars[1], ivars[2] = n, ns, hn
     return DONE if hn == 0 or n - f >= limit else FULL
+
+
+@numba.njit(cache=True)
+def plant(state, xy, kind, key, levels):  # pragma: no cover
+    """Adds the initial seeds ``xy`` ((s, 2) float; kinds (s,) int, −1 any; queue keys (s,)
+    float) to the empty seed arrays, grids and heap; returns the heap size.  The first always
+    enters the priority grid (as in the numpy version), the others when ``levels``."""
+    hn = 0
+    for q in range(xy.shape[0]):
+        _add_seed(state, q, xy[q, 0], xy[q, 1], kind[q], key[q], levels or q == 0)
+        hn = _heap_push(state[17], state[18], hn, key[q], q)
+    return hn
 
 
 @numba.njit(cache=True)
