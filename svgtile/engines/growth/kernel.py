@@ -132,10 +132,14 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
         for i in range(got):
             out_r[i], out_k[i], out_theta[i], out_err[i] = cand[by[i]], 0, theta0, 0.0
         return got
-    # the best `top` pairs so far, sorted by (error, flat index): a stable selection
+    # the best `top` pairs so far, sorted by (error, flat index): a stable selection.  A pair is
+    # abandoned as soon as a lower bound of its error (the kind terms, then the distances summed so
+    # far) exceeds the worst kept by more than rounding could account for: it could not be kept.
     got = 0
     px = np.empty(t)
     py = np.empty(t)
+    prune = w1 >= 0 and w2 >= 0 and w3 >= 0
+    co0, si0 = np.cos(fa if mode == FLOW else 0.0), np.sin(fa if mode == FLOW else 0.0)
     for i in range(c):
         r = cand[i]
         m = size[r]
@@ -143,32 +147,42 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
         for k in range(M):
             if k >= m:
                 continue  # np.inf in the numpy version: never chosen
+            bad = 0
+            same = 0
+            for j in range(t):
+                bad += nkind[r, (k + j) % m] != tkind[j]
+                same += nsub[r, (k + j) % m] == tsub[j]
+            base = (w2 * bad if w2 else 0.0) + (w3 * same if w3 else 0.0)
+            bound = out_err[got - 1] * (1.0 + 1e-12) + 1e-300 if prune and got == top else np.inf
+            if base > bound:
+                continue
             if mode == FIT:
                 for j in range(t):
                     s = (k + j) % m
                     px[j] = rel[r, s, 0] * tar[j, 0] + rel[r, s, 1] * tar[j, 1]
                     py[j] = rel[r, s, 0] * tar[j, 1] - rel[r, s, 1] * tar[j, 0]
                 theta = np.arctan2(_sum(py, t), _sum(px, t))
-            elif mode == FLOW:
-                theta = fa
+                co, si = np.cos(theta), np.sin(theta)
             else:
-                theta = 0.0
-            co, si = np.cos(theta), np.sin(theta)
+                theta = fa if mode == FLOW else 0.0
+                co, si = co0, si0
+            run = 0.0
+            over = False
             for j in range(t):
                 s = (k + j) % m
                 rx = co * rel[r, s, 0] - si * rel[r, s, 1]
                 ry = si * rel[r, s, 0] + co * rel[r, s, 1]
                 px[j] = np.hypot(rx - tar[j, 0], ry - tar[j, 1])
+                run += px[j]
+                if w1 * run / mean_length + base > bound:
+                    over = True
+                    break
+            if over:
+                continue
             err = w1 * _sum(px, t) / mean_length
             if w2:
-                bad = 0
-                for j in range(t):
-                    bad += nkind[r, (k + j) % m] != tkind[j]
                 err = err + w2 * bad
             if w3:
-                same = 0
-                for j in range(t):
-                    same += nsub[r, (k + j) % m] == tsub[j]
                 err = err + w3 * same
             err = err + tiny
             if got == top and err >= out_err[got - 1]:
