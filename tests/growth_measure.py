@@ -46,9 +46,9 @@ class Figures:
     density_ratio: float | None
 
 
-def measure(path: Path, *, periods: int = 4, seed: int = 1, **params) -> Figures:
-    """Figures of the growth engine on ``path`` (imported as a tile) over ``periods`` × ``periods``
-    tile periods (at least 200 user units a side)."""
+def measure(path: Path, *, periods: int = 4, seed: int = 1, engine: str = "growth", **params) -> Figures:
+    """Figures of ``engine`` (the growth engine unless told) with ``params`` on ``path`` (imported
+    as a tile) over ``periods`` × ``periods`` tile periods (at least 200 user units a side)."""
     ex, st = load_exemplar(str(path), as_tile=True, warn=lambda m: None)
     w, h = ex.period
     n = max(periods, int(np.ceil(200 / min(w, h))))
@@ -57,14 +57,14 @@ def measure(path: Path, *, periods: int = 4, seed: int = 1, **params) -> Figures
     s = spacing(st)
     es = {}
     sc = None
-    for engine in ("growth", "tile", "random"):
-        arr = synthesize(ex, region, engine, seed=seed, stats=st, boundary="centroid",
-                         params=params if engine == "growth" else None).arrangement  # fmt: skip
+    for name in (engine, "tile", "random"):
+        arr = synthesize(ex, region, name, seed=seed, stats=st, boundary="centroid",
+                         params=params if name == engine else None).arrangement  # fmt: skip
         centres = np.flatnonzero(shapely.contains_xy(inner, arr.xy[:, 0], arr.xy[:, 1]))
-        es[engine] = neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=s, period=ex.period,
+        es[name] = neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=s, period=ex.period,
                                             centres=centres, sample=1500, rng=np.random.default_rng(0))  # fmt: skip
-        if engine == "growth":
+        if name == engine:
             sc, count = score(ex, st, arr, region), len(arr)
-    return Figures(path.stem, regularity(reference_rings(ex)), count, likeness(es["growth"], es["tile"], es["random"]),
-                   es["growth"], es["tile"], es["random"], sc.repetition, sc.overlaps_total, sc.violators_total,
+    return Figures(path.stem, regularity(reference_rings(ex)), count, likeness(es[engine], es["tile"], es["random"]),
+                   es[engine], es["tile"], es["random"], sc.repetition, sc.overlaps_total, sc.violators_total,
                    sc.density_ratio)  # fmt: skip

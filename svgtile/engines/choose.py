@@ -68,6 +68,13 @@ def _steps(o: Order) -> str:
 #: shifted by a step to break the copy period) measured repetition 0.30 against the defaults'
 #: 0.08 at 400 × 300, seed 1 — its hand-placed rows repeat their jitter at the copy step.  A
 #: growth engine, which grows rows rather than copying them, is the rule to add for them.
+#:
+#: Repeating tiles with rows or a lattice stay with patch on the period (``tile-order``), not the
+#: growth engine: on the 19 regular FGDC/osm-carto tiles (benchmarks/README.md, "Growth engine
+#: after the numba kernel", ``benchmarks/growth_vs_patch.py``) growth's likeness L and density
+#: ratio are at best equal to patch's (1.000 / 1.000) and lower on FGDC 619 (L 0.864, density
+#: 0.770) and 670 (density 0.665), and it is 10–100 times slower.  Growth becomes auto's choice
+#: for tiles when it is at least as good there (issue 13).
 RULES: tuple[Rule, ...] = (
     Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
          lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "

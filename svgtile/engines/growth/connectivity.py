@@ -27,11 +27,12 @@ import numpy as np
 from scipy.spatial import Delaunay
 
 from svgtile.core.exemplar import Exemplar
+from svgtile.engines.growth.kernel import GABRIEL_SLACK, ring_order
+
+__all__ = ["GABRIEL_SLACK", "Rings", "is_regular", "reference_rings", "regularity", "ring_of"]
 
 #: A triangle with an angle above this is skewed (§4: 2π/3).
 SKEW = 2.0 * np.pi / 3.0
-#: The Gabriel circle is enlarged by this factor, so points exactly on it (a lattice) shadow.
-GABRIEL_SLACK = 1.05
 
 
 @dataclass(frozen=True, eq=False)
@@ -196,22 +197,9 @@ def ring_of(xy: np.ndarray, centre: np.ndarray) -> np.ndarray:
     xy : (q, 2) float array, user units — the placed motifs near the seed
     centre : (2,) float array — the seed
     """
-    if not len(xy):
-        return np.zeros(0, np.int64)
-    rel = xy - centre
-    mid = rel / 2
-    r = np.hypot(rel[:, 0], rel[:, 1]) / 2 * GABRIEL_SLACK
-    d = np.hypot(rel[None, :, 0] - mid[:, None, 0], rel[None, :, 1] - mid[:, None, 1])  # (edge, other)
-    np.fill_diagonal(d, np.inf)
-    keep = np.flatnonzero(~(d < r[:, None]).any(1))
-    ang = np.arctan2(rel[keep, 1], rel[keep, 0])
-    order = keep[np.argsort(ang, kind="stable")]
-    if len(order) > 1:
-        a = np.sort(ang)
-        gaps = np.diff(np.r_[a, a[0] + 2 * np.pi])
-        first = (int(np.argmax(gaps)) + 1) % len(order)
-        order = np.roll(order, -first)
-    return order
+    rel = np.ascontiguousarray(np.asarray(xy, float).reshape(-1, 2) - centre)
+    out = np.empty(len(rel), np.int64)
+    return out[: ring_order(rel, out)]
 
 
 #: Two ring shapes are alike when, under some cyclic shift, every neighbour is within this many

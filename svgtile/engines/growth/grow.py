@@ -22,22 +22,24 @@ not stored: a seed's neighbours are found afresh among the placed motifs by the 
 Priorities (§5.1): a seed is grown only when no seed of a higher-priority kind is alive within
 5·l of it (l: the exemplar's mean edge length); until then it waits behind that seed.
 
-The loop is sequential by nature (each placement changes the next seed's neighbourhood); it is
-kept tight: an incremental bucket grid of placed elements and live seeds, a heap of seeds, and
-one vectorised :func:`~svgtile.engines.growth.matching.best_match` per seed.
+The loop is sequential by nature (each placement changes the next seed's neighbourhood), so it
+runs compiled (:func:`svgtile.engines.growth.kernel.run`): a heap of seeds, bucket grids of placed
+elements and live seeds as linked lists in arrays, and the matching of eq. (1)–(4) as one loop
+over (reference, shift) pairs.  This module sets up its arrays and serves its requests (more
+room, a relaxation).
 """
 
 from __future__ import annotations
 
-import heapq
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from svgtile.engines.growth.connectivity import Rings, ring_of
-from svgtile.engines.growth.matching import Weights, best_match
+from svgtile.engines.growth import kernel
+from svgtile.engines.growth.connectivity import Rings
+from svgtile.engines.growth.matching import ROTATION_MODES, Weights
 
 #: A seed whose best match collides tries the next best, up to this many matches in all.
 ALTERNATIVES = 4
@@ -59,32 +61,26 @@ class Grown:
     theta: np.ndarray
 
 
-class _Buckets:
-    """An incremental grid of points: ``add`` one, ``near`` returns the ids in the 3 × 3 buckets."""
+def _grid(bounds: tuple[float, float, float, float], size: float) -> np.ndarray:
+    """A bucket grid ``(size, a0, b0, na, nb)`` over ``bounds`` grown by two buckets: bucket
+    ``(x // size, y // size)`` as in a grid anchored at the world origin."""
+    x0, y0, x1, y1 = bounds
+    a0, b0 = int(x0 // size) - 2, int(y0 // size) - 2
+    return np.array([size, a0, b0, int(x1 // size) + 3 - a0, int(y1 // size) + 3 - b0], float)
 
-    def __init__(self, size: float) -> None:
-        self.size = size
-        self.cells: dict[tuple[int, int], list[int]] = {}
 
-    def add(self, i: int, x: float, y: float) -> None:
-        self.cells.setdefault((int(x // self.size), int(y // self.size)), []).append(i)
-
-    def near(self, x: float, y: float) -> list[int]:
-        a, b = int(x // self.size), int(y // self.size)
-        out: list[int] = []
-        get = self.cells.get
-        for da in (-1, 0, 1):
-            for db in (-1, 0, 1):
-                v = get((a + da, b + db))
-                if v:
-                    out.extend(v)
-        return out
+def _rings_of(piece: shapely.Geometry) -> tuple[np.ndarray, np.ndarray]:
+    """``piece``'s ring coordinates ((p, 2) float, each ring closed) and where each ring starts."""
+    parts = shapely.get_rings(piece)
+    coords = [shapely.get_coordinates(g) for g in parts]
+    return np.concatenate(coords), np.cumsum([0] + [len(c) for c in coords]).astype(np.int64)
 
 
 def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: int, *, fixed_xy: np.ndarray,
          more: np.ndarray | None = None, more_kind: np.ndarray | None = None,
-         fixed_kind: np.ndarray, fixed_sub: np.ndarray, rotation: str, flow_angle: Callable[[np.ndarray], np.ndarray],
-         priority: np.ndarray, weights: Weights, centre_gap: np.ndarray, noise: Callable[[int], np.ndarray],
+         fixed_kind: np.ndarray, fixed_sub: np.ndarray, rotation: str,
+         flow: tuple[np.ndarray, float, float, float] | None,
+         priority: np.ndarray, weights: Weights, centre_gap: np.ndarray, draws: np.random.Generator,
          relax: Callable[[np.ndarray, np.ndarray, np.ndarray, int], np.ndarray] | None = None,
          relax_every: int = 0, limit: int = 1_000_000) -> Grown:  # fmt: skip
     """Grow motifs over ``piece`` from one seed at ``start`` (§5.1, §5.4).
@@ -92,7 +88,7 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     Parameters
     ----------
     rings : the reference ring shapes (:func:`~svgtile.engines.growth.connectivity.reference_rings`)
-    piece : prepared shapely polygon — the only place seeds are made
+    piece : shapely polygon — the only place seeds are made
     start : (2,) float array, user units — the initial seed
     start_ring : the reference ring the initial seed becomes when it has no placed neighbour
         (so that a repeating tile grows on its own lattice); −1 to let the match decide
@@ -102,11 +98,12 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     fixed_xy, fixed_kind, fixed_sub : (f, 2), (f,), (f,) — motifs placed before (neighbouring
         cells): they are neighbours in matching and are never moved
     rotation : ``none``, ``fit`` or ``flow``
-    flow_angle : ``flow_angle(xy)`` → (q,) radians, the flow's direction at ``xy`` (``flow`` mode)
+    flow : ``(table, x0, y0, step)``: the flow's direction (radians) sampled on a grid, row i and
+        column j at ``(x0 + j·step, y0 + i·step)``, nearest sample (``flow`` mode; else None)
     priority : (k,) int array — each kind's priority, the higher grown first (§5.1)
     weights : eq. (2)'s weights
     centre_gap : (k, k) float array, user units — the closest two motifs of these kinds come
-    noise : ``noise(step)`` → (r,) floats in [0, 1): the tie-breaking draw of step ``step``
+    draws : the tie-breaking draws (one ``draws.random(r)`` per match, in growth order)
     relax, relax_every : ``relax(xy, ring, theta, first)`` → relaxed xy of the grown motifs, run
         every ``relax_every`` placements (0: never here)
     limit : at most this many motifs
@@ -118,117 +115,69 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     r_short = rings.short_length / 2
     reach = rings.radius * 1.1 + 1e-9
     wait = 5.0 * rings.mean_length
+    M = rings.rel.shape[1]
     f = len(fixed_xy)
-    cap = f + 64
-    exy = np.zeros((cap, 2))
-    ekind = np.zeros(cap, np.int64)
-    esub = np.zeros(cap, np.int64)
-    exy[:f], ekind[:f], esub[:f] = fixed_xy, fixed_kind, fixed_sub
-    n = f
-    ering: list[int] = []
-    etheta: list[float] = []
-    elements = _Buckets(reach)
-    for i in range(f):
-        elements.add(i, exy[i, 0], exy[i, 1])
-    seeds = _Buckets(reach)
-    waiting = _Buckets(wait)  # for the priority rule's 5·l neighbourhood
-    sxy: list[tuple[float, float]] = [(float(start[0]), float(start[1]))]
-    skind: list[int] = [int(rings.kind[start_ring]) if start_ring >= 0 else -1]
-    alive: list[bool] = [True]
-    skey: list[float] = [0.0]  # each seed's current place in the queue
-    seeds.add(0, *sxy[0])
-    waiting.add(0, *sxy[0])
-    heap: list[tuple[float, int]] = [(0.0, 0)]
-    top = int(priority.max()) if len(priority) else 0
+    more = np.zeros((0, 2)) if more is None else np.asarray(more, float)
+    more_kind = np.zeros(0, np.int64) if more_kind is None else np.asarray(more_kind, np.int64)
     levels = len(np.unique(priority)) > 1
-    if more is not None:
-        for (px, py), kk in zip(more, more_kind, strict=True):
-            q = len(sxy)
-            sxy.append((float(px), float(py)))
-            skind.append(int(kk))
-            alive.append(True)
-            skey.append(float(np.hypot(px - start[0], py - start[1])))
-            seeds.add(q, px, py)
-            if levels:
-                waiting.add(q, px, py)
-            heap.append((skey[q], q))
-        heapq.heapify(heap)
-    step = 0
-    while heap and n - f < limit:
-        d0, s = heapq.heappop(heap)
-        if not alive[s]:
-            continue
-        x, y = sxy[s]
-        want = skind[s]
-        if levels:
-            mine = top if want < 0 else int(priority[want])
-            ahead = [q for q in waiting.near(x, y) if alive[q] and q != s and skind[q] >= 0
-                     and priority[skind[q]] > mine and (sxy[q][0] - x) ** 2 + (sxy[q][1] - y) ** 2 < wait * wait]  # fmt: skip
-            if ahead:  # wait behind the farthest-queued higher-priority seed nearby
-                skey[s] = max(d0, max(skey[q] for q in ahead)) + 1e-9
-                heapq.heappush(heap, (skey[s], s))
-                continue
-        alive[s] = False
-        ids = np.fromiter(elements.near(x, y), np.int64)
-        rel = exy[ids] - (x, y)
-        dist = np.hypot(rel[:, 0], rel[:, 1])
-        close = dist < reach
-        ids, rel, dist = ids[close], rel[close], dist[close]
-        if len(ids) and dist.min() < r_short:
-            continue  # merged (Fig. 6b)
-        order = ring_of(rel, np.zeros(2))
-        tar = rel[order]
-        fa = float(flow_angle(np.array([[x, y]]))[0]) if rotation == "flow" else 0.0
-        if start_ring >= 0 and s == 0 and not len(tar):
-            options = [(start_ring, 0, fa, 0.0)]
+    egrid = _grid(piece.bounds, reach)
+    wgrid = _grid(piece.bounds, wait)
+    # fixed motifs beyond the grid are out of every seed's reach (seeds are made inside the piece)
+    x0, y0 = (egrid[1:3] - 1) * reach
+    x1, y1 = (egrid[1:3] + egrid[3:5] + 1) * reach
+    kept = np.flatnonzero((fixed_xy[:, 0] >= x0) & (fixed_xy[:, 0] <= x1) & (fixed_xy[:, 1] >= y0)
+                          & (fixed_xy[:, 1] <= y1))  # fmt: skip
+    ecap = f + 64
+    scap = 1 + len(more) + 64 + M
+    exy = np.zeros((ecap, 2))
+    ekind = np.zeros(ecap, np.int64)
+    esub = np.zeros(ecap, np.int64)
+    exy[:f], ekind[:f], esub[:f] = fixed_xy, fixed_kind, fixed_sub
+    enext = np.full(ecap, -1, np.int64)
+    ehead = np.full(int(egrid[3] * egrid[4]), -1, np.int64)
+    kernel.link(egrid, ehead, enext, exy, kept)
+    state = [exy, ekind, esub, np.zeros(ecap, np.int64), np.zeros(ecap), enext, ehead, egrid,
+             np.zeros((scap, 2)), np.zeros(scap, np.int64), np.zeros(scap, np.bool_), np.zeros(scap),
+             np.full(scap, -1, np.int64), np.full(len(ehead), -1, np.int64),
+             np.full(int(wgrid[3] * wgrid[4]), -1, np.int64), np.full(scap, -1, np.int64), wgrid,
+             np.zeros(scap), np.zeros(scap, np.int64)]  # fmt: skip
+    seeds = np.r_[np.reshape(start, (1, 2)), more]
+    kinds = np.r_[int(rings.kind[start_ring]) if start_ring >= 0 else -1, more_kind].astype(np.int64)
+    keys = np.r_[0.0, np.hypot(more[:, 0] - start[0], more[:, 1] - start[1])]
+    ns = len(seeds)
+    hn = kernel.plant(tuple(state), seeds, kinds, keys, levels)
+    mode = ROTATION_MODES[rotation]
+    ivars = np.array([f, ns, hn, start_ring, f, limit, relax_every if relax is not None else 0, mode, ALTERNATIVES,
+                      levels, int(priority.max()) if len(priority) else 0, M], np.int64)  # fmt: skip
+    fvars = np.array([r_short, reach, wait, rings.mean_length, weights.distance, weights.kind, weights.subid,
+                      float(start[0]), float(start[1])])  # fmt: skip
+    coords, starts = _rings_of(piece)
+    flow_arg = flow if flow is not None and mode == kernel.FLOW else (np.zeros((1, 1)), 0.0, 0.0, 1.0)
+    while True:
+        code = kernel.run(tuple(state), ivars, fvars, rings.rel, rings.size, rings.kind, rings.element, rings.nkind,
+                          rings.nsub, priority.astype(np.int64), centre_gap, coords, starts, flow_arg, draws)  # fmt: skip
+        n = int(ivars[0])
+        if code == kernel.RELAX:
+            state[0][f:n] = relax(state[0][:n], state[3][: n - f], state[4][: n - f], f)
+        elif code == kernel.FULL:
+            state = _enlarge(state)
         else:
-            options = best_match(rings, tar, ekind[ids[order]], esub[ids[order]], want=want, rotation=rotation,
-                                 flow_angle=fa, weights=weights, noise=noise(step), top=ALTERNATIVES)  # fmt: skip
-        step += 1
-        # the best match whose element does not collide (Fig. 6d); none: the seed is dropped
-        fits = [o for o in options if not (len(ids) and (dist < centre_gap[rings.kind[o[0]], ekind[ids]]).any())]
-        if not fits:
-            continue
-        r, k, theta, _ = fits[0]
-        kind = int(rings.kind[r])
-        if n == cap:
-            cap *= 2
-            exy = np.resize(exy, (cap, 2))
-            ekind, esub = np.resize(ekind, cap), np.resize(esub, cap)
-        exy[n], ekind[n], esub[n] = (x, y), kind, rings.element[r]
-        elements.add(n, x, y)
-        ering.append(r)
-        etheta.append(theta)
-        n += 1
+            break
+    return Grown(state[0][f:n].copy(), state[3][: n - f].copy(), state[4][: n - f].copy())
 
-        # new seeds: the ring slots not matched with a placed neighbour (§5.4, Fig. 2f–g)
-        m = int(rings.size[r])
-        free = np.ones(m, bool)
-        free[(k + np.arange(len(tar))) % m] = False
-        slots = np.flatnonzero(free)
-        if len(slots):
-            c, si = np.cos(theta), np.sin(theta)
-            v = rings.rel[r, slots]
-            p = np.c_[x + c * v[:, 0] - si * v[:, 1], y + si * v[:, 0] + c * v[:, 1]]
-            inside = shapely.contains_xy(piece, p[:, 0], p[:, 1])
-            for slot, (px, py), ok in zip(slots, p, inside, strict=True):
-                if not ok:
-                    continue
-                near = elements.near(px, py)
-                if near and (np.hypot(*(exy[near] - (px, py)).T) < r_short).any():
-                    continue
-                if any(alive[q] and (sxy[q][0] - px) ** 2 + (sxy[q][1] - py) ** 2 < r_short * r_short
-                       for q in seeds.near(px, py)):  # fmt: skip
-                    continue
-                q = len(sxy)
-                sxy.append((float(px), float(py)))
-                skind.append(int(rings.nkind[r, slot]))
-                alive.append(True)
-                skey.append(float(np.hypot(px - start[0], py - start[1])))
-                seeds.add(q, px, py)
-                if levels:
-                    waiting.add(q, px, py)
-                heapq.heappush(heap, (skey[q], q))
-        if relax is not None and relax_every and (n - f) % relax_every == 0:
-            exy[f:n] = relax(exy[:n], np.array(ering), np.array(etheta), f)
-    return Grown(exy[f:n].copy(), np.array(ering, np.int64), np.array(etheta))
+
+#: Which arrays of the kernel's state are per motif and per seed; :func:`_enlarge` doubles them.
+_PER_MOTIF, _PER_SEED = (0, 1, 2, 3, 4, 5), (8, 9, 10, 11, 12, 15, 17, 18)
+
+
+def _enlarge(state: list) -> list:
+    """The kernel's state with twice the room for motifs and seeds (new links −1)."""
+    out = list(state)
+    for group in (_PER_MOTIF, _PER_SEED):
+        for i in group:
+            a = state[i]
+            fill = -1 if i in (5, 12, 15) else 0
+            b = np.full((2 * len(a), *a.shape[1:]), fill, a.dtype)
+            b[: len(a)] = a
+            out[i] = b
+    return out

@@ -13,8 +13,8 @@ references (eq. 1).  The rotation R_θ depends on the mode (§5.3): none (θ = 0
 eq. (4) in closed form: the 2-D orthogonal Procrustes angle of the matched pairs, as in the
 shape matching of Müller et al. 2005), or flow (θ = the flow field's angle at the seed).
 
-Everything is vectorised over references × shifts × ring slots: one call costs a few small
-numpy operations whatever the exemplar.
+The loop over references × shifts × ring slots is compiled (:func:`svgtile.engines.growth.kernel.match`,
+called once per seed by the growth loop); :func:`best_match` is its entry from Python.
 """
 
 from __future__ import annotations
@@ -23,7 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from svgtile.engines.growth import kernel
 from svgtile.engines.growth.connectivity import Rings
+
+#: The rotation modes of §5.3 by name.
+ROTATION_MODES = {"none": kernel.NONE, "fit": kernel.FIT, "flow": kernel.FLOW}
 
 
 @dataclass(frozen=True)
@@ -67,41 +71,13 @@ def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarra
     with the first target neighbour, ``theta`` the rotation applied to the reference ring
     (radians), ``error`` the error of eq. (3)
     """
-    t = len(tar)
-    ok = rings.size >= t
-    if want >= 0:
-        ok &= rings.kind == want
-    cand = np.flatnonzero(ok)
-    if not len(cand):
-        return []
-    M = rings.rel.shape[1]
-    size = rings.size[cand]
-    if t == 0:
-        theta = flow_angle if rotation == "flow" else 0.0
-        return [(int(r), 0, theta, 0.0) for r in cand[np.argsort(noise[cand])[:top]]]
-    shift = np.arange(M)
-    ref = rings.rolled[cand, :, :t]  # (c, M, t, 2): reference slot k + i for target neighbour i
-    if rotation == "fit":
-        dot = (ref * tar).sum(-1).sum(-1)
-        cross = (ref[..., 0] * tar[:, 1] - ref[..., 1] * tar[:, 0]).sum(-1)
-        theta = np.arctan2(cross, dot)  # (c, M), eq. (4)
-    else:
-        theta = np.full((len(cand), M), flow_angle if rotation == "flow" else 0.0)
-    c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
-    rx = c * ref[..., 0] - s * ref[..., 1]
-    ry = s * ref[..., 0] + c * ref[..., 1]
-    err = weights.distance * np.hypot(rx - tar[:, 0], ry - tar[:, 1]).sum(-1) / rings.mean_length
-    if weights.kind:
-        err = err + weights.kind * (rings.rolled_kind[cand, :, :t] != tkind).sum(-1)
-    if weights.subid:
-        err = err + weights.subid * (rings.rolled_sub[cand, :, :t] == tsub).sum(-1)
-    err = np.where(shift[None, :] < size[:, None], err, np.inf)
-    err = err + 1e-9 * noise[cand][:, None]  # ties: a reproducible random reference
-    flat = err.ravel()
-    best = np.argsort(flat)[:top] if top > 1 else np.array([np.argmin(flat)])
-    out = []
-    for f in best:
-        i, k = divmod(int(f), M)
-        if np.isfinite(err[i, k]):
-            out.append((int(cand[i]), k, float(theta[i, k]), float(err[i, k])))
-    return out
+    if rotation not in ROTATION_MODES:
+        raise ValueError(f"rotation must be one of {', '.join(ROTATION_MODES)}, not {rotation!r}")
+    out_r, out_k = np.empty(top, np.int64), np.empty(top, np.int64)
+    out_theta, out_err = np.empty(top), np.empty(top)
+    got = kernel.match(rings.rel, rings.size, rings.kind, rings.nkind, rings.nsub, rings.mean_length,
+                       np.ascontiguousarray(tar, float).reshape(-1, 2), np.asarray(tkind, np.int64),
+                       np.asarray(tsub, np.int64), want, ROTATION_MODES[rotation], float(flow_angle),
+                       weights.distance, weights.kind, weights.subid, np.asarray(noise, float), top,
+                       out_r, out_k, out_theta, out_err)  # fmt: skip
+    return [(int(out_r[i]), int(out_k[i]), float(out_theta[i]), float(out_err[i])) for i in range(got)]

@@ -1,0 +1,110 @@
+"""The growth engine's compiled loop (svgtile/engines/growth/kernel.py, issue 13): its pieces
+against numpy and shapely on hand-made inputs, its resumable state, and golden textures.
+
+The golden textures under tests/golden/growth-*.svg were written by the numpy implementation the
+kernel replaced (commit 1b5ba1c); the kernel must reproduce them byte for byte.  Regenerate with
+``pytest tests/test_growth_kernel.py --update-golden`` only for an intended change.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from svgtile import read_exemplar
+from svgtile.cli.main import main
+from svgtile.engines.growth import kernel
+from svgtile.engines.growth.connectivity import reference_rings
+from svgtile.engines.growth.engine import centre_gaps, kind_priority
+from svgtile.engines.growth.grow import grow
+from svgtile.engines.growth.matching import Weights
+
+REPO = Path(__file__).resolve().parents[1]
+GOLDEN = Path(__file__).parent / "golden"
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 8, 9, 15, 16, 17, 30])
+def test_sums_are_numpys_to_the_bit(n):
+    a = np.random.default_rng(n).normal(size=(50, n)) * 1e3
+    got = np.array([kernel._sum(row, n) for row in a])
+    assert np.array_equal(got, a.sum(-1))
+
+
+def test_inside_is_shapelys_contains_with_the_boundary_outside():
+    poly = shapely.Polygon([(0, 0), (10, 0), (10, 10), (3, 10), (0, 4)], holes=[[(4, 4), (6, 4), (6, 6), (4, 6)]])
+    coords = np.concatenate([shapely.get_coordinates(g) for g in shapely.get_rings(poly)])
+    starts = np.cumsum([0] + [len(shapely.get_coordinates(g)) for g in shapely.get_rings(poly)]).astype(np.int64)
+    pts = np.random.default_rng(0).uniform(-1, 11, (2000, 2))
+    edges = np.array([[0, 5], [10, 5], [5, 0], [5, 10], [4, 5], [5, 6], [0, 0], [10, 10], [6, 6], [1.5, 7], [0, 2]])
+    pts = np.r_[pts, edges, np.round(pts[:200])]  # on edges, vertices and whole-number grid points
+    got = np.array([kernel.inside(x, y, coords, starts) for x, y in pts])
+    assert np.array_equal(got, shapely.contains_xy(poly, pts[:, 0], pts[:, 1]))
+    assert got.any() and not got.all()
+
+
+def test_the_heap_pops_in_key_then_id_order():
+    rng = np.random.default_rng(1)
+    keys = rng.integers(0, 20, 200).astype(float)  # many equal keys: ties go to the lower id
+    hkey, hid, hn = np.zeros(200), np.zeros(200, np.int64), 0
+    for q, k in enumerate(keys):
+        hn = kernel._heap_push(hkey, hid, hn, k, q)
+    popped = []
+    while hn:
+        k, q, hn = kernel._heap_pop(hkey, hid, hn)
+        popped.append((k, q))
+    assert popped == sorted(zip(keys.tolist(), range(200), strict=True))
+
+
+def test_growth_resumes_after_each_relaxation_and_when_its_arrays_fill():
+    ex = read_exemplar(REPO / "exemplars" / "gravel.svg")
+    rings = reference_rings(ex)
+    piece = shapely.box(0, 0, 60, 60)
+    calls = []
+
+    def relax(xy, ring, theta, first):
+        calls.append(len(xy) - first)
+        return xy[first:] + 0.0
+
+    kw = dict(fixed_xy=np.zeros((0, 2)), fixed_kind=np.zeros(0, np.int64), fixed_sub=np.zeros(0, np.int64),
+              rotation="none", flow=None, priority=kind_priority(ex, {}), weights=Weights(),
+              centre_gap=centre_gaps(ex, len(ex.kinds)))  # fmt: skip
+    g = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), relax=relax, relax_every=10,
+             **kw)  # fmt: skip
+    plain = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), **kw)
+    assert len(g.xy) > 64  # more than the first arrays hold: grown through at least one FULL
+    assert calls == list(range(10, len(g.xy) + 1, 10))
+    assert np.array_equal(g.xy, plain.xy) and np.array_equal(g.ring, plain.ring)  # relax here moved nothing
+    assert shapely.contains_xy(piece, g.xy[:, 0], g.xy[:, 1]).all()
+
+
+def test_growth_stops_at_the_limit():
+    ex = read_exemplar(REPO / "exemplars" / "gravel.svg")
+    rings = reference_rings(ex)
+    g = grow(rings, shapely.box(0, 0, 60, 60), np.array([30.0, 30.0]), 0, fixed_xy=np.zeros((0, 2)),
+             fixed_kind=np.zeros(0, np.int64), fixed_sub=np.zeros(0, np.int64), rotation="none", flow=None,
+             priority=kind_priority(ex, {}), weights=Weights(), centre_gap=centre_gaps(ex, len(ex.kinds)),
+             draws=np.random.default_rng(3), limit=17)  # fmt: skip
+    assert len(g.xy) == 17
+
+
+GOLDEN_RUNS = {
+    "growth-gravel-none-seed1.svg": ("gravel", ["--rotation", "none", "--seed", "1"]),
+    "growth-marsh-fit-seed2.svg": ("marsh", ["--rotation", "fit", "--seed", "2"]),
+    "growth-shale-none-seed3.svg": ("shale", ["--rotation", "none", "--seed", "3"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN_RUNS))
+def test_growth_golden(tmp_path, update_golden, name):
+    """Same bytes as the numpy implementation wrote (see the module docstring)."""
+    exemplar, opts = GOLDEN_RUNS[name]
+    out = tmp_path / name
+    assert main(["synth", str(REPO / "exemplars" / f"{exemplar}.svg"), "-o", str(out), "--size", "50x40",
+                 "--engine", "growth", "--relax-every", "7", *opts]) == 0  # fmt: skip
+    golden = GOLDEN / name
+    if update_golden:
+        golden.write_bytes(out.read_bytes())
+    assert out.read_bytes() == golden.read_bytes(), f"{name} differs from {golden}"
