@@ -17,6 +17,28 @@ docstring of the function that computes it, in the module named after what it me
 Where and at what scale they are measured (the interior, the mean spacing, the sample of a
 large texture) is :mod:`svgtile.metrics.window`.
 
+A large texture (more than :data:`~svgtile.metrics.window.SAMPLE_ABOVE` motifs in its window)
+has its *statistical* figures — :data:`SAMPLED` — measured on the motifs of a few sample windows
+spread over the window (:func:`~svgtile.metrics.window.sample_windows`); the counts a user relies
+on as guarantees (overlaps, violators, motifs) and the amounts (density, kind mix, orientation)
+stay exact over every motif, and the largest empty disc is searched over the whole window on a
+raster twice as coarse, refined once more (the same bound, :func:`largest_empty_disc`).  How far
+the sampled figures lie from the exact ones, measured on large textures of the bundled
+exemplars (benchmarks/README.md, "`svgtile score` on sample windows"):
+
+=========================== ==================================
+figure                      largest deviation, sampled − exact
+=========================== ==================================
+gap_distance, gap_noise     {gap}
+pair_correlation_distance   {pc}
+repetition                  {rep}
+neighbourhood_distance      {nd}
+likeness                    {lk}
+empty_disc_radius           {disc}
+=========================== ==================================
+
+``score(…, exact=True)`` (``svgtile score --exact``) measures everything on every motif.
+
 References
 ----------
 AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../shared/papers/).
@@ -25,7 +47,11 @@ AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../share
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
+
+import numpy as np
+import shapely
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
@@ -33,11 +59,27 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
-from svgtile.metrics.coverage import COVER_STEP, largest_empty_disc
+from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import conflict_counts, orientation_outside
-from svgtile.metrics.window import finite_or_none, in_window, interior, spacing
+from svgtile.metrics.window import (
+    SAMPLE_ABOVE,
+    SAMPLE_HALO,
+    SAMPLE_MOTIFS,
+    Sample,
+    finite_or_none,
+    in_window,
+    interior,
+    sample_windows,
+    spacing,
+)
+
+#: The figures a large texture has measured on its sample windows (:class:`Score`'s fields).
+SAMPLED = (
+    "gap_distance", "gap_noise", "pair_correlation_distance", "kind_pairs", "repetition", "repetition_raw",
+    "repetition_vector", "neighbourhood_distance", "likeness",
+)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -123,6 +165,10 @@ class Score:
     likeness : float or None
         ``L = (E_random − E) / (E_random − E_tile)``: 1 keeps the exemplar's order as well as
         stamping copies, 0 no better than dart throwing; higher is better.
+    sample : Sample or None
+        Where the figures :data:`SAMPLED` were measured when the texture is large; None when
+        every figure was measured on every motif.  In the JSON (``"sampled"``, after
+        ``motifs``) only when not None.
     """
 
     window: str
@@ -155,10 +201,19 @@ class Score:
     neighbourhood_tile: float | None
     neighbourhood_random: float | None
     likeness: float | None
+    sample: Sample | None = None
 
     def to_dict(self) -> dict:
-        """The figures as plain JSON-able data: a dict in field order, tuples as lists."""
-        return _plain(self)
+        """The figures as plain JSON-able data: a dict in field order, tuples as lists; the
+        sample, if any, as ``"sampled"`` after ``"motifs"`` with the figures it measured."""
+        out = _plain(self)
+        sample = out.pop("sample")
+        if sample is None:
+            return out
+        keys = list(out)
+        at = keys.index("motifs") + 1
+        sample["figures"] = list(SAMPLED)
+        return {**{k: out[k] for k in keys[:at]}, "sampled": sample, **{k: out[k] for k in keys[at:]}}
 
 
 def _plain(value):
@@ -169,7 +224,10 @@ def _plain(value):
     return value
 
 
-def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region) -> Score:
+def score(
+    exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region, *, exact: bool = False,
+    sample_above: int = SAMPLE_ABOVE, sample_motifs: int = SAMPLE_MOTIFS,
+) -> Score:  # fmt: skip
     """All figures of a texture against its exemplar.
 
     Parameters
@@ -178,6 +236,10 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     stats : its analysis
     arrangement : the texture, n motifs, user units
     region : the output region the texture fills
+    exact : measure every figure on every motif, however large the texture
+    sample_above, sample_motifs : a texture with more than ``sample_above`` motifs in its window
+        has the figures :data:`SAMPLED` measured on sample windows holding about
+        ``sample_motifs`` motifs (:func:`~svgtile.metrics.window.sample_windows`)
 
     Returns
     -------
@@ -190,8 +252,31 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     if window.is_empty or window.area <= 0:
         window, kind_of_window = region.shape, "region"
     inside = in_window(arr, window)
-    geoms = world_footprints(arr, protos)
-    conflicts = conflict_counts(arr, protos, stats, inside, geoms)
+    plan = None if exact else sample_windows(window, arr.xy, inside, above=sample_above, motifs=sample_motifs)
+    step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
+    if plan is None:
+        geoms = world_footprints(arr, protos)
+        conflicts = conflict_counts(arr, protos, stats, inside, geoms)
+        trees = kind_trees(arr, len(protos))
+        found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
+        rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
+        r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)
+        order = measure_likeness(exemplar, stats, arr, inside)
+        sample = None
+    else:
+        windows, sample = plan
+        # exact counts: footprints only for the pairs a k-d tree bound leaves open
+        conflicts = conflict_counts(arr, protos, stats, inside)
+        sub = arr.take(_near_windows(arr, windows, SAMPLE_HALO * _rarest_spacing(stats)))
+        sub_inside = in_window(sub, windows)
+        found = structure(exemplar, stats, sub, windows, inside=sub_inside, trees=kind_trees(sub, len(protos)))
+        # repetition's partners come from the whole texture, whatever its reach
+        rep = repetition(arr, exemplar, stats, windows, inside=in_window(arr, windows),
+                         trees=kind_trees(arr, len(protos)))  # fmt: skip
+        coarse = 2 * step if step is not None else None
+        r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=coarse, geoms=Footprints(arr, protos),
+                                      levels=COVER_LEVELS + 1)  # fmt: skip
+        order = measure_likeness(exemplar, stats, sub, sub_inside)
 
     density_ratio = (
         finite_or_none(density(arr, exemplar, window, inside=inside) / stats.density) if stats.density > 0 else None
@@ -199,14 +284,7 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     windows = window_densities(arr, exemplar, window)
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
-    trees = kind_trees(arr, len(protos))
-    found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
-    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
-
-    step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
-    r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)
     r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
-    order = measure_likeness(exemplar, stats, arr, inside)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
@@ -234,4 +312,19 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
         neighbourhood_tile=order.tile,
         neighbourhood_random=order.random,
         likeness=order.likeness,
+        sample=sample,
     )
+
+
+def _rarest_spacing(stats: Stats) -> float:
+    """Mean spacing ``1 / sqrt(f_i λ)`` of the exemplar's rarest kind, user units."""
+    lam = float(stats.frequency[stats.frequency > 0].min()) * stats.count_density
+    return 1.0 / math.sqrt(lam) if lam > 0 else 0.0
+
+
+def _near_windows(arr: Arrangement, windows, halo: float) -> np.ndarray:
+    """(m,) int: the motifs centred within ``halo`` of the sample windows (rectangles), and in them."""
+    bounds = shapely.bounds(shapely.get_parts(windows))
+    x, y = arr.xy[:, 0, None], arr.xy[:, 1, None]
+    near = (x >= bounds[:, 0] - halo) & (x <= bounds[:, 2] + halo) & (y >= bounds[:, 1] - halo) & (y <= bounds[:, 3] + halo)
+    return np.flatnonzero(near.any(axis=1))
