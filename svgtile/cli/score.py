@@ -48,7 +48,7 @@ def score(exemplar, texture, as_json, exact):
 
     Read them against svgtile compare's tile and random columns; the README defines each.
 
-    A texture of more than 40,000 motifs in its interior has its structure, repetition and
+    A texture of more than 100,000 motifs in its interior has its structure, repetition and
     neighbourhood figures measured on 9 windows spread over the interior (about 20,000 motifs,
     the report says how many); overlaps, violators, density and kind mix are counted over
     every motif. --exact measures everything on every motif.

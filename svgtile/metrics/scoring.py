@@ -58,15 +58,14 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
+from svgtile.metrics import window as _window
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import conflict_counts, orientation_outside
 from svgtile.metrics.window import (
-    SAMPLE_ABOVE,
     SAMPLE_HALO,
-    SAMPLE_MOTIFS,
     Sample,
     finite_or_none,
     in_window,
@@ -74,6 +73,18 @@ from svgtile.metrics.window import (
     sample_windows,
     spacing,
 )
+
+#: Largest deviation of a sampled figure from the exact one (the empty disc's radius: relative),
+#: measured as the module says; ``tests/test_score_sample.py`` holds a texture to it.
+SAMPLE_BOUND = {
+    "gap_distance": 0.02,
+    "gap_noise": 0.02,
+    "pair_correlation_distance": 0.02,
+    "repetition": 0.03,
+    "neighbourhood_distance": 0.1,
+    "likeness": 0.1,
+    "empty_disc_radius": 0.01,
+}
 
 #: The figures a large texture has measured on its sample windows (:class:`Score`'s fields).
 SAMPLED = (
@@ -226,7 +237,7 @@ def _plain(value):
 
 def score(
     exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region, *, exact: bool = False,
-    sample_above: int = SAMPLE_ABOVE, sample_motifs: int = SAMPLE_MOTIFS,
+    sample_above: int | None = None, sample_motifs: int | None = None,
 ) -> Score:  # fmt: skip
     """All figures of a texture against its exemplar.
 
@@ -238,8 +249,9 @@ def score(
     region : the output region the texture fills
     exact : measure every figure on every motif, however large the texture
     sample_above, sample_motifs : a texture with more than ``sample_above`` motifs in its window
-        has the figures :data:`SAMPLED` measured on sample windows holding about
-        ``sample_motifs`` motifs (:func:`~svgtile.metrics.window.sample_windows`)
+        (default :data:`~svgtile.metrics.window.SAMPLE_ABOVE`) has the figures :data:`SAMPLED`
+        measured on sample windows holding about ``sample_motifs`` motifs (default
+        :data:`~svgtile.metrics.window.SAMPLE_MOTIFS`; :func:`~svgtile.metrics.window.sample_windows`)
 
     Returns
     -------
@@ -252,7 +264,10 @@ def score(
     if window.is_empty or window.area <= 0:
         window, kind_of_window = region.shape, "region"
     inside = in_window(arr, window)
-    plan = None if exact else sample_windows(window, arr.xy, inside, above=sample_above, motifs=sample_motifs)
+    plan = None if exact else sample_windows(
+        window, arr.xy, inside, above=sample_above if sample_above is not None else _window.SAMPLE_ABOVE,
+        motifs=sample_motifs if sample_motifs is not None else _window.SAMPLE_MOTIFS,
+    )  # fmt: skip
     step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
     if plan is None:
         geoms = world_footprints(arr, protos)
@@ -264,14 +279,14 @@ def score(
         order = measure_likeness(exemplar, stats, arr, inside)
         sample = None
     else:
-        windows, sample = plan
+        boxes, sample = plan
         # exact counts: footprints only for the pairs a k-d tree bound leaves open
         conflicts = conflict_counts(arr, protos, stats, inside)
-        sub = arr.take(_near_windows(arr, windows, SAMPLE_HALO * _rarest_spacing(stats)))
-        sub_inside = in_window(sub, windows)
-        found = structure(exemplar, stats, sub, windows, inside=sub_inside, trees=kind_trees(sub, len(protos)))
+        sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
+        sub_inside = in_window(sub, boxes)
+        found = structure(exemplar, stats, sub, boxes, inside=sub_inside, trees=kind_trees(sub, len(protos)))
         # repetition's partners come from the whole texture, whatever its reach
-        rep = repetition(arr, exemplar, stats, windows, inside=in_window(arr, windows),
+        rep = repetition(arr, exemplar, stats, boxes, inside=in_window(arr, boxes),
                          trees=kind_trees(arr, len(protos)))  # fmt: skip
         coarse = 2 * step if step is not None else None
         r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=coarse, geoms=Footprints(arr, protos),
@@ -322,9 +337,9 @@ def _rarest_spacing(stats: Stats) -> float:
     return 1.0 / math.sqrt(lam) if lam > 0 else 0.0
 
 
-def _near_windows(arr: Arrangement, windows, halo: float) -> np.ndarray:
+def _near_boxes(arr: Arrangement, boxes: shapely.Geometry, halo: float) -> np.ndarray:
     """(m,) int: the motifs centred within ``halo`` of the sample windows (rectangles), and in them."""
-    bounds = shapely.bounds(shapely.get_parts(windows))
+    bounds = shapely.bounds(shapely.get_parts(boxes))
     x, y = arr.xy[:, 0, None], arr.xy[:, 1, None]
     near = (x >= bounds[:, 0] - halo) & (x <= bounds[:, 2] + halo) & (y >= bounds[:, 1] - halo) & (y <= bounds[:, 3] + halo)
     return np.flatnonzero(near.any(axis=1))

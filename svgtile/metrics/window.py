@@ -76,10 +76,12 @@ def finite_or_none(value: float | None) -> float | None:
 
 
 #: A texture with more motifs than this in its window has its statistical figures measured on
-#: sample windows (:func:`sample_windows`).  Below it every figure costs less than the fixed
-#: costs of ``svgtile score`` (imports, reading, the baselines), so a sample would save little
-#: and only add its deviation; benchmarks/README.md, "`svgtile score` on sample windows".
-SAMPLE_ABOVE = 40_000
+#: sample windows (:func:`sample_windows`).  Below it the figures that would be sampled already
+#: measure at most a few thousand motifs each (:data:`~svgtile.metrics.pattern.GAP_SAMPLES`,
+#: :data:`~svgtile.metrics.pattern.REPEAT_SAMPLES`, :data:`~svgtile.metrics.likeness.SAMPLE`),
+#: so windows save little (none measurable at 60,000 motifs) and only add their deviation;
+#: benchmarks/README.md, "`svgtile score` on sample windows".
+SAMPLE_ABOVE = 100_000
 #: The sample windows together cover this many motifs' worth of the window (about) …
 SAMPLE_MOTIFS = 20_000
 #: … on a grid of about this many cells per side of the window's bounding box …
