@@ -113,9 +113,10 @@ def test_sampled_figures_stay_within_the_bound(gravel_texture):
         a, b = getattr(s, figure), getattr(e, figure)
         deviation = abs(a - b) / (b if figure == "empty_disc_radius" else 1.0)
         assert deviation <= bound, f"{figure}: sampled {a} against exact {b}"
-    # the figures that are not sampled are exact
-    for figure in ("motifs", "density_ratio", "density_cv", "kind_mix_tv", "orientation_outside",
-                   "overlaps", "violators", "overlaps_total", "violators_total"):  # fmt: skip
+    # the figures that are not sampled are exact, bit for bit
+    for figure in ("motifs", "density_ratio", "density_cv", "kind_mix_tv", "orientation_outside", "overlaps",
+                   "violators", "overlaps_total", "violators_total", "repetition", "repetition_vector",
+                   "neighbourhood_distance", "likeness"):  # fmt: skip
         assert getattr(s, figure) == getattr(e, figure), figure
 
 

@@ -48,10 +48,11 @@ def score(exemplar, texture, as_json, exact):
 
     Read them against svgtile compare's tile and random columns; the README defines each.
 
-    A texture of more than 100,000 motifs in its interior has its structure, repetition and
-    neighbourhood figures measured on 9 windows spread over the interior (about 20,000 motifs,
-    the report says how many); overlaps, violators, density and kind mix are counted over
-    every motif. --exact measures everything on every motif.
+    A texture of more than 100,000 motifs in its interior has its structure figures (nearest
+    gaps, pair correlation) measured on 9 windows spread over the interior (about 20,000
+    motifs; the report says so) and its largest empty disc searched on a coarser raster; every
+    other figure, overlaps and violators first, is measured over every motif as always.
+    --exact measures everything on every motif.
     """
     ex, stats = load(exemplar)
     with _no_cycle_collection():
@@ -65,8 +66,8 @@ def score(exemplar, texture, as_json, exact):
         click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs centred in its region "
                    "(motifs the region's edge cuts, centred outside it, are not counted)")
         if result.sample is not None:
-            click.echo(f"sampled: {result.sample.describe()} (structure, repetition, neighbourhood distance; "
-                       "--exact to measure them on every motif)")  # fmt: skip
+            click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
+                       "--exact to measure it on every motif)")  # fmt: skip
         click.echo(format_score(result))
 
 

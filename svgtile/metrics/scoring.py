@@ -18,24 +18,18 @@ Where and at what scale they are measured (the interior, the mean spacing, the s
 large texture) is :mod:`svgtile.metrics.window`.
 
 A large texture (more than :data:`~svgtile.metrics.window.SAMPLE_ABOVE` motifs in its window)
-has its *statistical* figures — :data:`SAMPLED` — measured on the motifs of a few sample windows
-spread over the window (:func:`~svgtile.metrics.window.sample_windows`); the counts a user relies
-on as guarantees (overlaps, violators, motifs) and the amounts (density, kind mix, orientation)
-stay exact over every motif, and the largest empty disc is searched over the whole window on a
-raster twice as coarse, refined once more (the same bound, :func:`largest_empty_disc`).  How far
-the sampled figures lie from the exact ones, measured on large textures of the bundled
-exemplars (benchmarks/README.md, "`svgtile score` on sample windows"):
-
-=========================== ==================================
-figure                      largest deviation, sampled − exact
-=========================== ==================================
-gap_distance, gap_noise     {gap}
-pair_correlation_distance   {pc}
-repetition                  {rep}
-neighbourhood_distance      {nd}
-likeness                    {lk}
-empty_disc_radius           {disc}
-=========================== ==================================
+has its *structure* figures — :data:`SAMPLED`: nearest gaps and pair correlation, which need
+every motif's footprint and k-d trees of every motif of each kind — measured on the motifs of a
+few sample windows spread over the window (:func:`~svgtile.metrics.window.sample_windows`).
+Every other figure stays exact over every motif: the counts a user relies on as guarantees
+(overlaps, violators, motifs), the amounts (density, kind mix, orientation), and the figures
+that already measure a fixed sample of the whole window (repetition, the neighbourhood
+distance and L: bit for bit what ``exact=True`` gives).  The largest empty disc, a maximum a
+sample would miss, is searched over the whole window on a raster twice as coarse, refined once
+more: the same guarantee (:func:`~svgtile.metrics.coverage.largest_empty_disc`: a lower bound
+within ``step / 4**levels / √2``, now half as large), more centres measured exactly.  How far
+the sampled figures lie from the exact ones on large textures of the bundled exemplars is
+:data:`SAMPLE_BOUND` (benchmarks/README.md, "`svgtile score` on sample windows").
 
 ``score(…, exact=True)`` (``svgtile score --exact``) measures everything on every motif.
 
@@ -80,17 +74,11 @@ SAMPLE_BOUND = {
     "gap_distance": 0.02,
     "gap_noise": 0.02,
     "pair_correlation_distance": 0.02,
-    "repetition": 0.03,
-    "neighbourhood_distance": 0.1,
-    "likeness": 0.1,
     "empty_disc_radius": 0.01,
 }
 
 #: The figures a large texture has measured on its sample windows (:class:`Score`'s fields).
-SAMPLED = (
-    "gap_distance", "gap_noise", "pair_correlation_distance", "kind_pairs", "repetition", "repetition_raw",
-    "repetition_vector", "neighbourhood_distance", "likeness",
-)  # fmt: skip
+SAMPLED = ("gap_distance", "gap_noise", "pair_correlation_distance", "kind_pairs")
 
 
 @dataclass(frozen=True)
@@ -269,29 +257,24 @@ def score(
         motifs=sample_motifs if sample_motifs is not None else _window.SAMPLE_MOTIFS,
     )  # fmt: skip
     step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
+    trees = kind_trees(arr, len(protos))
     if plan is None:
         geoms = world_footprints(arr, protos)
-        conflicts = conflict_counts(arr, protos, stats, inside, geoms)
-        trees = kind_trees(arr, len(protos))
         found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
-        rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
-        r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)
-        order = measure_likeness(exemplar, stats, arr, inside)
+        disc = {"step": step, "geoms": geoms}
         sample = None
     else:
         boxes, sample = plan
-        # exact counts: footprints only for the pairs a k-d tree bound leaves open
-        conflicts = conflict_counts(arr, protos, stats, inside)
+        # footprints built only for the pairs the k-d tree bounds of the conflict search leave
+        # open and for the motifs near the empty disc's candidate centres
+        geoms = Footprints(arr, protos)
         sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
-        sub_inside = in_window(sub, boxes)
-        found = structure(exemplar, stats, sub, boxes, inside=sub_inside, trees=kind_trees(sub, len(protos)))
-        # repetition's partners come from the whole texture, whatever its reach
-        rep = repetition(arr, exemplar, stats, boxes, inside=in_window(arr, boxes),
-                         trees=kind_trees(arr, len(protos)))  # fmt: skip
-        coarse = 2 * step if step is not None else None
-        r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=coarse, geoms=Footprints(arr, protos),
-                                      levels=COVER_LEVELS + 1)  # fmt: skip
-        order = measure_likeness(exemplar, stats, sub, sub_inside)
+        found = structure(exemplar, stats, sub, boxes, inside=in_window(sub, boxes), trees=kind_trees(sub, len(protos)))
+        disc = {"step": 2 * step if step is not None else None, "geoms": geoms, "levels": COVER_LEVELS + 1}
+    conflicts = conflict_counts(arr, protos, stats, inside, geoms)
+    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
+    r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, **disc)
+    order = measure_likeness(exemplar, stats, arr, inside)
 
     density_ratio = (
         finite_or_none(density(arr, exemplar, window, inside=inside) / stats.density) if stats.density > 0 else None
