@@ -3,17 +3,18 @@
 #
 #   sh benchmarks/score_identity.sh BEFORE_PKG_DIR AFTER_PKG_DIR
 #
-# Each *_PKG_DIR is a `git archive COMMIT | tar -x` of the commit to run (put first on
-# PYTHONPATH).  The textures are synthesized once, with BEFORE; then both score each of them
+# Each *_PKG_DIR is a `git archive COMMIT | tar -x` of the commit to run: each command runs in
+# that directory (`python -m` puts the working directory before PYTHONPATH on sys.path, so a
+# command run from a checkout imports that checkout's svgtile, whatever PYTHONPATH says).  The textures are synthesized once, with BEFORE; then both score each of them
 # and the outputs are compared with `diff -r` (exit status 0: identical).  AFTER also scores
 # each with --exact (directory exact/), which must match BEFORE on every texture, where the
 # plain AFTER may differ on textures above the sampling threshold (SAMPLE_ABOVE motifs, issue
 # 11: the 3000² gravel texture) — the script lists those.  Run from the repository root.
 set -e
-PY=${PY:-.venv/bin/python}
+PY=${PY:-$(pwd)/.venv/bin/python}
 OUT=${TMPDIR:-/tmp}/svgtile-score-identity
 rm -rf "$OUT"; mkdir -p "$OUT/tex" "$OUT/before" "$OUT/after" "$OUT/exact"
-synth() { PYTHONPATH="$1" "$PY" -m svgtile synth "exemplars/$2.svg" -o "$OUT/tex/$2-$3.svg" --seed "$4" --force --size "$5" ${6:+--engine $6}; }
+synth() { cd "$1" && PYTHONPATH="$1" "$PY" -m svgtile synth "exemplars/$2.svg" -o "$OUT/tex/$2-$3.svg" --seed "$4" --force --size "$5" ${6:+--engine $6}; cd - > /dev/null; }
 for e in gravel till breccia sand shale marsh; do synth "$1" $e patch 3 400x400; done
 synth "$1" gravel tile 2 500x300 tile
 synth "$1" till random 2 500x500 random
@@ -23,8 +24,8 @@ for t in "$OUT"/tex/*.svg; do
   for side in before after exact; do
     [ $side = before ] && pkg=$1 || pkg=$2
     [ $side = exact ] && flag=--exact || flag=
-    PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" --json $flag > "$OUT/$side/$b.json"
-    PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" $flag > "$OUT/$side/$b.txt"
+    (cd "$pkg" && PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" --json $flag) > "$OUT/$side/$b.json"
+    (cd "$pkg" && PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" $flag) > "$OUT/$side/$b.txt"
   done
 done
 echo "differ before → after (sampled above the threshold):"; diff -rq "$OUT/before" "$OUT/after" || true
