@@ -19,14 +19,24 @@ for e in gravel till breccia sand shale marsh; do synth "$1" $e patch 3 400x400;
 synth "$1" gravel tile 2 500x300 tile
 synth "$1" till random 2 500x500 random
 synth "$1" gravel big 1 3000x3000
-for t in "$OUT"/tex/*.svg; do
-  b=$(basename "$t" .svg); e=${b%%-*}
-  for side in before after exact; do
-    [ $side = before ] && pkg=$1 || pkg=$2
-    [ $side = exact ] && flag=--exact || flag=
-    (cd "$pkg" && PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" --json $flag) > "$OUT/$side/$b.json"
-    (cd "$pkg" && PYTHONPATH="$pkg" "$PY" -m svgtile score "exemplars/$e.svg" "$t" $flag) > "$OUT/$side/$b.txt"
-  done
-done
+# one process per package scores every texture, text and --json, as `svgtile score` prints them
+score_all() {  # PKG_DIR OUT_SUBDIR [--exact]
+  (cd "$1" && PYTHONPATH="$1" "$PY" - "$OUT/tex" "$OUT/$2" $3 <<'PY'
+import contextlib, io, sys
+from pathlib import Path
+from svgtile.cli.main import main
+tex, out, *flag = sys.argv[1:]
+for t in sorted(Path(tex).glob("*.svg")):
+    for ext, extra in (("json", ["--json"]), ("txt", [])):
+        buf = io.StringIO()
+        with contextlib.redirect_stdout(buf):
+            main(["score", f"exemplars/{t.stem.split('-')[0]}.svg", str(t), *extra, *flag])
+        Path(out, f"{t.stem}.{ext}").write_text(buf.getvalue())
+PY
+  )
+}
+score_all "$1" before
+score_all "$2" after
+score_all "$2" exact --exact
 echo "differ before → after (sampled above the threshold):"; diff -rq "$OUT/before" "$OUT/after" || true
 diff -r "$OUT/before" "$OUT/exact" && echo "identical before → after --exact: $(ls "$OUT/before" | wc -l) outputs"
