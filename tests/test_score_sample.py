@@ -169,3 +169,16 @@ def test_the_help_names_the_threshold():
 
     help_text = " ".join(command.help.split())
     assert f"more than {window.SAMPLE_ABOVE:,} motifs" in help_text and "--exact" in help_text
+
+
+def test_lazy_footprints_are_the_footprints(gravel_texture):
+    from svgtile.core.footprint import world_footprints
+    from svgtile.metrics.coverage import Footprints
+
+    ex, _, arr, _ = gravel_texture
+    lazy = Footprints(arr, ex.prototypes)
+    some = np.array([7, 3, 7, len(arr) - 1])
+    got = lazy[some]
+    assert lazy._built.sum() == 3 and len(lazy) == len(arr)  # only those asked for, each once
+    want = world_footprints(arr, ex.prototypes)[some]
+    assert all(shapely.equals_exact(a, b, tolerance=0) for a, b in zip(got, want, strict=True))

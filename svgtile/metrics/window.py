@@ -112,7 +112,7 @@ class Sample:
     of: int
 
     def describe(self) -> str:
-        """One line for the text report: ``9 windows of 330 × 330, 20,106 of 163,356 motifs``."""
+        """One line for the text report: ``9 windows of 335.9 × 335.9, 20,141 of 163,356 motifs``."""
         w, h = self.window_size
         return f"{self.windows} windows of {w:.4g} × {h:.4g}, {self.motifs:,} of {self.of:,} motifs"
 
