@@ -71,7 +71,7 @@ from svgtile.metrics.window import (
 #: The documented bound of ``|sampled − exact|`` for a large texture (the empty disc's radius:
 #: relative to the exact one): the largest deviations measured
 #: (``benchmarks/score_sample_deviation.py``, patch textures of about 115,000 motifs of the six
-#: bundled exemplars, seeds 1 and 2, and the 163,356 interior motifs of benchmarks/README.md's
+#: bundled exemplars, seeds 1 and 2 (marsh: 1), and the 163,356 interior motifs of benchmarks/README.md's
 #: 3000² gravel texture; samples of about 20,000) were 0.016, 0.002, 0.008 and 0.32 %, rounded
 #: up.  A sample of m motifs deviates about √(SAMPLE_MOTIFS / m) times as much (the test's).
 SAMPLE_BOUND = {
