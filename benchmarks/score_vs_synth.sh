@@ -5,13 +5,15 @@
 #
 # Each round: synth the 3000×3000 gravel texture (177,723 <use>), then score it; with
 # BASE_PKG_DIR (a `git archive` of another commit, unpacked) also score it with that package,
-# so before and after meet the same load.  Prints one Markdown row per command: wall, CPU
+# so before and after meet the same load (run in BASE_PKG_DIR: `python -m` puts the working
+# directory before PYTHONPATH on sys.path, so run from the repository root it would import the
+# repository's svgtile whatever PYTHONPATH says).  Prints one Markdown row per command: wall, CPU
 # (user + sys), peak RSS, and the 1-minute load average when it started.  Run from the
 # repository root with the venv's python on PATH or as PY.
 set -e
 ROUNDS=${1:-3}
 BASE=$2
-PY=${PY:-.venv/bin/python}
+PY=${PY:-$(pwd)/.venv/bin/python}
 OUT=${TMPDIR:-/tmp}/svgtile-score-bench
 mkdir -p "$OUT"
 row() {  # label, command…
@@ -26,7 +28,7 @@ echo "|---|---:|---:|---:|---:|"
 for r in $(seq "$ROUNDS"); do
   row "synth, round $r" "$PY" -m svgtile synth exemplars/gravel.svg -o "$OUT/big.svg" --size 3000x3000 --seed 1 --force
   if [ -n "$BASE" ]; then
-    row "score (base), round $r" env PYTHONPATH="$BASE" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
+    row "score (base), round $r" env -C "$BASE" PYTHONPATH="$BASE" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
   fi
   row "score, round $r" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
 done

@@ -34,13 +34,14 @@ from svgtile.metrics.pattern import (
 )
 from svgtile.metrics.rules import Conflicts, conflict_counts, orientation_outside
 from svgtile.metrics.scoring import Score, score
-from svgtile.metrics.window import interior, motif_sample, spacing
+from svgtile.metrics.window import Sample, interior, motif_sample, sample_windows, spacing
 
 __all__ = [
     "Conflicts",
     "KindPair",
     "Likeness",
     "Repetition",
+    "Sample",
     "Score",
     "Structure",
     "baseline_distances",
@@ -56,6 +57,7 @@ __all__ = [
     "orientation_outside",
     "pair_correlation",
     "repetition",
+    "sample_windows",
     "sampling_noise",
     "score",
     "spacing",

@@ -29,15 +29,15 @@ COVER_EXACT = 16_384
 
 def largest_empty_disc(
     arr: Arrangement, protos: list[Prototype], centres: shapely.Geometry, within: shapely.Geometry,
-    *, step: float | None = None, geoms: np.ndarray | None = None,
+    *, step: float | None = None, geoms: np.ndarray | None = None, levels: int = COVER_LEVELS,
 ) -> tuple[float, np.ndarray]:  # fmt: skip
     """The largest disc centred in ``centres``, inside ``within``, that meets no footprint.
 
     The clearance of a point p is ``c(p) = min(dist(p, footprints), dist(p, ∂within))``; the
     radius returned is ``max c`` over a grid of candidate centres in ``centres`` of ``step``,
-    refined :data:`COVER_LEVELS` times by a grid 4× finer (``±step/2`` about a point) around the
+    refined ``levels`` times by a grid 4× finer (``±step/2`` about a point) around the
     :data:`COVER_KEEP` best points within ``step/√2`` of the best.  ``c`` is 1-Lipschitz, so the
-    radius is a lower bound within ``step / 4**COVER_LEVELS / √2`` of the true one, unless more
+    radius is a lower bound within ``step / 4**levels / √2`` of the true one, unless more
     than :data:`COVER_KEEP` points compete for the best.
 
     Exact GEOS distances (:func:`~svgtile.analysis.stats.nearest_distances`) are taken on few points of
@@ -56,7 +56,9 @@ def largest_empty_disc(
     centres : shapely geometry where a centre may lie
     within : shapely geometry the disc must lie in (contains ``centres``)
     step : first grid step, user units (default: a 40th of the larger side of ``centres``)
-    geoms : world footprints of ``arr``, if built
+    geoms : world footprints of ``arr``, if built: an (n,) object array, or :class:`Footprints`
+        to build only those of the motifs near the centres measured exactly
+    levels : how many times the grid is refined (default :data:`COVER_LEVELS`)
 
     Returns
     -------
@@ -98,7 +100,7 @@ def largest_empty_disc(
         done, batch = end, 2 * batch
     p, c = p[:done], c[:done]
     fine = np.arange(-2, 3) / 4
-    for _ in range(COVER_LEVELS):
+    for _ in range(levels):
         good = np.flatnonzero(c >= c.max() - step / math.sqrt(2))
         good = good[np.argsort(-c[good], kind="stable")[:COVER_KEEP]]
         ox, oy = np.meshgrid(fine * step, fine * step)
@@ -108,6 +110,32 @@ def largest_empty_disc(
         step /= 4
     best = int(np.argmax(c))
     return float(max(c[best], 0.0)), p[best].copy()
+
+
+class Footprints:
+    """World footprints of an arrangement's motifs, built in bulk when first indexed.
+
+    ``footprints[index]`` ((m,) int array) is ``world_footprints(arr, protos)[index]``: the
+    motifs not built yet among ``index`` are built together
+    (:func:`~svgtile.core.footprint.world_footprints` of them), so a search that touches the
+    footprints of a few thousand motifs of a large texture builds only those.
+    """
+
+    def __init__(self, arr: Arrangement, protos: list[Prototype]) -> None:
+        self._arr, self._protos = arr, protos
+        self._geoms = np.empty(len(arr), dtype=object)
+        self._built = np.zeros(len(arr), dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self._geoms)
+
+    def __getitem__(self, index: np.ndarray) -> np.ndarray:
+        index = np.asarray(index)
+        new = np.unique(index[~self._built[index]])
+        if len(new):
+            self._geoms[new] = world_footprints(self._arr.take(new), self._protos)
+            self._built[new] = True
+        return self._geoms[index]
 
 
 #: Most outline points :func:`_raster_clearance` holds in memory at once.

@@ -54,7 +54,7 @@ def conflict_counts(
     protos : kind prototypes
     stats : the exemplar's analysis (its ``d_ij``)
     inside : (n,) bool, the motifs in the window
-    geoms : (n,) world footprints, if built
+    geoms : (n,) world footprints, if built (or a :class:`~svgtile.metrics.coverage.Footprints`)
 
     Returns
     -------

@@ -17,6 +17,22 @@ docstring of the function that computes it, in the module named after what it me
 Where and at what scale they are measured (the interior, the mean spacing, the sample of a
 large texture) is :mod:`svgtile.metrics.window`.
 
+A large texture (more than :data:`~svgtile.metrics.window.SAMPLE_ABOVE` motifs in its window)
+has its *structure* figures — :data:`SAMPLED`: nearest gaps and pair correlation, which need
+every motif's footprint and k-d trees of every motif of each kind — measured on the motifs of a
+few sample windows spread over the window (:func:`~svgtile.metrics.window.sample_windows`).
+Every other figure stays exact over every motif: the counts a user relies on as guarantees
+(overlaps, violators, motifs), the amounts (density, kind mix, orientation), and the figures
+that already measure a fixed sample of the whole window (repetition, the neighbourhood
+distance and L: bit for bit what ``exact=True`` gives).  The largest empty disc, a maximum a
+sample would miss, is searched over the whole window on a raster twice as coarse, refined once
+more: the same guarantee (:func:`~svgtile.metrics.coverage.largest_empty_disc`: a lower bound
+within ``step / 4**levels / √2``, now half as large), more centres measured exactly.  How far
+the sampled figures lie from the exact ones on large textures of the bundled exemplars is
+:data:`SAMPLE_BOUND` (benchmarks/README.md, "`svgtile score` on sample windows").
+
+``score(…, exact=True)`` (``svgtile score --exact``) measures everything on every motif.
+
 References
 ----------
 AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../shared/papers/).
@@ -25,19 +41,48 @@ AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../share
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
+
+import numpy as np
+import shapely
 
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
+from svgtile.metrics import window as _window
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
-from svgtile.metrics.coverage import COVER_STEP, largest_empty_disc
+from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import conflict_counts, orientation_outside
-from svgtile.metrics.window import finite_or_none, in_window, interior, spacing
+from svgtile.metrics.window import (
+    SAMPLE_HALO,
+    Sample,
+    finite_or_none,
+    in_window,
+    interior,
+    sample_windows,
+    spacing,
+)
+
+#: The documented bound of ``|sampled − exact|`` for a large texture (the empty disc's radius:
+#: relative to the exact one): the largest deviations measured
+#: (``benchmarks/score_sample_deviation.py``, patch textures of about 115,000 motifs of the six
+#: bundled exemplars, seeds 1 and 2 (marsh: 1), and the 163,356 interior motifs of benchmarks/README.md's
+#: 3000² gravel texture; samples of about 20,000) were 0.016, 0.002, 0.008 and 0.32 %, rounded
+#: up.  A sample of m motifs deviates about √(SAMPLE_MOTIFS / m) times as much (the test's).
+SAMPLE_BOUND = {
+    "gap_distance": 0.02,
+    "gap_noise": 0.005,
+    "pair_correlation_distance": 0.01,
+    "empty_disc_radius": 0.005,
+}
+
+#: The figures a large texture has measured on its sample windows (:class:`Score`'s fields).
+SAMPLED = ("gap_distance", "gap_noise", "pair_correlation_distance", "kind_pairs")
 
 
 @dataclass(frozen=True)
@@ -123,6 +168,10 @@ class Score:
     likeness : float or None
         ``L = (E_random − E) / (E_random − E_tile)``: 1 keeps the exemplar's order as well as
         stamping copies, 0 no better than dart throwing; higher is better.
+    sample : Sample or None
+        Where the figures :data:`SAMPLED` were measured when the texture is large; None when
+        every figure was measured on every motif.  In the JSON (``"sampled"``, after
+        ``motifs``) only when not None.
     """
 
     window: str
@@ -155,10 +204,19 @@ class Score:
     neighbourhood_tile: float | None
     neighbourhood_random: float | None
     likeness: float | None
+    sample: Sample | None = None
 
     def to_dict(self) -> dict:
-        """The figures as plain JSON-able data: a dict in field order, tuples as lists."""
-        return _plain(self)
+        """The figures as plain JSON-able data: a dict in field order, tuples as lists; the
+        sample, if any, as ``"sampled"`` after ``"motifs"`` with the figures it measured."""
+        out = _plain(self)
+        sample = out.pop("sample")
+        if sample is None:
+            return out
+        keys = list(out)
+        at = keys.index("motifs") + 1
+        sample["figures"] = list(SAMPLED)
+        return {**{k: out[k] for k in keys[:at]}, "sampled": sample, **{k: out[k] for k in keys[at:]}}
 
 
 def _plain(value):
@@ -169,7 +227,10 @@ def _plain(value):
     return value
 
 
-def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region) -> Score:
+def score(
+    exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region, *, exact: bool = False,
+    sample_above: int | None = None, sample_motifs: int | None = None,
+) -> Score:  # fmt: skip
     """All figures of a texture against its exemplar.
 
     Parameters
@@ -178,6 +239,11 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     stats : its analysis
     arrangement : the texture, n motifs, user units
     region : the output region the texture fills
+    exact : measure every figure on every motif, however large the texture
+    sample_above, sample_motifs : a texture with more than ``sample_above`` motifs in its window
+        (default :data:`~svgtile.metrics.window.SAMPLE_ABOVE`) has the figures :data:`SAMPLED`
+        measured on sample windows holding about ``sample_motifs`` motifs (default
+        :data:`~svgtile.metrics.window.SAMPLE_MOTIFS`; :func:`~svgtile.metrics.window.sample_windows`)
 
     Returns
     -------
@@ -190,8 +256,29 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     if window.is_empty or window.area <= 0:
         window, kind_of_window = region.shape, "region"
     inside = in_window(arr, window)
-    geoms = world_footprints(arr, protos)
+    plan = None if exact else sample_windows(
+        window, arr.xy, inside, above=sample_above if sample_above is not None else _window.SAMPLE_ABOVE,
+        motifs=sample_motifs if sample_motifs is not None else _window.SAMPLE_MOTIFS,
+    )  # fmt: skip
+    step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
+    trees = kind_trees(arr, len(protos))
+    if plan is None:
+        geoms = world_footprints(arr, protos)
+        found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
+        disc = {"step": step, "geoms": geoms}
+        sample = None
+    else:
+        boxes, sample = plan
+        # footprints built only for the pairs the k-d tree bounds of the conflict search leave
+        # open and for the motifs near the empty disc's candidate centres
+        geoms = Footprints(arr, protos)
+        sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
+        found = structure(exemplar, stats, sub, boxes, inside=in_window(sub, boxes), trees=kind_trees(sub, len(protos)))
+        disc = {"step": 2 * step if step is not None else None, "geoms": geoms, "levels": COVER_LEVELS + 1}
     conflicts = conflict_counts(arr, protos, stats, inside, geoms)
+    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
+    r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, **disc)
+    order = measure_likeness(exemplar, stats, arr, inside)
 
     density_ratio = (
         finite_or_none(density(arr, exemplar, window, inside=inside) / stats.density) if stats.density > 0 else None
@@ -199,14 +286,7 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
     windows = window_densities(arr, exemplar, window)
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
-    trees = kind_trees(arr, len(protos))
-    found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
-    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
-
-    step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
-    r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, step=step, geoms=geoms)
     r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
-    order = measure_likeness(exemplar, stats, arr, inside)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
@@ -234,4 +314,19 @@ def score(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Re
         neighbourhood_tile=order.tile,
         neighbourhood_random=order.random,
         likeness=order.likeness,
+        sample=sample,
     )
+
+
+def _rarest_spacing(stats: Stats) -> float:
+    """Mean spacing ``1 / sqrt(f_i λ)`` of the exemplar's rarest kind, user units."""
+    lam = float(stats.frequency[stats.frequency > 0].min()) * stats.count_density
+    return 1.0 / math.sqrt(lam) if lam > 0 else 0.0
+
+
+def _near_boxes(arr: Arrangement, boxes: shapely.Geometry, halo: float) -> np.ndarray:
+    """(m,) int: the motifs centred within ``halo`` of the sample windows (rectangles), and in them."""
+    bounds = shapely.bounds(shapely.get_parts(boxes))
+    x, y = arr.xy[:, 0, None], arr.xy[:, 1, None]
+    near = (x >= bounds[:, 0] - halo) & (x <= bounds[:, 2] + halo) & (y >= bounds[:, 1] - halo) & (y <= bounds[:, 3] + halo)
+    return np.flatnonzero(near.any(axis=1))
