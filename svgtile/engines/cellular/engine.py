@@ -37,6 +37,7 @@ from svgtile.errors import ParameterError
 
 from . import generators as gen
 from .frame import FlowFrame, RotatedFrame, long_axis_angle
+from .joints import draw_joints
 from .mesh import BaseMesh, base_mesh
 from .tree import Description, parse_description, read_description
 
@@ -48,6 +49,8 @@ RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf
 LINE_STYLE = "fill:none;stroke:#000000;stroke-width:0.3"
 #: Face cells with less than this share of a whole cell inside the free space are not made.
 SLIVER = 0.02
+#: Cell outlines closer than this share of a course are one joint (:func:`.joints.draw_joints`).
+JOINT_TOLERANCE = 1e-4
 
 
 @dataclass(frozen=True)
@@ -200,6 +203,8 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     blank = np.array([not css for css in work.styles], dtype=bool)
     if len(work) and blank.any():
         work = work.take(np.flatnonzero(~blank[work.style]))
+    if d.mortar == 0:  # neighbours share their sides: each joint stroked once, as the tile does
+        work = draw_joints(work, face, JOINT_TOLERANCE * h)
     return motifs, work.in_reading_order(DECIMALS)
 
 

@@ -1,0 +1,101 @@
+"""Cellular textures that look like their FGDC tiles (issue 15's last note): line weights,
+the import's cells-or-scatter decision, fragments and grounds, the fewest half bricks, map units
+and wavy lines.  Each test names what a cartographer would see go wrong."""
+
+from __future__ import annotations
+
+import io
+import re
+import xml.etree.ElementTree as ET
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from test_cellular import l_unit, run
+
+from svgtile.analysis.stats import analyze
+from svgtile.core.cells import LINE
+from svgtile.core.region import Region
+from svgtile.engines import synthesize
+from svgtile.engines.cellular.joints import outline_only
+from svgtile.svg.reader import parse_exemplar
+from svgtile.tiles.importer import import_tile
+
+DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
+FGDC = DATA / "fgdc-geologic-patterns" / "lithology"
+needs_data = pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real symbol sets) is not beside the checkout")
+
+
+@cache
+def fgdc(code: str):
+    """(imported tile, exemplar, analysis) of an FGDC lithology tile."""
+    t = import_tile(FGDC / f"{code}.svg")
+    ex = parse_exemplar(t.text, source=f"{code}.svg")
+    return t, ex, analyze(ex)
+
+
+def stroked(cells) -> np.ndarray:
+    """(k,) what the cellwork strokes: its lines and the outlines of its outlined cells."""
+    draws = np.array([outline_only(css) for css in cells.styles], dtype=bool)[cells.style]
+    line = cells.feature == LINE
+    return np.r_[cells.shapes[line & draws], shapely.boundary(cells.shapes[~line & draws])]
+
+
+# ----------------------------------------------------------------------------- (a) line weights
+
+
+def test_each_joint_is_stroked_once_and_the_unit_outline_not_at_all(tmp_path):
+    cells = run(tmp_path=tmp_path).cells
+    drawn = stroked(cells)
+    assert len(drawn) and (cells.feature == LINE).any()
+    total = shapely.length(drawn).sum()
+    assert total == pytest.approx(shapely.union_all(drawn).length, rel=1e-6), "a joint is stroked twice"
+    # the unit's outline (the map draws it) carries no stroke: at most the joints' ends touch it
+    on_edge = shapely.intersection(shapely.union_all(drawn), shapely.buffer(l_unit().boundary, 1e-3)).length
+    assert on_edge < 1e-3 * total
+    # yet every cell side inside the unit is drawn: the joints cover the cells' shared sides
+    sides = shapely.difference(shapely.union_all(shapely.boundary(cells.cells)), shapely.buffer(l_unit().boundary, 1e-3))
+    assert shapely.difference(sides, shapely.buffer(shapely.union_all(drawn), 1e-3)).length < 1e-3 * total
+
+
+def _ink(svg_root: ET.Element, box, pixels_per_unit: float) -> float:
+    """Mean ink (0 white … 1 black) of an SVG drawing rendered at ``pixels_per_unit``, a sixth in
+    from each side."""
+    from PIL import Image
+
+    from svgtile.apps.preview import render_png
+
+    x0, y0, w, h = box
+    svg_root.set("viewBox", f"{x0} {y0} {w} {h}")
+    svg_root.set("width", str(w))
+    svg_root.set("height", str(h))
+    png = render_png(ET.tostring(svg_root, encoding="unicode"), round(w * pixels_per_unit))
+    img = np.asarray(Image.open(io.BytesIO(png)).convert("L"), dtype=np.float64) / 255.0
+    m = img.shape[0] // 6
+    return 1.0 - float(img[m:-m, m:-m].mean())
+
+
+@needs_data
+def test_fgdc_627_limestone_is_as_dark_as_its_tile_on_screen():
+    """Joints stroked twice looked 1.67 times as dark as the tile at a legend's 1.4 pixels per unit."""
+    pytest.importorskip("resvg_py")
+    from svgtile.apps.swatches import _swatch
+
+    _, original, texture = _swatch(FGDC / "627.svg", "627", None, 3.0, 1)
+    ratio = _ink(*texture, 1.4) / _ink(*original, 1.4)
+    assert 0.85 <= ratio <= 1.15, f"texture / tile ink {ratio:.2f}"
+
+
+@needs_data
+@pytest.mark.parametrize("code", ["627", "635", "641"])
+def test_fgdc_strokes_keep_the_tiles_widths(code):
+    t, ex, stats = fgdc(code)
+    tile_widths = set(re.findall(r"stroke-width:\s*([0-9.]+)", (FGDC / f"{code}.svg").read_text()))
+    w = t.box[2]
+    r = synthesize(ex, Region(shapely.box(0, 0, 2 * w, 2 * w)), "cellular", seed=1, stats=stats)
+    out = set()
+    for css in r.cells.styles:
+        out |= set(re.findall(r"stroke-width:\s*([0-9.]+)", css))
+    assert out and {float(v) for v in out} <= {float(v) for v in tile_widths}
