@@ -99,3 +99,56 @@ def test_fgdc_strokes_keep_the_tiles_widths(code):
     for css in r.cells.styles:
         out |= set(re.findall(r"stroke-width:\s*([0-9.]+)", css))
     assert out and {float(v) for v in out} <= {float(v) for v in tile_widths}
+
+
+# ----------------------------------------------------------------------------- (d) interbedded courses
+
+
+@needs_data
+def test_fgdc_637_dashes_and_dots_in_bricks_are_not_courses():
+    d = fgdc("637")[0].cellular
+    bands = d["bands"]
+    # 14 brick courses per tile, not 27 (the rows of dashes inside the bricks were read as courses)
+    assert len(bands["rows"]) == 14 and bands["cut"] == list(range(14))
+    assert d["course"] == pytest.approx(54.125 / 14, rel=1e-3)
+    assert d["length"] == pytest.approx(54.242 / 4, rel=0.02)
+    assert "lines" not in d and d["motifs"]["share"] > 0.5  # the dashes and dots are set in the bricks
+
+
+@needs_data
+def test_fgdc_677_alternates_brick_courses_and_dashed_shale():
+    d = fgdc("677")[0].cellular
+    rows, cut = d["bands"]["rows"], d["bands"]["cut"]
+    assert len(rows) == 21 and cut == list(range(2, 21, 3))  # one brick course in three rows
+    heights = np.diff(np.r_[rows, d["bands"]["period"]])
+    assert np.all(heights[cut] > 1.5 * np.delete(heights, cut).max())  # bricks are the tall courses
+    assert len(d["lines"]) == 7 and all("dash" in spec for spec in d["lines"])  # solid rows: the cells draw them
+    assert "motifs" not in d
+
+
+@needs_data
+def test_fgdc_672_brick_courses_between_dashed_shale():
+    d = fgdc("672")[0].cellular
+    rows, cut, period = d["bands"]["rows"], d["bands"]["cut"], d["bands"]["period"]
+    assert len(cut) == 3  # three brick courses per tile …
+    heights = np.diff(np.r_[rows, period])
+    assert np.allclose(heights[cut], 3.3, atol=0.15)  # … between solid rows 3.3 apart (no row inside)
+    # the two solid rows of each brick course are the cells' outlines; the other rows, dashed lines
+    assert len(d["lines"]) == len(rows) - 2 * 3 and all("dash" in spec for spec in d["lines"])
+
+
+@needs_data
+def test_banded_cells_lie_only_in_the_cut_courses():
+    t, ex, stats = fgdc("677")
+    bands = t.cellular["bands"]
+    r = synthesize(ex, Region(shapely.box(0, 0, 120, 120)), "cellular", seed=1, stats=stats, boundary="inside")
+    cells = r.cells.cells
+    assert len(cells) > 40
+    y = shapely.bounds(cells)[:, [1, 3]]
+    period, rows = bands["period"], np.array(bands["rows"])
+    lower = (y[:, 0] % period)[:, None] - rows[None, :]
+    j = np.argmin(np.abs(lower), axis=1)
+    assert np.abs(lower[np.arange(len(j)), j]).max() < 1e-3  # every cell starts on a row …
+    assert np.isin(j, bands["cut"]).all()  # … of a cut course …
+    height = np.diff(np.r_[rows, period])[j]
+    assert np.all(y[:, 1] - y[:, 0] <= height + 1e-3)  # … and stays in it

@@ -85,9 +85,15 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
         raise refused
     for bearing in dict.fromkeys((first, 0.0)):  # the likeliest bearing, then the horizontal
         try:
-            return _bedded(tile, feats, bearing, refused, import_pieces)
+            found = _bedded(tile, feats, bearing, refused, import_pieces)
         except ExemplarError:
             continue
+        if found[1]["cell_style"] or bearing != 0.0:
+            return found
+        try:  # no joints across courses of one height: are they interbedded courses?
+            return _interbedded(tile, feats, refused, import_pieces)
+        except ExemplarError:
+            return found
     raise refused
 
 
@@ -161,6 +167,97 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
     if not cells_drawn and "tree" not in desc:
         desc["length"] = round(w, 4)
         desc["tree"] = [{"feature": "face", "generator": "none"}]
+    text = _with_description(motifs.text if motifs is not None and len(motifs) else _empty(tile), desc, tile)
+    return text, desc, motifs, notes
+
+
+def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: ExemplarError, import_pieces
+                 ) -> tuple[str, dict, object | None, list[str]]:  # fmt: skip
+    """:func:`import_cellular` for horizontal courses of unequal heights, some cut into cells
+    (interbedded series: FGDC 672, 677), or courses whose cells hold rows of motifs (637).
+
+    A joint is a steep piece whose ends lie on two rows; a row the joints cross is not bedding
+    (dashes in the bricks of 637, 672): its pieces are motifs set in cells.  The courses between
+    the rows left are cut into cells where joints run (``bands.cut``), the rest stay open; solid
+    rows along cut courses are drawn by the cells' outlines, every other row as a line.
+    ``refused`` is raised if no two joints are found.
+    """
+    x0, y0, w, h = tile.box
+    rows, row_of = _rows(tile, feats, 0.0)
+    if len(rows) < 2:
+        raise refused
+    order = np.argsort([r["offset"] for r in rows], kind="stable")
+    rows = [rows[i] for i in order.tolist()]
+    row_of = np.where(row_of >= 0, np.argsort(order)[np.maximum(row_of, 0)], -1)
+    offs = np.array([r["offset"] for r in rows])
+    tol = 0.25 * float(np.diff(np.r_[offs, offs[0] + h]).min())
+    rel = (feats["angle"] - 0.0) % 180.0
+    cand = (row_of < 0) & feats["wavy"] & (np.abs(rel - 90.0) <= 50.0)
+    ca, cb = feats["first"][:, 1] - y0, feats["last"][:, 1] - y0
+    lo, hi = np.minimum(ca, cb), np.maximum(ca, cb)
+
+    def nearest(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        d = np.abs((x[:, None] - offs[None, :] + h / 2) % h - h / 2)
+        return np.argmin(d, axis=1), np.min(d, axis=1)
+
+    ia, da = nearest(lo)
+    ib, db = nearest(hi)
+    # a joint cut by the tile's side goes on in the next tile: its pieces end at a row or a side
+    at_top, at_edge = lo <= 1e-3 * h, hi >= h - 1e-3 * h
+    piece = cand & ((da <= tol) | at_top) & ((db <= tol) | at_edge) & ~(at_top & at_edge) & (hi - lo < 0.5 * h)
+    joint = piece & (da <= tol) & (hi - lo > 2 * tol)  # a whole joint, or its piece at the tile's lower side
+    if joint.sum() < 2:
+        raise refused
+    # rows the joints cross lie inside cells: not bedding
+    p = (offs[None, :] - lo[piece, None]) % h
+    crossed = ((p > tol) & (p < (hi - lo)[piece, None] - tol) & (p < h - tol)).sum(axis=0) >= 2
+    kept = ~crossed
+    k = int(kept.sum())
+    kidx = np.cumsum(kept) - 1
+    ok = joint & kept[ia] & (at_edge | (kidx[ib] == (kidx[ia] + 1) % k))
+    band = kidx[ia]
+    counts = np.bincount(band[ok], minlength=k)
+    cut = np.flatnonzero(counts >= 2)
+    if len(cut) == 0:
+        raise refused
+    per = float(np.median(counts[cut]))
+    length = w / per
+    s_mid = (feats["mid"][:, 0] - x0) % w
+    first = np.array([np.min(s_mid[ok & (band == b)] % length) for b in cut.tolist()])
+    shifts = ((np.diff(np.r_[first, first[0]]) / length) % 1.0)[: max(len(cut) - 1, 1)]
+    offset = float(np.median(shifts))
+    kept_rows = [r for r, keep in zip(rows, kept.tolist(), strict=True) if keep]
+    base = kept_rows[0]["offset"]
+    lines = []
+    bounds_cut = set(cut.tolist()) | {(int(c) + 1) % k for c in cut.tolist()}
+    for n, row in enumerate(kept_rows):
+        if row["dash"] is None and n in bounds_cut:
+            continue  # the cells' outlines draw it
+        spec: dict = {"every": k, "start": n, "style": row["style"]}
+        if row["dash"] is not None:
+            spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
+            spec["shift"] = round(row["shift"], 4)
+        lines.append(spec)
+    joint_style = _style(tile, int(np.flatnonzero(ok)[0]))
+    desc: dict = {"course": round(h / k, 4), "length": round(length, 4), "offset": round(offset, 4), "angle": 0.0,
+                  "bands": {"period": round(h, 4), "rows": [round((r["offset"] - base) % h, 4) for r in kept_rows],
+                            "cut": cut.tolist()},
+                  "cell_style": joint_style,
+                  "tree": [{"feature": "corner", "generator": "none"}, {"feature": "edge", "generator": "none"},
+                           {"feature": "face", "generator": "bricks"}]}  # fmt: skip
+    if lines:
+        desc["lines"] = lines
+    used = ((row_of >= 0) & kept[np.maximum(row_of, 0)]) | piece
+    rest = np.flatnonzero(~used)
+    notes: list[str] = []
+    motifs = None
+    if len(rest):
+        try:
+            motifs = import_pieces(_subset(tile, rest))
+        except ExemplarError as exc:
+            notes.append(f"{len(rest)} piece(s) besides the bedding and joints left out ({exc})")
+    if motifs is not None and len(motifs):
+        desc["motifs"] = {"share": round(min(1.0, len(motifs) / max(per * len(cut), 1.0)), 4)}
     text = _with_description(motifs.text if motifs is not None and len(motifs) else _empty(tile), desc, tile)
     return text, desc, motifs, notes
 

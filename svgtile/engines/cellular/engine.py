@@ -131,8 +131,9 @@ def description(exemplar: Exemplar, p: CellularParams) -> Description:
     if not course:  # one motif's share of the exemplar's area, as a square's side
         course = math.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1))
     length = p.cell_length or d.length or 2.0 * course
+    bands = d.bands.scaled(course / d.course) if d.bands is not None and d.course else d.bands
     return Description(course, length, d.offset, p.mortar or d.mortar, d.cell_style, d.tree, d.lines, d.motifs,
-                       d.ashlar, d.rhomb_angle, d.angle)  # fmt: skip
+                       d.ashlar, d.rhomb_angle, d.angle, bands)  # fmt: skip
 
 
 def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
@@ -323,7 +324,7 @@ def face_cells(frame, free: shapely.Geometry, generator: str, d: Description, *,
     step = d.course / 2
     bounds = gen.st_bounds(frame, free, step)
     quads, _ = gen.face_rectangles(generator, bounds, d.course, d.length, d.offset, key=key, ashlar=d.ashlar,
-                                   rhomb_angle=d.rhomb_angle)  # fmt: skip
+                                   rhomb_angle=d.rhomb_angle, bands=d.bands)  # fmt: skip
     subdivide = 1 if isinstance(frame, RotatedFrame) else max(2, math.ceil(d.length / step))
     cells = gen.map_quads(frame, quads, subdivide)
     cells = cells[cells != None]  # noqa: E711 - an object array of geometries
@@ -362,7 +363,8 @@ def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndar
         s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
         lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
                                  dash=None if dash is None else (float(dash[0]), float(dash[1])),
-                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step)  # fmt: skip
+                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step,
+                                 bands=d.bands)  # fmt: skip
         if len(lines):
             clipped = shapely.intersection(lines, face)
             parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))

@@ -40,6 +40,11 @@ A description, in TOML (JSON has the same keys)::
     [motifs]                # exemplar motifs set in cells (optional)
     share = 0.25            # share of cells holding one
 
+    [bands]                 # interbedded courses of unequal heights (optional; FGDC 672, 677)
+    period = 15.0           # the repeat across the courses, user units
+    rows = [0.0, 3.3, 6.5]  # where course j starts: (j // 3) · period + rows[j % 3]
+    cut = [0]               # the courses j % 3 in this list are cut into cells, the rest stay open
+
 A node may hold ``children`` (a list of nodes) instead of a ``generator``: its tests apply to the
 whole subtree.
 """
@@ -47,6 +52,7 @@ whole subtree.
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -65,7 +71,7 @@ GENERATORS = {
 _TESTS = ("feature", "label", "direction", "hole", "convex")
 _NODE_KEYS = {*_TESTS, "generator", "children", "style"}
 _TOP_KEYS = {"course", "length", "offset", "mortar", "cell_style", "tree", "lines", "motifs", "ashlar", "rhomb_angle",
-             "angle"}
+             "angle", "bands"}
 
 
 @dataclass(frozen=True)
@@ -117,6 +123,7 @@ class Description:
     motifs : the motifs in cells (``share``), or None
     ashlar : (max length, max height) of a random ashlar stone, in grid cells of a third of a course
     rhomb_angle : degrees, the slant of a rhomb's joints from the course normal
+    bands : interbedded courses, or None for courses all ``course`` high (:class:`Bands`)
     """
 
     course: float = 0.0
@@ -130,6 +137,27 @@ class Description:
     ashlar: tuple[int, int] = (4, 2)
     rhomb_angle: float = 45.0
     angle: float = 0.0
+    bands: Bands | None = None
+
+
+@dataclass(frozen=True)
+class Bands:
+    """Courses of unequal heights repeating across the bedding (interbedded series).
+
+    Attributes
+    ----------
+    period : user units, the repeat across the courses
+    rows : (k,) increasing offsets in [0, period), user units, of the courses' lower sides: course
+        ``j`` runs from ``t(j) = (j // k) · period + rows[j % k]`` to ``t(j + 1)``
+    cut : the courses ``j % k`` cut into cells (the others are left open: bedding lines only)
+    """
+
+    period: float
+    rows: tuple[float, ...]
+    cut: tuple[int, ...]
+
+    def scaled(self, factor: float) -> Bands:
+        return Bands(self.period * factor, tuple(r * factor for r in self.rows), self.cut)
 
 
 def default_tree(face: str = "bricks") -> Node:
@@ -170,6 +198,8 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
         if not (isinstance(a, list) and len(a) == 2 and all(isinstance(v, int) and v >= 1 for v in a)):
             raise bad("ashlar must be two whole numbers ≥ 1 (max length, max height)")
         out["ashlar"] = (a[0], a[1])
+    if "bands" in data:
+        out["bands"] = _bands(data["bands"], bad)
     if "tree" in data:
         out["tree"] = Node(children=tuple(_node(n, bad) for n in _list(data["tree"], "tree", bad)))
     if "motifs" in data:
@@ -182,6 +212,21 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
             raise bad("lines must be a table or a list of tables")
         out["lines"] = tuple(_line_spec(spec, bad) for spec in specs)
     return Description(**out)
+
+
+def _bands(b: Any, bad) -> Bands:
+    if not (isinstance(b, dict) and set(b) == {"period", "rows", "cut"}):
+        raise bad("bands must be a table of period, rows and cut")
+    period, rows, cut = b["period"], b["rows"], b["cut"]
+    number = (int, float)
+    if isinstance(period, bool) or not isinstance(period, number) or not 0 < period < math.inf:
+        raise bad("bands.period must be a positive number")
+    if not (isinstance(rows, list) and rows and all(isinstance(r, number) and not isinstance(r, bool) for r in rows)
+            and all(0 <= a < b for a, b in zip(rows, [*rows[1:], period], strict=True))):  # fmt: skip
+        raise bad("bands.rows must be increasing numbers in [0, period)")
+    if not (isinstance(cut, list) and all(isinstance(k, int) and not isinstance(k, bool) and 0 <= k < len(rows) for k in cut)):
+        raise bad("bands.cut must be course numbers in [0, number of rows)")
+    return Bands(float(period), tuple(float(r) for r in rows), tuple(sorted(set(cut))))
 
 
 _LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None}
