@@ -152,3 +152,24 @@ def test_banded_cells_lie_only_in_the_cut_courses():
     assert np.isin(j, bands["cut"]).all()  # … of a cut course …
     height = np.diff(np.r_[rows, period])[j]
     assert np.all(y[:, 1] - y[:, 0] <= height + 1e-3)  # … and stays in it
+
+
+@needs_data
+@pytest.mark.parametrize("code", ["646", "647"])
+def test_fgdc_slanted_joints_in_interbedded_courses_make_rhombs(code):
+    d = fgdc(code)[0].cellular
+    assert d["tree"][-1]["generator"] == "rhombs" and abs(d["rhomb_angle"]) > 15
+    assert len(d["bands"]["cut"]) == len(d["bands"]["rows"])  # every course, even the one astride the tile's side
+
+
+def test_bands_are_checked_when_a_description_is_read():
+    from svgtile.engines.cellular.tree import parse_description
+    from svgtile.errors import ParameterError
+
+    ok = parse_description({"course": 2.0, "bands": {"period": 10.0, "rows": [0.0, 3.0, 6.5], "cut": [1]}})
+    assert ok.bands.rows == (0.0, 3.0, 6.5) and ok.bands.cut == (1,)
+    for bad in ({"period": 10.0, "rows": [3.0, 1.0], "cut": []}, {"period": 10.0, "rows": [0.0, 12.0], "cut": []},
+                {"period": 0, "rows": [0.0], "cut": []}, {"period": 10.0, "rows": [0.0], "cut": [1]},
+                {"period": 10.0, "rows": [0.0]}):  # fmt: skip
+        with pytest.raises(ParameterError, match="bands"):
+            parse_description({"bands": bad}, "t.json")

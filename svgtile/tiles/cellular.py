@@ -216,16 +216,25 @@ def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: Exempl
     kidx = np.cumsum(kept) - 1
     ok = joint & kept[ia] & (at_edge | (kidx[ib] == (kidx[ia] + 1) % k))
     band = kidx[ia]
-    counts = np.bincount(band[ok], minlength=k)
+    counts = np.bincount(band[ok & ~at_edge], minlength=k)
+    # a course astride the tile's side: its joints are cut in two, count each once
+    upper = piece & at_top & kept[ib]
+    counts += np.maximum(np.bincount(band[ok & at_edge], minlength=k), np.bincount((kidx[ib] - 1)[upper] % k, minlength=k))
     cut = np.flatnonzero(counts >= 2)
     if len(cut) == 0:
         raise refused
     per = float(np.median(counts[cut]))
     length = w / per
     s_mid = (feats["mid"][:, 0] - x0) % w
-    first = np.array([np.min(s_mid[ok & (band == b)] % length) for b in cut.tolist()])
-    shifts = ((np.diff(np.r_[first, first[0]]) / length) % 1.0)[: max(len(cut) - 1, 1)]
-    offset = float(np.median(shifts))
+    # the bond's offset: the shift of the joints from one cut course to the next (courses astride
+    # the tile's side, with joints in pieces, left out)
+    first = {b: float(np.min(s_mid[ok & (band == b)] % length)) for b in cut.tolist() if (ok & (band == b)).any()}
+    nxt = dict(zip(cut.tolist(), np.roll(cut, -1).tolist(), strict=True))
+    shifts = [((first[nxt[b]] - first[b]) / length) % 1.0 for b in first if nxt[b] in first and nxt[b] != b]
+    offset = float(np.median(shifts)) if shifts else 0.5
+    chord = feats["last"][ok & ~at_edge] - feats["first"][ok & ~at_edge]
+    chord *= np.where(chord[:, 1] < 0, -1.0, 1.0)[:, None]
+    slant = float(np.degrees(np.median(np.arctan2(chord[:, 0], chord[:, 1])))) if len(chord) else 0.0
     kept_rows = [r for r, keep in zip(rows, kept.tolist(), strict=True) if keep]
     base = kept_rows[0]["offset"]
     lines = []
@@ -245,6 +254,9 @@ def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: Exempl
                   "cell_style": joint_style,
                   "tree": [{"feature": "corner", "generator": "none"}, {"feature": "edge", "generator": "none"},
                            {"feature": "face", "generator": "bricks"}]}  # fmt: skip
+    if abs(slant) > 15.0:  # slanted joints: rhombs (dolomite)
+        desc["tree"][2]["generator"] = "rhombs"
+        desc["rhomb_angle"] = round(slant, 4)
     if lines:
         desc["lines"] = lines
     used = ((row_of >= 0) & kept[np.maximum(row_of, 0)]) | piece
