@@ -173,3 +173,31 @@ def test_bands_are_checked_when_a_description_is_read():
                 {"period": 10.0, "rows": [0.0]}):  # fmt: skip
         with pytest.raises(ParameterError, match="bands"):
             parse_description({"bands": bad}, "t.json")
+
+
+# ----------------------------------------------------------------------------- (b) fewest half bricks
+
+
+def _cut_face_cells(result, whole_area: float) -> int:
+    from svgtile.core.cells import FACE
+
+    face = result.cells.shapes[result.cells.feature == FACE]
+    return int((shapely.area(face) < whole_area - 1e-3).sum())
+
+
+def test_the_face_takes_the_bond_with_the_fewest_half_bricks(tmp_path):
+    """§5.2: of the two ways of pairing blocks into bricks, the one making fewer bricks.  Eleven
+    courses j = 1 … 11 of bricks 14 long in a face 140 wide: the world's bond cuts the six odd
+    courses at both ends (12 halves), the other phase the five even ones (10)."""
+    face_only = {"course": 6.0, "length": 14.0, "offset": 0.5, "tree": [{"feature": "face", "generator": "bricks"}]}
+    box = shapely.box(0, 6, 140, 72)
+    fewest = run(face_only, shape=box, tmp_path=tmp_path)
+    anchored = run(face_only, shape=box, tmp_path=tmp_path, halves="anchored")
+    assert _cut_face_cells(anchored, 84.0) == 12
+    assert _cut_face_cells(fewest, 84.0) == 10
+    assert shapely.area(fewest.cells.cells).sum() == pytest.approx(box.area)  # the same area, filled
+
+
+def test_fewest_half_bricks_never_cuts_more_than_the_anchored_bond(tmp_path):
+    fewest, anchored = run(tmp_path=tmp_path), run(tmp_path=tmp_path, halves="anchored")
+    assert _cut_face_cells(fewest, 84.0) <= _cut_face_cells(anchored, 84.0)

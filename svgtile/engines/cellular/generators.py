@@ -141,7 +141,7 @@ def st_bounds(frame, shape: shapely.Geometry, step: float) -> tuple[float, float
 
 def face_rectangles(generator: str, bounds: tuple[float, float, float, float], course: float, length: float,
                     offset: float, *, key: int, ashlar: tuple[int, int] = (4, 2), rhomb_angle: float = 45.0,
-                    bands=None) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+                    bands=None, phase: float = 0.0) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Cells of a face generator in parameter space, before clipping (§5.1's grid tool).
 
     Parameters
@@ -153,6 +153,8 @@ def face_rectangles(generator: str, bounds: tuple[float, float, float, float], c
     course, length : cell height and length, user units
     bands : interbedded courses (:class:`.tree.Bands`): only the cut ones get cells, and the bond's
         offset steps from one cut course to the next; None for courses all ``course`` high
+    phase : share of a length the whole bond is shifted by (bricks and rhombs: §5.2's two ways of
+        pairing blocks into bricks are phases 0 and 0.5)
 
     Returns
     -------
@@ -175,7 +177,7 @@ def face_rectangles(generator: str, bounds: tuple[float, float, float, float], c
         keep = np.isin(j % k, cut)
         j, t_lo, t_hi = j[keep], t_lo[keep], t_hi[keep]
         bond = np.floor_divide(j, k) * len(cut) + np.searchsorted(cut, j % k)
-    shift = (offset * bond) % 1.0 if generator in ("bricks", "rhombs") else np.zeros(len(j))
+    shift = (offset * bond + phase) % 1.0 if generator in ("bricks", "rhombs") else np.zeros(len(j))
     lo = np.floor(s0 / length - shift).astype(np.int64) - 1 - (generator == "rhombs") * 2
     hi = np.ceil(s1 / length - shift).astype(np.int64) + 1 + (generator == "rhombs") * 2
     count = hi - lo
