@@ -201,3 +201,31 @@ def test_the_face_takes_the_bond_with_the_fewest_half_bricks(tmp_path):
 def test_fewest_half_bricks_never_cuts_more_than_the_anchored_bond(tmp_path):
     fewest, anchored = run(tmp_path=tmp_path), run(tmp_path=tmp_path, halves="anchored")
     assert _cut_face_cells(fewest, 84.0) <= _cut_face_cells(anchored, 84.0)
+
+
+# ----------------------------------------------------------------------------- (e) wavy lines
+
+
+def test_a_wavy_line_follows_its_profile(tmp_path):
+    wave = [0.0, 0.5, 0.0, -0.5]  # a zigzag 1 across, every 8 along
+    d = {"course": 6.0, "length": 14.0, "tree": [{"feature": "face", "generator": "none"}],
+         "lines": [{"every": 1, "start": 0, "wave": wave, "wave_period": 8.0}]}  # fmt: skip
+    lines = run(d, shape=shapely.box(0, 0, 64, 30), tmp_path=tmp_path).cells.lines
+    assert len(lines) >= 4
+    xy = shapely.get_coordinates(lines)
+    course = np.round(xy[:, 1] / 6.0)
+    across = xy[:, 1] - 6.0 * course
+    assert np.ptp(across) == pytest.approx(1.0, abs=1e-3)  # not drawn straight
+    expect = np.interp(xy[:, 0] % 8.0, [0, 2, 4, 6], wave, period=8.0)
+    assert np.abs(across - expect).max() < 1e-3  # world-anchored: the same profile on every course
+
+
+@needs_data
+def test_fgdc_663_wavy_bedding_is_imported_with_its_wave():
+    d = fgdc("663")[0].cellular
+    waves = [spec for spec in d["lines"] if spec.get("wave")]
+    assert waves, "the wavy rows were imported straight"
+    for spec in waves:
+        assert np.ptp(spec["wave"]) > 0.2 and spec["wave_period"] == pytest.approx(fgdc("663")[0].box[2], rel=1e-3)
+    straight = import_tile(FGDC / "627.svg").cellular
+    assert not any(spec.get("wave") for spec in straight.get("lines") or ())

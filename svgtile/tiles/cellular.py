@@ -46,6 +46,10 @@ STRAIGHT = 0.05
 WAVY = 0.3
 #: Along the bearing: within this many degrees.
 ALONG = 4.0
+#: A wavy row's profile: samples along one tile, and the spread across it (share of the period)
+#: under which it is straight.
+WAVE_SAMPLES = 48
+WAVE_FLAT = 0.01
 #: A row covering at least this share of the tile's width is a solid line.
 SOLID = 0.9
 #: A row of three or more pieces of uneven lengths covering at least this share of the tile's
@@ -112,6 +116,8 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
         if row["dash"] is not None:
             spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
             spec["shift"] = round(row["shift"], 4)
+        if "wave" in row:
+            spec.update(wave=row["wave"], wave_period=round(_span(w, h, bearing), 4))
         lines.append(spec)
     used = row_of >= 0
     # joints: straight pieces across a course, not in a row
@@ -246,6 +252,8 @@ def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: Exempl
         if row["dash"] is not None:
             spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
             spec["shift"] = round(row["shift"], 4)
+        if "wave" in row:
+            spec.update(wave=row["wave"], wave_period=round(w, 4))
         lines.append(spec)
     joint_style = _style(tile, int(np.flatnonzero(ok)[0]))
     desc: dict = {"course": round(h / k, 4), "length": round(length, 4), "offset": round(offset, 4), "angle": 0.0,
@@ -307,6 +315,12 @@ def _bearing(f: dict[str, np.ndarray]) -> float | None:
     if ink[horizontal].sum() >= max(0.1 * ink.sum(), 0.5 * weights.max()):
         return 0.0
     return float(np.argmax(weights) * 5.0)
+
+
+def _span(w: float, h: float, bearing: float) -> float:
+    """The length of a line of ``bearing`` across one tile (:func:`_rows`' period of dashes)."""
+    c = abs(math.cos(math.radians(bearing)))
+    return w / c if c > 1e-9 else h
 
 
 def _normal_period(w: float, h: float, bearing: float) -> float:
@@ -386,9 +400,13 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
             del gaps
         else:
             continue
+        row = {"offset": float(np.median(off[np.array(g)])), "dash": dash, "shift": shift,
+               "style": _style(tile, int(members[0]))}  # fmt: skip
+        wave = _wave(tile, members, u, nrm, np.array([x0, y0]), row["offset"], period, span_len)
+        if wave is not None:
+            row["wave"] = wave
         row_of[members] = len(rows)
-        rows.append({"offset": float(np.median(off[np.array(g)])), "dash": dash, "shift": shift,
-                     "style": _style(tile, int(members[0]))})  # fmt: skip
+        rows.append(row)
     del width
     if len(rows) > 1:  # rows should be evenly spaced: courses of one height
         offs = np.array([r["offset"] for r in rows])
@@ -397,6 +415,35 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
             # uneven: keep the rows, the courses are their mean spacing (the tile's order stays)
             pass
     return rows, row_of
+
+
+def _wave(tile: TilePieces, members: np.ndarray, u: np.ndarray, nrm: np.ndarray, origin: np.ndarray, offset: float,
+          period: float, span: float) -> list[float] | None:  # fmt: skip
+    """The row's waviness: its offset across the row at ``WAVE_SAMPLES`` even steps along one
+    ``span`` (user units, a periodic profile), or None for a straight row (within ``WAVE_FLAT``)."""
+    pts = []
+    for i in members.tolist():  # each piece densified, so that long straight segments weigh
+        p = tile.points[i]
+        seg = np.hypot(*np.diff(p, axis=0).T)
+        arc = np.r_[0.0, np.cumsum(seg)]
+        if arc[-1] <= 0:
+            continue
+        at = np.linspace(0.0, arc[-1], max(2, int(arc[-1] / span * 4 * WAVE_SAMPLES)))
+        pts.append(np.stack([np.interp(at, arc, p[:, 0]), np.interp(at, arc, p[:, 1])], axis=1))
+    if not pts:
+        return None
+    xy = np.concatenate(pts) - origin
+    s = (xy @ u) % span
+    dt = (xy @ nrm - offset + period / 2) % period - period / 2
+    if np.ptp(dt) <= WAVE_FLAT * period:
+        return None
+    k = np.minimum((s / span * WAVE_SAMPLES).astype(np.int64), WAVE_SAMPLES - 1)
+    count = np.bincount(k, minlength=WAVE_SAMPLES)
+    mean = np.bincount(k, weights=dt, minlength=WAVE_SAMPLES) / np.maximum(count, 1)
+    have = np.flatnonzero(count)
+    grid = np.arange(WAVE_SAMPLES)
+    profile = np.interp(grid, have, mean[have], period=WAVE_SAMPLES) if len(have) < WAVE_SAMPLES else mean
+    return [round(float(v), 4) for v in profile]
 
 
 def _joints(f: dict[str, np.ndarray], joint: np.ndarray, bearing: float, course: float, period: float, w: float

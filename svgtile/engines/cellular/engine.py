@@ -384,10 +384,14 @@ def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndar
     for spec in d.lines or ():
         dash = spec.get("dash")
         s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
+        wave = None
+        if spec.get("wave") is not None:  # a wavy line: sampled finely enough to follow its profile
+            wave = (np.asarray(spec["wave"], dtype=np.float64), float(spec["wave_period"]))
+            s_step = min(s_step, wave[1] / len(wave[0]))
         lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
                                  dash=None if dash is None else (float(dash[0]), float(dash[1])),
                                  offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step,
-                                 bands=d.bands)  # fmt: skip
+                                 bands=d.bands, wave=wave)  # fmt: skip
         if len(lines):
             clipped = shapely.intersection(lines, face)
             parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))

@@ -243,11 +243,13 @@ def map_quads(frame, quads: np.ndarray, subdivide: int) -> np.ndarray:
 
 def course_lines(frame, bounds: tuple[float, float, float, float], course: float, *, every: int = 1, start: int = 0,
                  dash: tuple[float, float] | None = None, offset: float = 0.0, shift: float = 0.0,
-                 step: float, bands=None) -> np.ndarray:  # fmt: skip
+                 step: float, bands=None, wave: tuple[np.ndarray, float] | None = None) -> np.ndarray:  # fmt: skip
     """Bedding lines along the course boundaries ``t = j·course`` with ``j % every == start``, solid
     or dashed (``dash`` = on, off lengths; the dashes of course ``j`` shifted by ``offset · j +
     shift`` periods, world-anchored), in the world; ``step`` is the spacing of the points a curved
-    frame maps; with ``bands`` (:class:`.tree.Bands`) course ``j`` starts at its row.  Not clipped."""
+    frame maps; with ``bands`` (:class:`.tree.Bands`) course ``j`` starts at its row; a ``wave``
+    (offsets across the course at even steps of ``s``, and their period along it, user units) bends
+    every line by that periodic profile, world-anchored.  Not clipped."""
     s0, t0, s1, t1 = bounds
     j, t, _ = courses(t0, t1 + course, course, bands)
     keep = j % every == start % every
@@ -257,6 +259,7 @@ def course_lines(frame, bounds: tuple[float, float, float, float], course: float
     if dash is None:
         s = np.arange(math.floor(s0 / step) - 1, math.ceil(s1 / step) + 2) * step
         st = np.stack(np.broadcast_arrays(s[None, :], t[:, None]), axis=-1)  # (c, m, 2)
+        st = _waved(st, wave)
         world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
         lines = []
         for row in world:  # one course line at a time: NaNs (outside a flow grid) split it
@@ -272,9 +275,20 @@ def course_lines(frame, bounds: tuple[float, float, float, float], course: float
     u = np.linspace(0.0, dash[0], pieces + 1)
     s = a[:, :, None] + u[None, None, :]
     tt = np.broadcast_to(t[:, None, None], s.shape)
-    st = np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2)
+    st = _waved(np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2), wave)
     world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
     return shapely.linestrings(world[np.isfinite(world).all(axis=(1, 2))])
+
+
+def _waved(st: np.ndarray, wave: tuple[np.ndarray, float] | None) -> np.ndarray:
+    """(..., 2) points (s, t) moved across the course by the periodic ``wave`` profile."""
+    if wave is None:
+        return st
+    profile, period = wave
+    x = np.arange(len(profile)) * (period / len(profile))
+    out = st.copy()
+    out[..., 1] += np.interp(st[..., 0] % period, x, profile, period=period)
+    return out
 
 
 def shrink(cells: np.ndarray, mortar: float) -> np.ndarray:

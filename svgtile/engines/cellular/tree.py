@@ -36,6 +36,8 @@ A description, in TOML (JSON has the same keys)::
     offset = 0.5            # dash shift per course, share of the dash period
     shift = 0.0             # dash shift of every line, share of the dash period
     style = "fill:none;stroke:#000;stroke-width:0.3"
+    wave = [0.0, 0.4, 0.0, -0.4]   # a wavy line: its offset across the course at even steps …
+    wave_period = 12.0      # … along this length, user units (repeating; omit for straight lines)
 
     [motifs]                # exemplar motifs set in cells (optional)
     share = 0.25            # share of cells holding one
@@ -229,7 +231,8 @@ def _bands(b: Any, bad) -> Bands:
     return Bands(float(period), tuple(float(r) for r in rows), tuple(sorted(set(cut))))
 
 
-_LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None}
+_LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None, "wave": None,
+              "wave_period": 0.0}
 
 
 def _line_spec(spec: dict[str, Any], bad) -> dict[str, Any]:
@@ -248,6 +251,12 @@ def _line_spec(spec: dict[str, Any], bad) -> dict[str, Any]:
             raise bad(f"lines.{key} must be a number")
     if out["style"] is not None and not isinstance(out["style"], str):
         raise bad("lines.style must be text")
+    wave, period = out["wave"], out["wave_period"]
+    if wave is not None and not (
+        isinstance(wave, list) and len(wave) >= 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                          and math.isfinite(v) for v in wave)
+        and isinstance(period, (int, float)) and not isinstance(period, bool) and 0 < period < math.inf):  # fmt: skip
+        raise bad("lines.wave must be two or more offsets, with a positive lines.wave_period")
     return out
 
 
