@@ -142,12 +142,16 @@ def test_a_labelled_edge_goes_to_its_own_generator(tmp_path):
     result = run(tree, shape=unit, tmp_path=tmp_path, label=f"fault={tmp_path / 'map.svg'}#fault")
     cells = result.cells
     red = cells.styles.index("fill:none;stroke:#ff0000")
-    faulted = cells.shapes[cells.style == red]
-    assert len(faulted) >= 6
-    assert np.allclose(shapely.bounds(faulted)[:, 3], 90.0)  # all along y = 90 …
-    along = shapely.intersection(shapely.boundary(shapely.union_all(faulted)), shapely.LineString([(0, 90), (120, 90)]))
+    # the fault's cells are outlined in red (their joints, each drawn once) …
+    joints = shapely.get_parts(cells.shapes[(cells.style == red) & (cells.feature == LINE)])
+    assert len(joints) >= 6
+    assert np.all(shapely.bounds(joints)[:, [1, 3]] >= 84.0 - 1e-3)  # all in the course along y = 90 …
+    along = shapely.intersection(shapely.union_all(joints), shapely.box(-1, 84 - 1e-3, 121, 84 + 1e-3))
     assert along.length > 0.8 * 120  # … and they line it (between the corner cells)
-    # equal blocks, not alternating bricks
+    # equal blocks, not alternating bricks, along the fault
+    faulted = cells.shapes[(cells.feature == EDGE) & (np.abs(shapely.bounds(cells.shapes)[:, 3] - 90.0) < 1e-3)
+                           & (np.abs(shapely.bounds(cells.shapes)[:, 1] - 84.0) < 1e-3)]  # fmt: skip
+    assert len(faulted) >= 6
     widths = np.sort(np.ptp(shapely.bounds(faulted)[:, [0, 2]], axis=1))
     assert np.ptp(widths[1:-1]) < 1e-6  # (the end ones meet the corner cells)
     plain = run(tree, shape=unit, tmp_path=tmp_path)  # no label given: no red cells
@@ -243,15 +247,18 @@ def test_same_seed_same_bytes_and_cells_written(tmp_path):
     assert text.count("<path class=") == len(a.cells)
     assert 'cells="' in text
     features = cellwork_features(a.cells)
-    assert {f["geometry"]["type"] for f in features} == {"Polygon"}
+    assert {f["geometry"]["type"] for f in features} == {"Polygon", "MultiLineString"}  # cells, their joints
+    assert sum(f["geometry"]["type"] == "Polygon" for f in features) == len(a.cells.cells)
     assert len(features) == len(a.cells)
 
 
 def test_an_edit_changes_cells_only_near_it(tmp_path):
+    """With the bond anchored to the world (with the fewest half bricks, an edit may shift a face's
+    bond by half a brick: tests/test_cellular_fidelity.py)."""
     unit = shapely.Polygon([(0, 0), (300, 0), (300, 200), (150, 200), (0, 200)])
     moved = shapely.Polygon([(0, 0), (300, 0), (300, 200), (150, 230), (0, 200)])  # one vertex pulled out
-    a = run(shape=unit, tmp_path=tmp_path).cells.cells
-    b = run(shape=moved, tmp_path=tmp_path).cells.cells
+    a = run(shape=unit, tmp_path=tmp_path, halves="anchored").cells.cells
+    b = run(shape=moved, tmp_path=tmp_path, halves="anchored").cells.cells
     far = shapely.distance(shapely.LineString([(0, 200), (150, 230), (300, 200)]), a) > 40
     same = set(shapely.to_wkb(shapely.normalize(b)).tolist())
     kept = np.array([w in same for w in shapely.to_wkb(shapely.normalize(a[far])).tolist()])

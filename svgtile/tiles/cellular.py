@@ -46,6 +46,10 @@ STRAIGHT = 0.05
 WAVY = 0.3
 #: Along the bearing: within this many degrees.
 ALONG = 4.0
+#: A wavy row's profile: samples along one tile, and the spread across it (share of the period)
+#: under which it is straight.
+WAVE_SAMPLES = 48
+WAVE_FLAT = 0.01
 #: A row covering at least this share of the tile's width is a solid line.
 SOLID = 0.9
 #: A row of three or more pieces of uneven lengths covering at least this share of the tile's
@@ -85,9 +89,15 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
         raise refused
     for bearing in dict.fromkeys((first, 0.0)):  # the likeliest bearing, then the horizontal
         try:
-            return _bedded(tile, feats, bearing, refused, import_pieces)
+            found = _bedded(tile, feats, bearing, refused, import_pieces)
         except ExemplarError:
             continue
+        if found[1]["cell_style"] or bearing != 0.0:
+            return found
+        try:  # no joints across courses of one height: are they interbedded courses?
+            return _interbedded(tile, feats, refused, import_pieces)
+        except ExemplarError:
+            return found
     raise refused
 
 
@@ -106,6 +116,8 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
         if row["dash"] is not None:
             spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
             spec["shift"] = round(row["shift"], 4)
+        if "wave" in row:
+            spec.update(wave=row["wave"], wave_period=round(_span(w, h, bearing), 4))
         lines.append(spec)
     used = row_of >= 0
     # joints: straight pieces across a course, not in a row
@@ -165,6 +177,111 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
     return text, desc, motifs, notes
 
 
+def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: ExemplarError, import_pieces
+                 ) -> tuple[str, dict, object | None, list[str]]:  # fmt: skip
+    """:func:`import_cellular` for horizontal courses of unequal heights, some cut into cells
+    (interbedded series: FGDC 672, 677), or courses whose cells hold rows of motifs (637).
+
+    A joint is a steep piece whose ends lie on two rows; a row the joints cross is not bedding
+    (dashes in the bricks of 637, 672): its pieces are motifs set in cells.  The courses between
+    the rows left are cut into cells where joints run (``bands.cut``), the rest stay open; solid
+    rows along cut courses are drawn by the cells' outlines, every other row as a line.
+    ``refused`` is raised if no two joints are found.
+    """
+    x0, y0, w, h = tile.box
+    rows, row_of = _rows(tile, feats, 0.0)
+    if len(rows) < 2:
+        raise refused
+    order = np.argsort([r["offset"] for r in rows], kind="stable")
+    rows = [rows[i] for i in order.tolist()]
+    row_of = np.where(row_of >= 0, np.argsort(order)[np.maximum(row_of, 0)], -1)
+    offs = np.array([r["offset"] for r in rows])
+    tol = 0.25 * float(np.diff(np.r_[offs, offs[0] + h]).min())
+    rel = (feats["angle"] - 0.0) % 180.0
+    cand = (row_of < 0) & feats["wavy"] & (np.abs(rel - 90.0) <= 50.0)
+    ca, cb = feats["first"][:, 1] - y0, feats["last"][:, 1] - y0
+    lo, hi = np.minimum(ca, cb), np.maximum(ca, cb)
+
+    def nearest(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        d = np.abs((x[:, None] - offs[None, :] + h / 2) % h - h / 2)
+        return np.argmin(d, axis=1), np.min(d, axis=1)
+
+    ia, da = nearest(lo)
+    ib, db = nearest(hi)
+    # a joint cut by the tile's side goes on in the next tile: its pieces end at a row or a side
+    at_top, at_edge = lo <= 1e-3 * h, hi >= h - 1e-3 * h
+    piece = cand & ((da <= tol) | at_top) & ((db <= tol) | at_edge) & ~(at_top & at_edge) & (hi - lo < 0.5 * h)
+    joint = piece & (da <= tol) & (hi - lo > 2 * tol)  # a whole joint, or its piece at the tile's lower side
+    if joint.sum() < 2:
+        raise refused
+    # rows the joints cross lie inside cells: not bedding
+    p = (offs[None, :] - lo[piece, None]) % h
+    crossed = ((p > tol) & (p < (hi - lo)[piece, None] - tol) & (p < h - tol)).sum(axis=0) >= 2
+    kept = ~crossed
+    k = int(kept.sum())
+    kidx = np.cumsum(kept) - 1
+    ok = joint & kept[ia] & (at_edge | (kidx[ib] == (kidx[ia] + 1) % k))
+    band = kidx[ia]
+    counts = np.bincount(band[ok & ~at_edge], minlength=k)
+    # a course astride the tile's side: its joints are cut in two, count each once
+    upper = piece & at_top & kept[ib]
+    counts += np.maximum(np.bincount(band[ok & at_edge], minlength=k), np.bincount((kidx[ib] - 1)[upper] % k, minlength=k))
+    cut = np.flatnonzero(counts >= 2)
+    if len(cut) == 0:
+        raise refused
+    per = float(np.median(counts[cut]))
+    length = w / per
+    s_mid = (feats["mid"][:, 0] - x0) % w
+    # the bond's offset: the shift of the joints from one cut course to the next (courses astride
+    # the tile's side, with joints in pieces, left out)
+    first = {b: float(np.min(s_mid[ok & (band == b)] % length)) for b in cut.tolist() if (ok & (band == b)).any()}
+    nxt = dict(zip(cut.tolist(), np.roll(cut, -1).tolist(), strict=True))
+    shifts = [((first[nxt[b]] - first[b]) / length) % 1.0 for b in first if nxt[b] in first and nxt[b] != b]
+    offset = float(np.median(shifts)) if shifts else 0.5
+    chord = feats["last"][ok & ~at_edge] - feats["first"][ok & ~at_edge]
+    chord *= np.where(chord[:, 1] < 0, -1.0, 1.0)[:, None]
+    slant = float(np.degrees(np.median(np.arctan2(chord[:, 0], chord[:, 1])))) if len(chord) else 0.0
+    kept_rows = [r for r, keep in zip(rows, kept.tolist(), strict=True) if keep]
+    base = kept_rows[0]["offset"]
+    lines = []
+    bounds_cut = set(cut.tolist()) | {(int(c) + 1) % k for c in cut.tolist()}
+    for n, row in enumerate(kept_rows):
+        if row["dash"] is None and n in bounds_cut:
+            continue  # the cells' outlines draw it
+        spec: dict = {"every": k, "start": n, "style": row["style"]}
+        if row["dash"] is not None:
+            spec["dash"] = [round(row["dash"][0], 4), round(row["dash"][1], 4)]
+            spec["shift"] = round(row["shift"], 4)
+        if "wave" in row:
+            spec.update(wave=row["wave"], wave_period=round(w, 4))
+        lines.append(spec)
+    joint_style = _style(tile, int(np.flatnonzero(ok)[0]))
+    desc: dict = {"course": round(h / k, 4), "length": round(length, 4), "offset": round(offset, 4), "angle": 0.0,
+                  "bands": {"period": round(h, 4), "rows": [round((r["offset"] - base) % h, 4) for r in kept_rows],
+                            "cut": cut.tolist()},
+                  "cell_style": joint_style,
+                  "tree": [{"feature": "corner", "generator": "none"}, {"feature": "edge", "generator": "none"},
+                           {"feature": "face", "generator": "bricks"}]}  # fmt: skip
+    if abs(slant) > 15.0:  # slanted joints: rhombs (dolomite)
+        desc["tree"][2]["generator"] = "rhombs"
+        desc["rhomb_angle"] = round(slant, 4)
+    if lines:
+        desc["lines"] = lines
+    used = ((row_of >= 0) & kept[np.maximum(row_of, 0)]) | piece
+    rest = np.flatnonzero(~used)
+    notes: list[str] = []
+    motifs = None
+    if len(rest):
+        try:
+            motifs = import_pieces(_subset(tile, rest))
+        except ExemplarError as exc:
+            notes.append(f"{len(rest)} piece(s) besides the bedding and joints left out ({exc})")
+    if motifs is not None and len(motifs):
+        desc["motifs"] = {"share": round(min(1.0, len(motifs) / max(per * len(cut), 1.0)), 4)}
+    text = _with_description(motifs.text if motifs is not None and len(motifs) else _empty(tile), desc, tile)
+    return text, desc, motifs, notes
+
+
 def _straight(tile: TilePieces) -> dict[str, np.ndarray]:
     """Per piece: straight open stroke?, chord length, bearing (degrees in [0, 180)), midpoint."""
     n = len(tile.points)
@@ -198,6 +315,12 @@ def _bearing(f: dict[str, np.ndarray]) -> float | None:
     if ink[horizontal].sum() >= max(0.1 * ink.sum(), 0.5 * weights.max()):
         return 0.0
     return float(np.argmax(weights) * 5.0)
+
+
+def _span(w: float, h: float, bearing: float) -> float:
+    """The length of a line of ``bearing`` across one tile (:func:`_rows`' period of dashes)."""
+    c = abs(math.cos(math.radians(bearing)))
+    return w / c if c > 1e-9 else h
 
 
 def _normal_period(w: float, h: float, bearing: float) -> float:
@@ -277,9 +400,13 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
             del gaps
         else:
             continue
+        row = {"offset": float(np.median(off[np.array(g)])), "dash": dash, "shift": shift,
+               "style": _style(tile, int(members[0]))}  # fmt: skip
+        wave = _wave(tile, members, u, nrm, np.array([x0, y0]), row["offset"], period, span_len)
+        if wave is not None:
+            row["wave"] = wave
         row_of[members] = len(rows)
-        rows.append({"offset": float(np.median(off[np.array(g)])), "dash": dash, "shift": shift,
-                     "style": _style(tile, int(members[0]))})  # fmt: skip
+        rows.append(row)
     del width
     if len(rows) > 1:  # rows should be evenly spaced: courses of one height
         offs = np.array([r["offset"] for r in rows])
@@ -288,6 +415,35 @@ def _rows(tile: TilePieces, f: dict[str, np.ndarray], bearing: float) -> tuple[l
             # uneven: keep the rows, the courses are their mean spacing (the tile's order stays)
             pass
     return rows, row_of
+
+
+def _wave(tile: TilePieces, members: np.ndarray, u: np.ndarray, nrm: np.ndarray, origin: np.ndarray, offset: float,
+          period: float, span: float) -> list[float] | None:  # fmt: skip
+    """The row's waviness: its offset across the row at ``WAVE_SAMPLES`` even steps along one
+    ``span`` (user units, a periodic profile), or None for a straight row (within ``WAVE_FLAT``)."""
+    pts = []
+    for i in members.tolist():  # each piece densified, so that long straight segments weigh
+        p = tile.points[i]
+        seg = np.hypot(*np.diff(p, axis=0).T)
+        arc = np.r_[0.0, np.cumsum(seg)]
+        if arc[-1] <= 0:
+            continue
+        at = np.linspace(0.0, arc[-1], max(2, int(arc[-1] / span * 4 * WAVE_SAMPLES)))
+        pts.append(np.stack([np.interp(at, arc, p[:, 0]), np.interp(at, arc, p[:, 1])], axis=1))
+    if not pts:
+        return None
+    xy = np.concatenate(pts) - origin
+    s = (xy @ u) % span
+    dt = (xy @ nrm - offset + period / 2) % period - period / 2
+    if np.ptp(dt) <= WAVE_FLAT * period:
+        return None
+    k = np.minimum((s / span * WAVE_SAMPLES).astype(np.int64), WAVE_SAMPLES - 1)
+    count = np.bincount(k, minlength=WAVE_SAMPLES)
+    mean = np.bincount(k, weights=dt, minlength=WAVE_SAMPLES) / np.maximum(count, 1)
+    have = np.flatnonzero(count)
+    grid = np.arange(WAVE_SAMPLES)
+    profile = np.interp(grid, have, mean[have], period=WAVE_SAMPLES) if len(have) < WAVE_SAMPLES else mean
+    return [round(float(v), 4) for v in profile]
 
 
 def _joints(f: dict[str, np.ndarray], joint: np.ndarray, bearing: float, course: float, period: float, w: float

@@ -37,6 +37,7 @@ from svgtile.errors import ParameterError
 
 from . import generators as gen
 from .frame import FlowFrame, RotatedFrame, long_axis_angle
+from .joints import draw_joints
 from .mesh import BaseMesh, base_mesh
 from .tree import Description, parse_description, read_description
 
@@ -48,6 +49,8 @@ RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf
 LINE_STYLE = "fill:none;stroke:#000000;stroke-width:0.3"
 #: Face cells with less than this share of a whole cell inside the free space are not made.
 SLIVER = 0.02
+#: Cell outlines closer than this share of a course are one joint (:func:`.joints.draw_joints`).
+JOINT_TOLERANCE = 1e-4
 
 
 @dataclass(frozen=True)
@@ -74,6 +77,7 @@ class CellularParams(EngineParams):
     cell_length: float = param(0.0, "Cellular cell length along a course, user units (0 = the description's).", interval=(0.0, math.inf))
     mortar: float = param(0.0, "Gap between cellular cells, user units (0 = the description's).", interval=(0.0, math.inf))
     label: str = param("", "Label the unit's edges that run along map lines, NAME=MAP.svg#ID[,NAME=MAP.svg#ID…] (cellular trees route labelled edges).", metavar="NAME=MAP.svg#ID")
+    halves: str = param("fewest", "Cellular bricks: the bond with the fewest cut bricks in each unit (legakis2001 §5.2), or anchored to the world (an edit then changes only the cells near it).", choices=("fewest", "anchored"))
     corner_angle: float = 30.0
 
     def __post_init__(self) -> None:
@@ -130,8 +134,9 @@ def description(exemplar: Exemplar, p: CellularParams) -> Description:
     if not course:  # one motif's share of the exemplar's area, as a square's side
         course = math.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1))
     length = p.cell_length or d.length or 2.0 * course
+    bands = d.bands.scaled(course / d.course) if d.bands is not None and d.course else d.bands
     return Description(course, length, d.offset, p.mortar or d.mortar, d.cell_style, d.tree, d.lines, d.motifs,
-                       d.ashlar, d.rhomb_angle, d.angle)  # fmt: skip
+                       d.ashlar, d.rhomb_angle, d.angle, bands)  # fmt: skip
 
 
 def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
@@ -178,7 +183,7 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     free = shapely.difference(face, claimed) if claimed is not None else face
     leaf = d.tree.route({"feature": "face", "label": ""})
     if leaf is not None and leaf.generator != "none" and not free.is_empty:
-        cells = face_cells(frame, free, leaf.generator, d, key=ctx.key)
+        cells = face_cells(frame, free, leaf.generator, d, key=ctx.key, fewest_halves=p.halves == "fewest")
         add(cells, FACE, RGB[FACE] if leaf.generator == "blocks" and leaf.style is None else leaf.style)
     # bedding lines along the courses, over the face
     if d.lines:
@@ -202,6 +207,8 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     blank = np.array([not css for css in work.styles], dtype=bool)
     if len(work) and blank.any():
         work = work.take(np.flatnonzero(~blank[work.style]))
+    if d.mortar == 0:  # neighbours share their sides: each joint stroked once, as the tile does
+        work = draw_joints(work, face, JOINT_TOLERANCE * h)
     return motifs, work.in_reading_order(DECIMALS)
 
 
@@ -315,12 +322,34 @@ def _hole_sides(mesh: BaseMesh) -> list[str]:
     return out
 
 
-def face_cells(frame, free: shapely.Geometry, generator: str, d: Description, *, key: int) -> np.ndarray:
-    """Cells of a face generator clipped to the free space (§3.3, Figure 3b); slivers dropped."""
+def face_cells(frame, free: shapely.Geometry, generator: str, d: Description, *, key: int, fewest_halves: bool = True
+               ) -> np.ndarray:  # fmt: skip
+    """Cells of a face generator clipped to the free space (§3.3, Figure 3b); slivers dropped.
+
+    Bricks (and rhombs) have two ways of pairing the grid's half-brick blocks into bricks, the
+    bond and the bond shifted by half a brick; "since both fill the same area, picking the option
+    that creates the least number of bricks yields the better pattern" (§5.2).  Both are laid and
+    the one cutting fewer cells (then making fewer) is kept: whole bricks along the face's sides
+    rather than halves.  The choice is the face's, so an edit that tips it shifts the face's
+    bond by half a brick; without ``fewest_halves`` the bond is the world's (phase 0)."""
+    phases = (0.0, 0.5) if fewest_halves and generator in ("bricks", "rhombs") else (0.0,)
+    best = None
+    for phase in phases:
+        cells, whole = _laid(frame, free, generator, d, phase, key=key)
+        score = (int((~whole).sum()), len(cells))
+        if best is None or score < best[0]:
+            best = (score, cells)
+    return best[1]
+
+
+def _laid(frame, free: shapely.Geometry, generator: str, d: Description, phase: float, *, key: int
+          ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """(cells, whole): the generator's cells with the bond shifted by ``phase`` lengths, clipped to
+    ``free``, and which of them are whole."""
     step = d.course / 2
     bounds = gen.st_bounds(frame, free, step)
     quads, _ = gen.face_rectangles(generator, bounds, d.course, d.length, d.offset, key=key, ashlar=d.ashlar,
-                                   rhomb_angle=d.rhomb_angle)  # fmt: skip
+                                   rhomb_angle=d.rhomb_angle, bands=d.bands, phase=phase)  # fmt: skip
     subdivide = 1 if isinstance(frame, RotatedFrame) else max(2, math.ceil(d.length / step))
     cells = gen.map_quads(frame, quads, subdivide)
     cells = cells[cells != None]  # noqa: E711 - an object array of geometries
@@ -334,7 +363,7 @@ def face_cells(frame, free: shapely.Geometry, generator: str, d: Description, *,
     # a cell the edge cells cut in two is two cells
     parts, index = shapely.get_parts(clipped, return_index=True)
     keep = shapely.area(parts) > SLIVER * full[index]
-    return parts[keep]
+    return parts[keep], inside[index[keep]]
 
 
 def _polygonal(geoms: np.ndarray) -> np.ndarray:
@@ -357,9 +386,14 @@ def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndar
     for spec in d.lines or ():
         dash = spec.get("dash")
         s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
+        wave = None
+        if spec.get("wave") is not None:  # a wavy line: sampled finely enough to follow its profile
+            wave = (np.asarray(spec["wave"], dtype=np.float64), float(spec["wave_period"]))
+            s_step = min(s_step, wave[1] / len(wave[0]))
         lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
                                  dash=None if dash is None else (float(dash[0]), float(dash[1])),
-                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step)  # fmt: skip
+                                 offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step,
+                                 bands=d.bands, wave=wave)  # fmt: skip
         if len(lines):
             clipped = shapely.intersection(lines, face)
             parts = shapely.get_parts(shapely.line_merge(clipped[~shapely.is_empty(clipped)]))

@@ -114,6 +114,24 @@ def strip_pieces(face: shapely.Geometry, rings: list[np.ndarray], cuts: list[np.
 # ----------------------------------------------------------------------------- faces
 
 
+def courses(t0: float, t1: float, course: float, bands=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The courses covering ``t0 ≤ t ≤ t1`` with a margin: world-anchored numbers ``j`` and each
+    one's lower and upper side ``t``, user units.  Courses are ``course`` high, or the interbedded
+    courses of ``bands`` (:class:`.tree.Bands`)."""
+    if bands is None:
+        j = np.arange(math.floor(t0 / course) - 1, math.ceil(t1 / course) + 1)
+        return j, j * course, j * course + course
+    k = len(bands.rows)
+    j = np.arange((math.floor(t0 / bands.period) - 1) * k, (math.ceil(t1 / bands.period) + 1) * k)
+    return j, _row_t(j, bands), _row_t(j + 1, bands)
+
+
+def _row_t(j: np.ndarray, bands) -> np.ndarray:
+    k = len(bands.rows)
+    return np.floor_divide(j, k) * bands.period + np.asarray(bands.rows)[j % k]
+
+
+
 def st_bounds(frame, shape: shapely.Geometry, step: float) -> tuple[float, float, float, float]:
     """(s0, t0, s1, t1) bounds of ``shape`` in the frame's parameters (its outline projected)."""
     xy = shapely.get_coordinates(shapely.segmentize(shapely.boundary(shape), step))
@@ -122,8 +140,8 @@ def st_bounds(frame, shape: shapely.Geometry, step: float) -> tuple[float, float
 
 
 def face_rectangles(generator: str, bounds: tuple[float, float, float, float], course: float, length: float,
-                    offset: float, *, key: int, ashlar: tuple[int, int] = (4, 2), rhomb_angle: float = 45.0
-                    ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+                    offset: float, *, key: int, ashlar: tuple[int, int] = (4, 2), rhomb_angle: float = 45.0,
+                    bands=None, phase: float = 0.0) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Cells of a face generator in parameter space, before clipping (§5.1's grid tool).
 
     Parameters
@@ -133,6 +151,10 @@ def face_rectangles(generator: str, bounds: tuple[float, float, float, float], c
         joints slant by ``rhomb_angle``: dolomite)
     bounds : (s0, t0, s1, t1), what to cover, user units
     course, length : cell height and length, user units
+    bands : interbedded courses (:class:`.tree.Bands`): only the cut ones get cells, and the bond's
+        offset steps from one cut course to the next; None for courses all ``course`` high
+    phase : share of a length the whole bond is shifted by (bricks and rhombs: §5.2's two ways of
+        pairing blocks into bricks are phases 0 and 0.5)
 
     Returns
     -------
@@ -145,21 +167,28 @@ def face_rectangles(generator: str, bounds: tuple[float, float, float, float], c
     merging is random and the size limit holds by construction.
     """
     s0, t0, s1, t1 = bounds
-    j = np.arange(math.floor(t0 / course) - 1, math.ceil(t1 / course) + 1)
     if generator == "ashlar":
+        j = np.arange(math.floor(t0 / course) - 1, math.ceil(t1 / course) + 1)
         return _ashlar(j, s0, s1, course, length, key=key, limit=ashlar)
-    shift = (offset * j) % 1.0 if generator in ("bricks", "rhombs") else np.zeros(len(j))
+    j, t_lo, t_hi = courses(t0, t1, course, bands)
+    bond = j  # the courses' numbers in the bond: with bands, the cut ones counted alone
+    if bands is not None:
+        k, cut = len(bands.rows), np.asarray(bands.cut, dtype=np.int64)
+        keep = np.isin(j % k, cut)
+        j, t_lo, t_hi = j[keep], t_lo[keep], t_hi[keep]
+        bond = np.floor_divide(j, k) * len(cut) + np.searchsorted(cut, j % k)
+    shift = (offset * bond + phase) % 1.0 if generator in ("bricks", "rhombs") else np.zeros(len(j))
     lo = np.floor(s0 / length - shift).astype(np.int64) - 1 - (generator == "rhombs") * 2
     hi = np.ceil(s1 / length - shift).astype(np.int64) + 1 + (generator == "rhombs") * 2
     count = hi - lo
     jj = np.repeat(j, count)
-    ii = np.concatenate([np.arange(a, b) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)])
+    ii = np.concatenate([np.arange(a, b) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)] or [np.zeros(0, np.int64)])
     sa = (ii + np.repeat(shift, count)) * length
-    ta = jj * course
-    slant = course * math.tan(math.radians(rhomb_angle)) if generator == "rhombs" else 0.0
+    ta, tb = np.repeat(t_lo, count), np.repeat(t_hi, count)
+    slant = (course if bands is None else tb - ta) * math.tan(math.radians(rhomb_angle)) if generator == "rhombs" else 0.0
     quads = np.stack([
         np.stack([sa, ta], 1), np.stack([sa + length, ta], 1),
-        np.stack([sa + length + slant, ta + course], 1), np.stack([sa + slant, ta + course], 1),
+        np.stack([sa + length + slant, tb], 1), np.stack([sa + slant, tb], 1),
     ], axis=1)  # fmt: skip
     return quads, np.stack([jj, ii], axis=1)
 
@@ -214,20 +243,23 @@ def map_quads(frame, quads: np.ndarray, subdivide: int) -> np.ndarray:
 
 def course_lines(frame, bounds: tuple[float, float, float, float], course: float, *, every: int = 1, start: int = 0,
                  dash: tuple[float, float] | None = None, offset: float = 0.0, shift: float = 0.0,
-                 step: float) -> np.ndarray:  # fmt: skip
+                 step: float, bands=None, wave: tuple[np.ndarray, float] | None = None) -> np.ndarray:  # fmt: skip
     """Bedding lines along the course boundaries ``t = j·course`` with ``j % every == start``, solid
     or dashed (``dash`` = on, off lengths; the dashes of course ``j`` shifted by ``offset · j +
     shift`` periods, world-anchored), in the world; ``step`` is the spacing of the points a curved
-    frame maps.  Not clipped."""
+    frame maps; with ``bands`` (:class:`.tree.Bands`) course ``j`` starts at its row; a ``wave``
+    (offsets across the course at even steps of ``s``, and their period along it, user units) bends
+    every line by that periodic profile, world-anchored.  Not clipped."""
     s0, t0, s1, t1 = bounds
-    j = np.arange(math.floor(t0 / course) - 1, math.ceil(t1 / course) + 2)
-    j = j[j % every == start % every]
+    j, t, _ = courses(t0, t1 + course, course, bands)
+    keep = j % every == start % every
+    j, t = j[keep], t[keep]
     if len(j) == 0:
         return np.empty(0, dtype=object)
-    t = j * course
     if dash is None:
         s = np.arange(math.floor(s0 / step) - 1, math.ceil(s1 / step) + 2) * step
         st = np.stack(np.broadcast_arrays(s[None, :], t[:, None]), axis=-1)  # (c, m, 2)
+        st = _waved(st, wave)
         world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
         lines = []
         for row in world:  # one course line at a time: NaNs (outside a flow grid) split it
@@ -243,9 +275,20 @@ def course_lines(frame, bounds: tuple[float, float, float, float], course: float
     u = np.linspace(0.0, dash[0], pieces + 1)
     s = a[:, :, None] + u[None, None, :]
     tt = np.broadcast_to(t[:, None, None], s.shape)
-    st = np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2)
+    st = _waved(np.stack([s, tt], axis=-1).reshape(-1, pieces + 1, 2), wave)
     world = frame.map(st.reshape(-1, 2)).reshape(st.shape)
     return shapely.linestrings(world[np.isfinite(world).all(axis=(1, 2))])
+
+
+def _waved(st: np.ndarray, wave: tuple[np.ndarray, float] | None) -> np.ndarray:
+    """(..., 2) points (s, t) moved across the course by the periodic ``wave`` profile."""
+    if wave is None:
+        return st
+    profile, period = wave
+    x = np.arange(len(profile)) * (period / len(profile))
+    out = st.copy()
+    out[..., 1] += np.interp(st[..., 0] % period, x, profile, period=period)
+    return out
 
 
 def shrink(cells: np.ndarray, mortar: float) -> np.ndarray:

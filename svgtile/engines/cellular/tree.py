@@ -36,9 +36,16 @@ A description, in TOML (JSON has the same keys)::
     offset = 0.5            # dash shift per course, share of the dash period
     shift = 0.0             # dash shift of every line, share of the dash period
     style = "fill:none;stroke:#000;stroke-width:0.3"
+    wave = [0.0, 0.4, 0.0, -0.4]   # a wavy line: its offset across the course at even steps …
+    wave_period = 12.0      # … along this length, user units (repeating; omit for straight lines)
 
     [motifs]                # exemplar motifs set in cells (optional)
     share = 0.25            # share of cells holding one
+
+    [bands]                 # interbedded courses of unequal heights (optional; FGDC 672, 677)
+    period = 15.0           # the repeat across the courses, user units
+    rows = [0.0, 3.3, 6.5]  # where course j starts: (j // 3) · period + rows[j % 3]
+    cut = [0]               # the courses j % 3 in this list are cut into cells, the rest stay open
 
 A node may hold ``children`` (a list of nodes) instead of a ``generator``: its tests apply to the
 whole subtree.
@@ -47,6 +54,7 @@ whole subtree.
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -65,7 +73,7 @@ GENERATORS = {
 _TESTS = ("feature", "label", "direction", "hole", "convex")
 _NODE_KEYS = {*_TESTS, "generator", "children", "style"}
 _TOP_KEYS = {"course", "length", "offset", "mortar", "cell_style", "tree", "lines", "motifs", "ashlar", "rhomb_angle",
-             "angle"}
+             "angle", "bands"}
 
 
 @dataclass(frozen=True)
@@ -117,6 +125,7 @@ class Description:
     motifs : the motifs in cells (``share``), or None
     ashlar : (max length, max height) of a random ashlar stone, in grid cells of a third of a course
     rhomb_angle : degrees, the slant of a rhomb's joints from the course normal
+    bands : interbedded courses, or None for courses all ``course`` high (:class:`Bands`)
     """
 
     course: float = 0.0
@@ -130,6 +139,27 @@ class Description:
     ashlar: tuple[int, int] = (4, 2)
     rhomb_angle: float = 45.0
     angle: float = 0.0
+    bands: Bands | None = None
+
+
+@dataclass(frozen=True)
+class Bands:
+    """Courses of unequal heights repeating across the bedding (interbedded series).
+
+    Attributes
+    ----------
+    period : user units, the repeat across the courses
+    rows : (k,) increasing offsets in [0, period), user units, of the courses' lower sides: course
+        ``j`` runs from ``t(j) = (j // k) · period + rows[j % k]`` to ``t(j + 1)``
+    cut : the courses ``j % k`` cut into cells (the others are left open: bedding lines only)
+    """
+
+    period: float
+    rows: tuple[float, ...]
+    cut: tuple[int, ...]
+
+    def scaled(self, factor: float) -> Bands:
+        return Bands(self.period * factor, tuple(r * factor for r in self.rows), self.cut)
 
 
 def default_tree(face: str = "bricks") -> Node:
@@ -170,6 +200,8 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
         if not (isinstance(a, list) and len(a) == 2 and all(isinstance(v, int) and v >= 1 for v in a)):
             raise bad("ashlar must be two whole numbers ≥ 1 (max length, max height)")
         out["ashlar"] = (a[0], a[1])
+    if "bands" in data:
+        out["bands"] = _bands(data["bands"], bad)
     if "tree" in data:
         out["tree"] = Node(children=tuple(_node(n, bad) for n in _list(data["tree"], "tree", bad)))
     if "motifs" in data:
@@ -184,7 +216,23 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
     return Description(**out)
 
 
-_LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None}
+def _bands(b: Any, bad) -> Bands:
+    if not (isinstance(b, dict) and set(b) == {"period", "rows", "cut"}):
+        raise bad("bands must be a table of period, rows and cut")
+    period, rows, cut = b["period"], b["rows"], b["cut"]
+    number = (int, float)
+    if isinstance(period, bool) or not isinstance(period, number) or not 0 < period < math.inf:
+        raise bad("bands.period must be a positive number")
+    if not (isinstance(rows, list) and rows and all(isinstance(r, number) and not isinstance(r, bool) for r in rows)
+            and all(0 <= a < b for a, b in zip(rows, [*rows[1:], period], strict=True))):  # fmt: skip
+        raise bad("bands.rows must be increasing numbers in [0, period)")
+    if not (isinstance(cut, list) and all(isinstance(k, int) and not isinstance(k, bool) and 0 <= k < len(rows) for k in cut)):
+        raise bad("bands.cut must be course numbers in [0, number of rows)")
+    return Bands(float(period), tuple(float(r) for r in rows), tuple(sorted(set(cut))))
+
+
+_LINE_KEYS = {"every": 1, "start": 0, "dash": None, "offset": 0.0, "shift": 0.0, "style": None, "wave": None,
+              "wave_period": 0.0}
 
 
 def _line_spec(spec: dict[str, Any], bad) -> dict[str, Any]:
@@ -203,6 +251,12 @@ def _line_spec(spec: dict[str, Any], bad) -> dict[str, Any]:
             raise bad(f"lines.{key} must be a number")
     if out["style"] is not None and not isinstance(out["style"], str):
         raise bad("lines.style must be text")
+    wave, period = out["wave"], out["wave_period"]
+    if wave is not None and not (
+        isinstance(wave, list) and len(wave) >= 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                          and math.isfinite(v) for v in wave)
+        and isinstance(period, (int, float)) and not isinstance(period, bool) and 0 < period < math.inf):  # fmt: skip
+        raise bad("lines.wave must be two or more offsets, with a positive lines.wave_period")
     return out
 
 
