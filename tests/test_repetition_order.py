@@ -24,7 +24,7 @@ def exemplar(points, kinds=None, size: float = 20.0, period: bool = False):
     kinds = [0] * len(points) if kinds is None else kinds
     used = sorted(set(kinds))
     defs = "".join(f'<symbol id="k{k}" overflow="visible"><circle r="{0.5 + 0.02 * k:.2f}"/></symbol>' for k in used)
-    body = "".join(f'<use xlink:href="#k{k}" transform="translate({x:.4f} {y:.4f})"/>' for k, (x, y) in zip(kinds, points))
+    body = "".join(f'<use xlink:href="#k{k}" transform="translate({x:.4f} {y:.4f})"/>' for k, (x, y) in zip(kinds, points, strict=True))
     svg = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
            f'viewBox="0 0 {size:g} {size:g}"><defs>{defs}</defs>'
            f'<rect id="region" x="0" y="0" width="{size:g}" height="{size:g}" fill="none"/>{body}</svg>')  # fmt: skip
