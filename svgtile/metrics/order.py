@@ -96,21 +96,26 @@ def explained(disp: np.ndarray, steps: np.ndarray, half: float) -> np.ndarray:
     """
     if len(steps) == 0 or len(disp) == 0:
         return np.zeros(len(disp), dtype=bool)
+    dx, dy = disp[:, 0], disp[:, 1]
     if len(steps) == 1:
-        g = steps[0]
-        m = np.round(disp @ g / (g @ g))
-        near = np.abs(disp - m[:, None] * g).max(axis=1)
-    else:
-        basis = steps[:2].T  # columns g₁, g₂
-        c = np.linalg.solve(basis, disp.T).T
-        # the nearest lattice point is among the four around the real coordinates for any basis
-        # the analysis reports (its steps are the two shortest well-supported, ≥ 20° apart)
-        lo = np.floor(c)
-        near = np.full(len(disp), np.inf)
-        for corner in ((0, 0), (1, 0), (0, 1), (1, 1)):
-            m = lo + np.asarray(corner, dtype=np.float64)
-            near = np.minimum(near, np.abs(disp - m @ basis.T).max(axis=1))
-    return near <= half
+        gx, gy = steps[0]
+        m = np.round((dx * gx + dy * gy) / (gx * gx + gy * gy))
+        return (np.abs(dx - m * gx) <= half) & (np.abs(dy - m * gy) <= half)
+    (ax, ay), (bx, by) = steps[:2]
+    det = ax * by - ay * bx
+    # lattice coordinates c = B⁻¹ d, B = [g₁ g₂]; written out per axis (a (p, 2) @ (2, 2) product
+    # of millions of rows is many times slower)
+    c1 = np.floor((by * dx - bx * dy) / det)
+    c2 = np.floor((ax * dy - ay * dx) / det)
+    # the nearest lattice point is among the four around the real coordinates for any basis
+    # the analysis reports (its steps are the two shortest well-supported, ≥ 20° apart)
+    hit = np.zeros(len(disp), dtype=bool)
+    for i in (0.0, 1.0):
+        for j in (0.0, 1.0):
+            rx = dx - (c1 + i) * ax - (c2 + j) * bx
+            ry = dy - (c1 + i) * ay - (c2 + j) * by
+            hit |= (np.abs(rx) <= half) & (np.abs(ry) <= half)
+    return hit
 
 
 def _is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:

@@ -466,7 +466,9 @@ def repetition(
     if len(who) == 0:
         return Repetition(0.0, 0.0, None, 0.0, None, own)
     disp = np.concatenate(disp)
-    total, _, total_vector = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+    total, total_raw, total_vector = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+    if len(steps) == 0:  # no order to leave out: the two figures are one
+        return Repetition(total, total_raw, total_vector, total, total_vector, own)
     mine = ~explained(disp, steps, BOX * q)
     corrected, raw, vector = _mode_share(who[mine], disp[mine], ref, len(arr), q, reach, chance)
     return Repetition(corrected, raw, vector, total, total_vector, own)
