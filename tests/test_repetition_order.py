@@ -128,3 +128,17 @@ def test_explained_is_the_lattice_of_the_steps_within_the_box(steps):
     assert explained(on + off / 4, steps, 0.1).all()
     assert not explained(on + off, steps, 0.1).any()  # 0.15–0.35 away on both axes
     assert not explained(on, np.zeros((0, 2)), 0.1).any()
+
+
+def test_the_score_reports_both_figures_and_the_steps_left_out():
+    from svgtile.apps.compare import format_score
+
+    ex = exemplar(grid(4), period=True)
+    arr, region = stamp(ex, 8)
+    s = metrics.score(ex, analyze(ex), arr, region)
+    plain = s.to_dict()
+    assert plain["repetition"] < 0.05 and plain["repetition_total"] > 0.95
+    assert len(plain["repetition_order_steps"]) == 2
+    text = format_score(s).splitlines()
+    rows = [line for line in text if line.startswith(("repetition", "  incl. exemplar's lattice"))]
+    assert [float(r.split()[-1]) for r in rows] == [round(s.repetition, 3), round(s.repetition_total, 3)]
