@@ -3,7 +3,7 @@
 Second-order figures of the motifs as a marked point pattern (kinds are the marks), each defined
 in the docstring of the function that computes it: :func:`structure` (nearest footprint gaps
 and pair correlation per ordered kind pair) and :func:`repetition` (how strongly the
-arrangement repeats itself).  Distributions of large textures are measured on a sample of their
+arrangement repeats itself where the exemplar's own order does not, :mod:`svgtile.metrics.order`).  Distributions of large textures are measured on a sample of their
 motifs (:func:`svgtile.metrics.window.motif_sample`).
 
 References
