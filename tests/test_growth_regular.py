@@ -38,6 +38,9 @@ needs_data = pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real 
 #: one whole ring, growth stalled: density 0.059, L −23 — until import kept an icon whole.)
 LOW_DENSITY = {"619": 0.770, "670": 0.665}
 LOW_LIKENESS: dict[str, float] = {}
+#: Repetition beyond the exemplar's own order (issue 12: the lattice of an exact tile is left
+#: out, so 16 of the 19 pass); these three are hand-jittered or rows of free phase.
+REPEATS = {"619": 0.512, "620": 0.971, "670": 0.638}
 
 
 @cache
@@ -71,8 +74,9 @@ def test_growth_density_is_within_ten_percent(name):
 
 
 @needs_data
-@pytest.mark.parametrize("name", sorted(REGULAR_TILES))
-@pytest.mark.xfail(strict=True, reason="growth on a repeating tile reproduces the tile (each motif's ring is unique to "
-                   "it, so the best match is the exemplar's own continuation): repetition 0.5-1.0, as the tile engine")
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(
+    strict=True, reason=f"repetition {REPEATS[n]:.3f}: growth reproduces the tile (each motif's ring is unique to it, so "
+                        "the best match is the exemplar's own continuation), whose jitter or row phases the tile's "
+                        "order does not explain")) if n in REPEATS else n for n in sorted(REGULAR_TILES)])  # fmt: skip
 def test_growth_repeats_at_most_a_fifth(name):
     assert figures(name).repetition <= 0.2

@@ -34,6 +34,7 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
     ("gap_noise", "  its sampling noise", ".3f"),
     ("pair_correlation_distance", "structure: pair correlation", ".3f"),
     ("repetition", "repetition", ".3f"),
+    ("repetition_total", "  incl. exemplar's lattice", ".3f"),
     ("coverage", "coverage (empty disc ratio)", ".2f"),
     ("neighbourhood_distance", "neighbourhood distance", ".3f"),
     ("likeness", "likeness L", ".2f"),

@@ -9,6 +9,8 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 * :mod:`~svgtile.metrics.rules` — overlaps, distance-rule violators, orientation arcs;
 * :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
 * :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation, repetition;
+* :mod:`~svgtile.metrics.order` — the displacements the exemplar's own lattice explains, which
+  repetition leaves out;
 * :mod:`~svgtile.metrics.coverage` — the largest empty disc;
 * :mod:`~svgtile.metrics.likeness` — the neighbourhood distance of Ma, Wei & Tong 2011
   (:mod:`svgtile.analysis.neighbourhood`) of the texture and of the ``tile`` and ``random``

@@ -142,12 +142,20 @@ class Score:
     kind_pairs : tuple of KindPair
         Per ordered kind pair, the details of the structure figures.
     repetition : float or None
-        Excess over chance of motifs repeated at the most common displacement, in [0, 1]:
-        ≈ 1 for a tiling, ≈ 0 for random placement; lower is better.
+        Excess over chance of motifs repeated at the most common displacement the exemplar's
+        order does not explain, in [0, 1]: ≈ 1 for a tiling of irregular content, ≈ 0 for
+        random placement or a faithful texture of a lattice; lower is better.
     repetition_raw : float or None
         ``repetition`` without the chance correction.
     repetition_vector : (float, float) or None
-        The most common displacement, user units.
+        That displacement, user units.
+    repetition_total : float or None
+        The same over every displacement, the exemplar's own lattice included (``repetition``
+        before issue 12): ≈ 1 for any texture of a lattice.
+    repetition_total_vector : (float, float) or None
+        Its displacement, user units.
+    repetition_order_steps : tuple of (float, float)
+        The exemplar's steps whose lattice ``repetition`` leaves out, user units (empty: none).
     empty_disc_radius : float
         Radius of the largest disc centred in ``I``, inside the region, that meets no
         footprint, user units.
@@ -197,6 +205,9 @@ class Score:
     repetition: float | None
     repetition_raw: float | None
     repetition_vector: tuple[float, float] | None
+    repetition_total: float | None
+    repetition_total_vector: tuple[float, float] | None
+    repetition_order_steps: tuple[tuple[float, float], ...]
     empty_disc_radius: float
     exemplar_empty_disc_radius: float
     coverage: float | None
@@ -307,6 +318,9 @@ def score(
         repetition=rep.repetition,
         repetition_raw=rep.repetition_raw,
         repetition_vector=rep.repetition_vector,
+        repetition_total=rep.repetition_total,
+        repetition_total_vector=rep.repetition_total_vector,
+        repetition_order_steps=rep.order_steps,
         empty_disc_radius=r_tex,
         exemplar_empty_disc_radius=r_ex,
         coverage=finite_or_none(r_tex / r_ex) if r_ex > 0 else None,

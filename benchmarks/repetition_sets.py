@@ -1,0 +1,47 @@
+"""Issue 12: repetition (beyond the exemplar's order) and repetition_total (every displacement,
+the figure before issue 12) of the auto and tile engines on every accepted tile of the whole
+sets, with tests/test_wholeset.py's regions and seed.
+
+Run from the repository root: ``python benchmarks/repetition_sets.py [fgdc equinor …]`` (prefixes
+of the tiles to measure; all by default).  One line per tile: ``steps`` is how many exact order
+steps were left out, then ``engine repetition/repetition_total``.
+"""
+from __future__ import annotations
+
+import math
+import sys
+
+sys.path.insert(0, "tests")
+from test_wholeset import SETS, TILES
+
+from svgtile.analysis.stats import analyze
+from svgtile.core.region import Region
+from svgtile.engines import synthesize
+from svgtile.metrics import interior, repetition
+from svgtile.svg.reader import parse_exemplar
+from svgtile.tiles.importer import TileRefused, import_tile
+
+only = sys.argv[1:]
+for tile in TILES:
+    if only and not any(tile.startswith(o) for o in only):
+        continue
+    folder, stem = tile.split("/")
+    try:
+        t = import_tile(SETS[folder] / f"{stem}.svg")
+    except TileRefused:
+        continue
+    if t.cellular is not None:
+        continue
+    ex = parse_exemplar(t.text, source=stem)
+    stats = analyze(ex)
+    x0, y0, w, h = t.box
+    k = max(3.0, math.sqrt(600 / len(ex.motifs)))
+    region = Region.rectangle(k * w, k * h * 0.75, x0, y0)
+    out = []
+    for eng in ("auto", "tile"):
+        win = interior(ex, region)
+        if win.is_empty or win.area <= 0:
+            win = region.shape
+        s = repetition(synthesize(ex, region, eng, seed=1, stats=stats).arrangement, ex, stats, win)
+        out.append(f"{eng} {s.repetition:.3f}/{s.repetition_total:.3f}")
+    print(f"{tile:36s} steps={len(s.order_steps)} " + "  ".join(out), flush=True)
