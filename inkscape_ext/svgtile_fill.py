@@ -155,7 +155,7 @@ class FillWithTexture(inkex.EffectExtension):
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--junction", type=float, default=0.6)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
-        pars.add_argument("--passes", type=int, default=5)
+        pars.add_argument("--passes", type=int, default=10)
         pars.add_argument("--neighbourhood", type=int, default=6)
         pars.add_argument("--rotation", default="auto", choices=["auto", "none", "fit", "flow"])
         pars.add_argument("--priority", default="")
