@@ -456,3 +456,22 @@ def test_a_use_scaled_to_nothing_reads_as_the_exemplar_reader_reads_it(tmp_path,
         orig, _ = read_texture(tmp_path / "t.svg", ex)
         back, _ = read_texture(tmp_path / "e.svg", ex)
         assert len(back) == len(orig) - 1
+
+
+def test_compare_says_which_columns_are_sampled_as_its_json_does(capsys, monkeypatch):
+    """A large texture's structure figures are measured on sample windows; the table says so, as
+    ``svgtile score`` does and as compare's --json does (``"sampled"``)."""
+    from svgtile.metrics import window
+
+    monkeypatch.setattr(window, "SAMPLE_ABOVE", 300)  # gravel 400x400: about 1,500 motifs inside
+    monkeypatch.setattr(window, "SAMPLE_MOTIFS", 600)
+    args = ("compare", EXEMPLARS / "gravel.svg", "--size", "400x400", "--engines", "tile,random")
+    rc, out, err = run(capsys, *args, "--json")
+    assert rc == 0, err
+    sampled = {e for e, s in json.loads(out)["engines"].items() if "sampled" in s}
+    assert sampled == {"tile", "random"}
+    rc, out, err = run(capsys, *args)
+    assert rc == 0, err
+    lines = [t for t in out.splitlines() if t.startswith("sampled (")]
+    assert [t.split(")")[0].removeprefix("sampled (") for t in lines] == ["tile", "random"]
+    assert all(re.search(r"\): \d+ windows of [\d.]+ × [\d.]+, [\d,]+ of [\d,]+ motifs", t) for t in lines), lines

@@ -58,6 +58,10 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
     else:
         click.echo(f"{Path(exemplar).name} on {fmt(width)} x {fmt(height)}, seed {seed}")
+        for r in results:  # as svgtile score says it (and --json's "sampled")
+            if r.score.sample is not None:
+                click.echo(f"sampled ({r.engine}): {r.score.sample.describe()} (structure: nearest gaps, "
+                           "pair correlation)")  # fmt: skip
         click.echo(format_table(results))
 
 
