@@ -609,6 +609,32 @@ def test_work_limit_counts_refinement_and_is_forced(capsys, tiny, tmp_path, monk
     assert rc == 0 and out.exists()
 
 
+@pytest.mark.parametrize("engine, extra, refused", [
+    ("optimize", ("--tile-size", "20", "--jobs", "2"), True),  # not tile-exact: run whole, on one worker
+    ("tile", ("--scheduler", "local", "--jobs", "2"), True),  # no --tile-size: one whole tile
+    ("tile", ("--tile-size", "20", "--jobs", "2", "--refine", "1"), True),  # refined: run whole
+    ("tile", ("--tile-size", "20", "--jobs", "2"), False),  # really cut into tiles: shared by two workers
+], ids=["not-tile-exact", "no-tile-size", "refined", "tiled"])
+def test_work_limit_shares_the_work_only_among_workers_of_a_run_cut_into_tiles(capsys, tiny, tmp_path, monkeypatch,
+                                                                                 engine, extra, refused):  # fmt: skip
+    """--jobs divides the estimate only when the region is cut into tiles (runners.tiling.plan);
+    a run that goes whole runs on one worker, and adding --scheduler or --tile-size must not let
+    it past the guard."""
+    from svgtile.apps.load import check_motif_count, check_work
+    from svgtile.core.region import Region
+
+    ex = read_exemplar(tiny)
+    estimate = check_motif_count(ex, analyze(ex), Region.rectangle(60, 40), "--size 60x40")
+    whole = check_work(estimate, engine, "--size 60x40", refine=1 if "--refine" in extra else 0)
+    monkeypatch.setattr(svgtile.cli.synth, "MAX_WORK_SECONDS", 0.75 * whole)  # over it whole, under it halved
+    out = tmp_path / "out.svg"
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", engine, *extra)
+    if refused:
+        assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "of work", "--force")
+    else:
+        assert rc == 0 and out.exists(), err
+
+
 def test_every_engine_declares_what_a_motif_costs():
     """The work guard's figures come from benchmarks/work_per_motif.py; an engine without one would
     be guessed at."""

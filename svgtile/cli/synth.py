@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import secrets
 import sys
 from pathlib import Path
@@ -38,6 +39,7 @@ from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
 from svgtile.gis.layers import common_crs, is_gis
 from svgtile.runners.schedule import check_scheduler
+from svgtile.runners.tiling import halo
 from svgtile.svg.writer import fmt, result_document
 
 
@@ -106,13 +108,16 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     estimate = check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
     if engine == AUTO:
         engine, params = auto_params(ex, stats, params, controls.given())
-    tiled = scheduler is not None or tile_size is not None
-    check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if tiled else 1,
+    cellular = hasattr(get_engine(engine), "place_cells")
+    # the work is shared among workers only when the region is really cut into tiles: not without
+    # --tile-size, with --refine, for cells or an engine that is not tile-exact (runners.tiling.plan)
+    split = (tile_size is not None and not refine and not cellular and len(ex.motifs) > 0
+             and math.isfinite(halo(engine, ex, params)))  # fmt: skip
+    check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if split else 1,
                limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True)  # fmt: skip
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
-    cellular = hasattr(get_engine(engine), "place_cells")
     if cellular and with_style:
         raise ParameterError(f"{output}: --with-style styles motif points, not a cellular texture's cells")
     if (scheduler is not None or tile_size is not None) and cellular:
