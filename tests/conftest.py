@@ -146,3 +146,20 @@ def fake_engine(place, like: str = "patch"):
     real = ENGINES[like]
     return type("FakeEngine", (), {"name": real.name, "summary": real.summary, "Params": real.Params,
                                    "place": staticmethod(place), "reach": real.reach})()  # fmt: skip
+
+
+def stamp(ex, nx: int, ny: int | None = None):
+    """The exemplar's motifs copied on an ``nx × ny`` (default square) grid of its region's size,
+    and that region: (Arrangement, Region) — a tiling, the most repetitive texture there is."""
+    from svgtile.core.arrangement import Arrangement
+    from svgtile.core.region import Region
+
+    ny = nx if ny is None else ny
+    x0, y0, x1, y1 = ex.region.bounds
+    w, h = x1 - x0, y1 - y0
+    a, b = np.meshgrid(np.arange(nx), np.arange(ny))
+    offset = np.stack([a.ravel() * w, b.ravel() * h], axis=1)
+    m, t = ex.motifs, len(offset)
+    xy = (m.xy[None, :, :] + offset[:, None, :]).reshape(-1, 2)
+    arr = Arrangement(np.tile(m.kind, t), xy, np.tile(m.angle, t), np.tile(m.scale, t))
+    return arr, Region.rectangle(nx * w, ny * h, x0, y0)

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
+from conftest import stamp
 
 from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.analysis.stats import nearest_gaps
@@ -68,16 +69,6 @@ def name_index(ex, name: str) -> int:
     return [k.name for k in ex.kinds].index(name)
 
 
-def stamp(ex, nx: int, ny: int) -> tuple[Arrangement, Region]:
-    """The exemplar's motifs copied on an ``nx × ny`` grid of its region's size, and that region."""
-    x0, y0, x1, y1 = ex.region.bounds
-    w, h = x1 - x0, y1 - y0
-    a, b = np.meshgrid(np.arange(nx), np.arange(ny))
-    offset = np.stack([a.ravel() * w, b.ravel() * h], axis=1)
-    m, t = ex.motifs, len(offset)
-    xy = (m.xy[None, :, :] + offset[:, None, :]).reshape(-1, 2)
-    arr = Arrangement(np.tile(m.kind, t), xy, np.tile(m.angle, t), np.tile(m.scale, t))
-    return arr, Region.rectangle(nx * w, ny * h, x0, y0)
 
 
 def scatter(stats, region: Region, rng: np.random.Generator) -> Arrangement:

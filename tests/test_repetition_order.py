@@ -11,6 +11,7 @@ import dataclasses
 
 import numpy as np
 import pytest
+from conftest import stamp
 
 from svgtile import Region, analyze, metrics
 from svgtile.core.arrangement import Arrangement
@@ -38,15 +39,6 @@ def grid(cells: int, cell: float = 5.0, jitter: float = 0.0, seed: int = 0) -> l
             for a in range(cells)]  # fmt: skip
 
 
-def stamp(ex, n: int) -> tuple[Arrangement, Region]:
-    """The exemplar's motifs copied on an ``n × n`` grid of its region's size."""
-    x0, y0, x1, y1 = ex.region.bounds
-    w, h = x1 - x0, y1 - y0
-    a, b = np.meshgrid(np.arange(n), np.arange(n))
-    offset = np.stack([a.ravel() * w, b.ravel() * h], axis=1)
-    m, t = ex.motifs, len(offset)
-    xy = (m.xy[None, :, :] + offset[:, None, :]).reshape(-1, 2)
-    return Arrangement(np.tile(m.kind, t), xy, np.tile(m.angle, t), np.tile(m.scale, t)), Region.rectangle(n * w, n * h)
 
 
 def measure(ex, arr, region):
