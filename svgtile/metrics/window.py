@@ -6,8 +6,9 @@ width — so that border effects (motifs cut or dropped at the edge) do not domi
 are multiples of the exemplar's *mean spacing* ``s = 1 / sqrt(λ)``, λ its motifs per unit area,
 so the figures do not depend on the drawing's scale.  Large textures are measured on a sample of
 their motifs where a figure is a distribution (:func:`motif_sample`), and a texture of more than
-:data:`SAMPLE_ABOVE` motifs has its statistical figures measured on a few windows spread over
-its interior (:func:`sample_windows`).
+:data:`SAMPLE_ABOVE` motifs has its structure figures (nearest gaps, pair correlation:
+:data:`svgtile.metrics.scoring.SAMPLED`) measured on a few windows spread over its interior
+(:func:`sample_windows`).
 """
 
 from __future__ import annotations
@@ -75,10 +76,10 @@ def finite_or_none(value: float | None) -> float | None:
     return None if value is None or not math.isfinite(value) else float(value)
 
 
-#: A texture with more motifs than this in its window has its statistical figures measured on
-#: sample windows (:func:`sample_windows`).  Below it the figures that would be sampled already
-#: measure at most a few thousand motifs each (:data:`~svgtile.metrics.pattern.GAP_SAMPLES`,
-#: :data:`~svgtile.metrics.pattern.REPEAT_SAMPLES`, :data:`~svgtile.metrics.likeness.SAMPLE`),
+#: A texture with more motifs than this in its window has its structure figures measured on
+#: sample windows (:func:`sample_windows`; repetition and the neighbourhood distance already
+#: measure a fixed sample of the whole window and are not).  Below it the structure figures
+#: measure at most a few thousand motifs per kind (:data:`~svgtile.metrics.pattern.GAP_SAMPLES`),
 #: so windows save little (none measurable at 60,000 motifs) and only add their deviation;
 #: benchmarks/README.md, "`svgtile score` on sample windows".
 SAMPLE_ABOVE = 100_000
@@ -92,7 +93,7 @@ SAMPLE_REFINE = 2
 
 @dataclass(frozen=True)
 class Sample:
-    """Where the statistical figures of a large texture were measured (:func:`sample_windows`).
+    """Where the structure figures of a large texture were measured (:func:`sample_windows`).
 
     Attributes
     ----------
