@@ -635,6 +635,22 @@ def test_work_limit_shares_the_work_only_among_workers_of_a_run_cut_into_tiles(c
         assert rc == 0 and out.exists(), err
 
 
+def test_work_limit_counts_the_optimize_engines_passes(capsys, tiny, tmp_path, monkeypatch):
+    """optimize declares its cost at its default passes; --passes 100 is ten times the
+    iterations and must count as such, as --refine does."""
+    from svgtile.apps.load import check_motif_count, check_work
+    from svgtile.core.region import Region
+
+    ex = read_exemplar(tiny)
+    estimate = check_motif_count(ex, analyze(ex), Region.rectangle(60, 40), "--size 60x40")
+    monkeypatch.setattr(svgtile.cli.synth, "MAX_WORK_SECONDS", 2 * check_work(estimate, "optimize", "--size 60x40"))
+    out = tmp_path / "out.svg"
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", "optimize", "--passes", "100")
+    assert_failed_cleanly(rc, err, tmp_path, {"tiny.svg"}, out, "of work", "with --passes 100", "--force")
+    rc, _, err = synth(capsys, tiny, out, "--seed", "1", "--engine", "optimize", "--passes", "3")  # fewer: as declared
+    assert rc == 0 and out.exists(), err
+
+
 def test_every_engine_declares_what_a_motif_costs():
     """The work guard's figures come from benchmarks/work_per_motif.py; an engine without one would
     be guessed at."""

@@ -101,15 +101,16 @@ def check_motif_count(exemplar: Exemplar, stats: Stats, region: Region, where: s
 
 
 def check_work(estimate: float, engines: str | Sequence[str], where: str, *, refine: int = 0, workers: int = 1,
-               limit: float = MAX_WORK_SECONDS, forceable: bool = False) -> float:  # fmt: skip
+               limit: float = MAX_WORK_SECONDS, forceable: bool = False, params: object = None) -> float:  # fmt: skip
     """Refuse a run whose estimated work is over ``limit`` seconds.
 
     The work is ``estimate`` motifs (:func:`check_motif_count`) times the engine's declared
     :func:`~svgtile.engines.base.seconds_per_motif` (summed over ``engines`` when a command runs
-    several), plus ``refine`` iterations of the optimize solver's per-motif cost, shared among
-    ``workers`` for a tiled run.  The declarations are CPU seconds on the machine of
-    ``benchmarks/work_per_motif.py`` (2 cores, see benchmarks/README.md), rounded up: a faster
-    machine finishes sooner; the refusal is about minutes, not seconds.
+    several), plus ``refine`` iterations of the optimize solver's per-motif cost (and one for
+    each of the optimize engine's ``passes`` beyond the default its declaration was measured
+    at), shared among ``workers`` for a tiled run.  The declarations are CPU seconds on the
+    machine of ``benchmarks/work_per_motif.py`` (2 cores, see benchmarks/README.md), rounded up:
+    a faster machine finishes sooner; the refusal is about minutes, not seconds.
 
     Parameters
     ----------
@@ -118,6 +119,8 @@ def check_work(estimate: float, engines: str | Sequence[str], where: str, *, ref
     where : names the region in the message (``--size 800x600``)
     limit : ``math.inf`` with ``--force``
     forceable : the caller has ``--force``: say so
+    params : the engine's parameters (an ``EngineParams``), if known: the optimize engine's
+        ``passes``
 
     Returns
     -------
@@ -128,14 +131,17 @@ def check_work(estimate: float, engines: str | Sequence[str], where: str, *, ref
 
     names = (engines,) if isinstance(engines, str) else tuple(engines)
     per_motif = sum(seconds_per_motif(get_engine(n)) for n in names)
-    if refine:
-        per_motif += refine * len(names) * float(get_engine("optimize").refine_seconds_per_motif)
+    solver = get_engine("optimize")
+    passes = getattr(params, "passes", None) if isinstance(params, solver.Params) and "optimize" in names else None
+    more = max(0, int(passes) - solver.Params().passes) if passes is not None else 0  # beyond the measured default
+    if refine or more:
+        per_motif += (refine * len(names) + more) * float(solver.refine_seconds_per_motif)
     seconds = estimate * per_motif / max(1, workers)
     if seconds > limit:
         hints = ["use --force to run anyway" if forceable else "", f"choose a smaller {where.split()[0]}"]
         about = f"{seconds / 60:.0f} min" if seconds >= 120 else f"{seconds:.0f} s"
         who = f"engine {names[0]!r}" if len(names) == 1 else "engines " + ", ".join(map(repr, names))
-        extra = f" with --refine {refine}" if refine else ""
+        extra = (f" with --passes {passes}" if more else "") + (f" with --refine {refine}" if refine else "")
         raise ParameterError(f"{where} would hold about {estimate:,.0f} motifs: about {about} of work for {who}{extra} "
                              f"(limit {limit:.0f} s)" + "".join(f"; {h}" for h in hints if h))  # fmt: skip
     return seconds

@@ -114,7 +114,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     split = (tile_size is not None and not refine and not cellular and len(ex.motifs) > 0
              and math.isfinite(halo(engine, ex, params)))  # fmt: skip
     check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if split else 1,
-               limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True)  # fmt: skip
+               limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True, params=params)  # fmt: skip
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
