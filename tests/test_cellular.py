@@ -291,3 +291,17 @@ def test_toml_description_and_a_bad_file(tmp_path):
     bad.write_text("course = = 5")
     with pytest.raises(ParameterError, match=r"b\.toml: not valid TOML"):
         read_description(bad)
+
+
+@pytest.mark.parametrize(
+    ("desc", "message"),
+    [
+        ({**LIMESTONE, "course": 1e-4, "length": 1e-4}, "cells of 0.0001 x 0.0001 would number"),
+        ({**LIMESTONE, "lines": [{"every": 1}], "course": 0.01, "length": 1e4}, "bedding lines would take"),
+        ({**LIMESTONE, "lines": [{"every": 1, "wave": [0.0, 1.0], "wave_period": 1e-6}]}, "bedding lines would take"),
+    ],
+)
+def test_a_description_of_countless_cells_or_line_points_is_refused_before_the_work(tmp_path, desc, message):
+    """A tiny course, cell length or wave period would allocate without bound: one clear error."""
+    with pytest.raises(ParameterError, match=message):
+        run(desc, shape=shapely.box(0, 0, 100, 60), tmp_path=tmp_path)

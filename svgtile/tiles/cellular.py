@@ -255,6 +255,8 @@ def _interbedded(tile: TilePieces, feats: dict[str, np.ndarray], refused: Exempl
         if "wave" in row:
             spec.update(wave=row["wave"], wave_period=round(w, 4))
         lines.append(spec)
+    if not ok.any():  # the cut courses' joints are all pieces at the tile's top edge
+        raise refused
     joint_style = _style(tile, int(np.flatnonzero(ok)[0]))
     desc: dict = {"course": round(h / k, 4), "length": round(length, 4), "offset": round(offset, 4), "angle": 0.0,
                   "bands": {"period": round(h, 4), "rows": [round((r["offset"] - base) % h, 4) for r in kept_rows],

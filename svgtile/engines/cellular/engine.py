@@ -42,6 +42,10 @@ from .mesh import BaseMesh, base_mesh
 from .tree import Description, parse_description, read_description
 
 _KIND, _ANGLE, _SCALE, _TAKE, _PRIORITY = range(5)
+#: Most cells a run may lay, and most points its bedding lines may sample (a description with a
+#: tiny course, cell length or wave period would otherwise allocate without bound).
+MAX_CELLS = 2_000_000
+MAX_LINE_POINTS = 20_000_000
 #: The RGB blocks of §4.1, for debugging a tree: corners red, edges green, faces blue.
 RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf4a;stroke:#ffffff;stroke-width:0.2",
        FACE: "fill:#377eb8;stroke:#ffffff;stroke-width:0.2"}  # fmt: skip
@@ -139,6 +143,28 @@ def description(exemplar: Exemplar, p: CellularParams) -> Description:
                        d.ashlar, d.rhomb_angle, d.angle, bands)  # fmt: skip
 
 
+def _check_size(face: shapely.Geometry, d: Description) -> None:
+    """Refuse a description whose cells or line samples would number beyond :data:`MAX_CELLS` /
+    :data:`MAX_LINE_POINTS` over ``face`` (estimates over its bounding box's diagonal, which
+    bounds any course direction)."""
+    x0, y0, x1, y1 = face.bounds
+    diag = math.hypot(x1 - x0, y1 - y0)
+    if not (d.course > 0 and d.length > 0):
+        raise ParameterError("the cells' course height and length must be positive")
+    cells = face.area / (d.course * d.length)
+    if cells > MAX_CELLS:
+        raise ParameterError(f"cells of {d.course:g} x {d.length:g} would number about {cells:,.0f} in the region "
+                             f"(limit {MAX_CELLS:,}): choose larger cells or a smaller region")  # fmt: skip
+    for spec in d.lines or ():
+        step = d.course / 2
+        if spec.get("wave") is not None:
+            step = min(step, float(spec["wave_period"]) / len(spec["wave"]))
+        points = (diag / d.course / int(spec["every"]) + 2) * (diag / step + 2)
+        if points > MAX_LINE_POINTS:
+            raise ParameterError(f"the bedding lines would take about {points:,.0f} points (limit {MAX_LINE_POINTS:,}): "
+                                 "their course or wave period is too small for the region")  # fmt: skip
+
+
 def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
     """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course."""
     from svgtile.svg.mapdoc import SvgShapes
@@ -159,6 +185,7 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     """The whole run on a parsed description (see the module docstring)."""
     face = ctx.region.shape
     h, length = d.course, d.length
+    _check_size(face, d)
     mesh = base_mesh(face, corner_angle=p.corner_angle, tolerance=0.01 * h, labels=labels, label_distance=0.0)
     if ctx.controls.flow is not None:
         frame = FlowFrame(ctx.controls.flow, face, h / 2)
