@@ -98,6 +98,21 @@ def test_fill_refuses_huge_containers(tmp_path, capsys):
     assert "the shape 'huge' would hold about" in capsys.readouterr().err
 
 
+def test_fill_refuses_a_selection_of_minutes_for_a_slow_engine(tmp_path, capsys):
+    """Inkscape waits for the extension: shapes each under the motif limit, but together minutes of
+    growth, are refused before any is filled."""
+    ex = tmp_path / "ex.svg"
+    ex.write_text(TINY)
+    side = 4000  # TINY holds 0.0125 motifs per unit²: 200,000 motifs per shape, 2 shapes
+    shapes = [(f"s{i}", "nonzero", [[[i * side, 0], [(i + 1) * side, 0], [(i + 1) * side, side], [i * side, side]]])
+              for i in range(2)]  # fmt: skip
+    c = _containers(tmp_path / "c.json", *shapes)
+    assert main(["inkscape", "fill", str(ex), str(c), "--out-dir", str(tmp_path), "--seed", "1", "--engine", "growth"]) == 1
+    err = capsys.readouterr().err
+    assert "the selection would hold about" in err and "of work for engine 'growth'" in err and "fill a smaller area" in err
+    assert not list(tmp_path.glob("texture-*.svg"))
+
+
 # ----------------------------------------------------------------------------- install
 
 

@@ -210,21 +210,23 @@ def fill(
     Each file is what ``svgtile synth`` writes for that container's area (its bounding box is the
     viewBox, the clip path is the container's area in document coordinates).
     """
-    from svgtile.apps.load import check_motif_count, load_exemplar
+    from svgtile.apps.load import check_motif_count, check_work, load_exemplar
     from svgtile.engines import synthesize
     from svgtile.svg.writer import result_document
 
     containers = read_containers(containers_path)
     ex, stats = (load or load_exemplar)(str(exemplar_path))
-    regions = []
+    regions, total = [], 0.0
     for ident, shape in containers:
         try:
             region = Region(shape)
         except RegionError:
             raise RegionError(f"the shape {ident!r} encloses no area to fill") from None
-        check_motif_count(ex, stats, region, f"the shape {ident!r}", limit=max_motifs,
-                          hint="scale the exemplar up or fill a smaller shape")  # fmt: skip
+        total += check_motif_count(ex, stats, region, f"the shape {ident!r}", limit=max_motifs,
+                                   hint="scale the exemplar up or fill a smaller shape")  # fmt: skip
         regions.append((ident, region))
+    # Inkscape waits for the extension: a run of minutes is refused before it starts
+    check_work(total, engine, "the selection", params=params)
     written = []
     for i, (ident, region) in enumerate(regions):
         result = synthesize(ex, region, engine, seed=seed, stats=stats, boundary=boundary, params=params)

@@ -138,7 +138,8 @@ def check_work(estimate: float, engines: str | Sequence[str], where: str, *, ref
         per_motif += (refine * len(names) + more) * float(solver.refine_seconds_per_motif)
     seconds = estimate * per_motif / max(1, workers)
     if seconds > limit:
-        hints = ["use --force to run anyway" if forceable else "", f"choose a smaller {where.split()[0]}"]
+        smaller = f"choose a smaller {where.split()[0]}" if where.startswith("--") else "fill a smaller area"
+        hints = ["use --force to run anyway" if forceable else "", smaller]
         about = f"{seconds / 60:.0f} min" if seconds >= 120 else f"{seconds:.0f} s"
         who = f"engine {names[0]!r}" if len(names) == 1 else "engines " + ", ".join(map(repr, names))
         extra = (f" with --passes {passes}" if more else "") + (f" with --refine {refine}" if refine else "")
