@@ -297,3 +297,16 @@ def test_a_top_level_engine_parameter_no_class_takes_is_refused():
         parse_styles({"junction": 0.3, "classes": {"a": {"exemplar": "x.svg", "engine": "random"}}})
     with pytest.raises(ParameterError, match="engine must be one of"):
         parse_styles({"classes": {"a": {"exemplar": "x.svg", "engine": ["patch"]}}})
+
+
+@pytest.mark.parametrize("out_name", ["filled.svg", "filled.geojson", "filled.gpkg"])
+def test_a_unit_too_small_for_any_motif_is_named_in_a_warning(folder, capsys, out_name):
+    """As synth says "no motif fits", map names each unit it leaves empty (streamed or GIS output)."""
+    tiny_unit = '<path id="u4" class="dots" d="M0 0 H0.001 V0.001 H0 Z"/>\n</svg>'
+    (folder / "map.svg").write_text(MAP.replace("</svg>", tiny_unit))
+    out = folder / out_name
+    rc = main(["map", str(folder / "map.svg"), "--styles", str(folder / "styles.toml"), "-o", str(out), "--seed", "3"])
+    err = capsys.readouterr().err
+    assert rc == 0 and out.exists()
+    empty = [line for line in err.splitlines() if "no motif fits" in line]
+    assert empty == ["svgtile: warning: no motif fits in region 'u4' (class 'dots'); it is left empty"], err

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import secrets
 import sys
@@ -122,7 +123,7 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
-        _warn_about(result, output)
+        _warn_about(result, output, [0 if a is None else len(a) for a in result.results])
         exemplars = filled_exemplars(result)
         write_placements(map_parts(result, exemplars), output, crs=crs, protect=inputs)
         if with_style:
@@ -131,11 +132,12 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         folder = None if output == "-" else str(Path(output).resolve().parent)
         with Spool(folder) as spool:
             bands = BandWriter(spool, kind)
+            placed: collections.Counter[int] = collections.Counter()
             result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(),
                               max_motifs=MAX_MOTIFS, scheduler=scheduler, tile_size=tile_size,
-                              sink=_sink(bands, kind, styles), bar=bar)  # fmt: skip
+                              sink=_sink(bands, kind, styles, placed), bar=bar)  # fmt: skip
             Stderr.clear()
-            _warn_about(result, output)
+            _warn_about(result, output, [placed[n] for n in range(len(result.regions))])
             if kind == "geojson":
                 write_geojson(output, [n for n, ok in enumerate(result.filled) if ok], bands, protect=inputs)
                 if with_style:
@@ -150,11 +152,13 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
         raise SvgtileError(f"{what} failed (see the warnings); the others were written", source=str(output))
 
 
-def _sink(bands: BandWriter, kind: str, styles):
-    """``sink(region, band, motifs)`` for :func:`fill_map`: each band formatted and spooled."""
+def _sink(bands: BandWriter, kind: str, styles, placed: collections.Counter):
+    """``sink(region, band, motifs)`` for :func:`fill_map`: each band formatted and spooled, its
+    motifs counted in ``placed`` (region number -> motifs)."""
     kinds: dict[str, tuple] = {}
 
     def sink(n: int, r, b: int, arr) -> None:
+        placed[n] += len(arr)
         ex, _ = load_exemplar(str(styles.classes[r.cls].exemplar))
         if kind == "geojson":
             bands.features(n, b, arr, ex, {"region": r.ident, "class": r.cls})
@@ -166,13 +170,17 @@ def _sink(bands: BandWriter, kind: str, styles):
     return sink
 
 
-def _warn_about(result, output: str) -> None:
-    """The fill's warnings and failed regions, a line each; an error, before anything is
-    written, when no region could be filled."""
+def _warn_about(result, output: str, placed: list[int]) -> None:
+    """The fill's warnings, failed regions and regions filled with nothing (``placed``: motifs
+    per region), a line each; an error, before anything is written, when no region could be
+    filled."""
     for message in result.warnings:
         warn(message)
     for ident, message in result.errors.items():
         warn(f"region {ident!r} not filled: {message}")
+    for r, ok, count in zip(result.regions, result.filled, placed, strict=True):
+        if ok and count == 0 and r.ident not in result.errors:
+            warn(f"no motif fits in region {r.ident!r} (class {r.cls!r}); it is left empty")
     if result.errors and not any(result.filled):
         raise SvgtileError(f"none of the {len(result.regions)} regions could be filled (see the warnings); "
                            "nothing written", source=str(output))  # fmt: skip

@@ -197,8 +197,11 @@ def maps_and_styles() -> Iterator[Case]:
                {"m.svg": svg('<path class="a" d="M 0 0 L nan 0 L 9 9 Z"/>'), "s.toml": styles})
     yield Case("map-huge-transform", "maps", ["map", "m.svg", "--styles", "s.toml", "-o", "out.svg"],
                {"m.svg": svg('<g transform="scale(1e308)"><rect class="a" width="9" height="9"/></g>'), "s.toml": styles})
-    yield Case("map-all-fail", "maps", ["map", "m.svg", "--styles", "s.toml", "-o", "out.svg"],
+    yield Case("map-unit-too-small", "maps", ["map", "m.svg", "--styles", "s.toml", "-o", "out.svg"],
                {"m.svg": svg('<rect class="a" width="1e-9" height="1e-9"/>'), "s.toml": styles})
+    yield Case("map-all-fail", "maps", ["map", "m.svg", "--styles", "s.toml", "-o", "out.svg"],
+               {"m.svg": svg('<rect class="a" width="9" height="9"/><rect class="a" x="20" width="9" height="9"/>'),
+                "s.toml": b'[classes.a]\nexemplar = "bad.svg"\n', "bad.svg": b"<svg"})
     deep_toml = b"a = " + b"[" * 100_000 + b"]" * 100_000 + b"\n"
     yield Case("styles-deep-arrays", "maps", ["map", "m.svg", "--styles", "s.toml", "-o", "out.svg"],
                {"m.svg": svg('<rect class="a" width="9" height="9"/>'), "s.toml": deep_toml})
