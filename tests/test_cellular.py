@@ -297,7 +297,8 @@ def test_toml_description_and_a_bad_file(tmp_path):
     ("desc", "message"),
     [
         ({**LIMESTONE, "course": 1e-4, "length": 1e-4}, "cells of 0.0001 x 0.0001 would number"),
-        ({**LIMESTONE, "lines": [{"every": 1}], "course": 0.01, "length": 1e4}, "bedding lines would take"),
+        ({**LIMESTONE, "lines": [{"every": 1, "dash": [1e-5, 1e-5]}]}, "bedding lines would take"),
+        ({**LIMESTONE, "course": 1e-6, "length": 1e8}, "courses of 1e-06 are too fine"),
         ({**LIMESTONE, "lines": [{"every": 1, "wave": [0.0, 1.0], "wave_period": 1e-6}]}, "bedding lines would take"),
     ],
 )
@@ -305,3 +306,12 @@ def test_a_description_of_countless_cells_or_line_points_is_refused_before_the_w
     """A tiny course, cell length or wave period would allocate without bound: one clear error."""
     with pytest.raises(ParameterError, match=message):
         run(desc, shape=shapely.box(0, 0, 100, 60), tmp_path=tmp_path)
+
+
+def test_fine_straight_courses_are_not_taken_for_countless_points(tmp_path):
+    """Solid lines in a straight frame are drawn end to end: 6,000 courses of 0.01 are 6,000 lines
+    of a few points each, which is no reason to refuse."""
+    desc = {**LIMESTONE, "cell_style": "", "tree": [{"feature": "face", "generator": "none"}],
+            "lines": [{"every": 1}], "course": 0.01, "length": 1e4}  # fmt: skip
+    cells = run(desc, shape=shapely.box(0, 0, 100, 60), tmp_path=tmp_path).cells
+    assert (cells.feature == LINE).sum() > 5000

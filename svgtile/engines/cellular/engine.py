@@ -42,10 +42,11 @@ from .mesh import BaseMesh, base_mesh
 from .tree import Description, parse_description, read_description
 
 _KIND, _ANGLE, _SCALE, _TAKE, _PRIORITY = range(5)
-#: Most cells a run may lay, and most points its bedding lines may sample (a description with a
-#: tiny course, cell length or wave period would otherwise allocate without bound).
+#: Most cells a run may lay, and most points it may sample (the unit's outline every half course,
+#: its bedding lines): a description with a tiny course, cell length, dash or wave period would
+#: otherwise allocate without bound.
 MAX_CELLS = 2_000_000
-MAX_LINE_POINTS = 20_000_000
+MAX_SAMPLES = 20_000_000
 #: The RGB blocks of §4.1, for debugging a tree: corners red, edges green, faces blue.
 RGB = {CORNER: "fill:#e41a1c;stroke:#ffffff;stroke-width:0.2", EDGE: "fill:#4daf4a;stroke:#ffffff;stroke-width:0.2",
        FACE: "fill:#377eb8;stroke:#ffffff;stroke-width:0.2"}  # fmt: skip
@@ -143,26 +144,20 @@ def description(exemplar: Exemplar, p: CellularParams) -> Description:
                        d.ashlar, d.rhomb_angle, d.angle, bands)  # fmt: skip
 
 
-def _check_size(face: shapely.Geometry, d: Description) -> None:
-    """Refuse a description whose cells or line samples would number beyond :data:`MAX_CELLS` /
-    :data:`MAX_LINE_POINTS` over ``face`` (estimates over its bounding box's diagonal, which
-    bounds any course direction)."""
-    x0, y0, x1, y1 = face.bounds
-    diag = math.hypot(x1 - x0, y1 - y0)
+def _check_cells(face: shapely.Geometry, d: Description) -> None:
+    """Refuse a description whose cells would number beyond :data:`MAX_CELLS` over ``face``, or
+    whose course is so fine that the unit's outline, sampled every half course to find the
+    courses' extent (:func:`.generators.st_bounds`), takes beyond :data:`MAX_SAMPLES` points."""
     if not (d.course > 0 and d.length > 0):
         raise ParameterError("the cells' course height and length must be positive")
     cells = face.area / (d.course * d.length)
     if cells > MAX_CELLS:
         raise ParameterError(f"cells of {d.course:g} x {d.length:g} would number about {cells:,.0f} in the region "
                              f"(limit {MAX_CELLS:,}): choose larger cells or a smaller region")  # fmt: skip
-    for spec in d.lines or ():
-        step = d.course / 2
-        if spec.get("wave") is not None:
-            step = min(step, float(spec["wave_period"]) / len(spec["wave"]))
-        points = (diag / d.course / int(spec["every"]) + 2) * (diag / step + 2)
-        if points > MAX_LINE_POINTS:
-            raise ParameterError(f"the bedding lines would take about {points:,.0f} points (limit {MAX_LINE_POINTS:,}): "
-                                 "their course or wave period is too small for the region")  # fmt: skip
+    samples = face.length / (d.course / 2)
+    if samples > MAX_SAMPLES:
+        raise ParameterError(f"courses of {d.course:g} are too fine for the region: its outline would take about "
+                             f"{samples:,.0f} points (limit {MAX_SAMPLES:,})")  # fmt: skip
 
 
 def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
@@ -185,7 +180,7 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     """The whole run on a parsed description (see the module docstring)."""
     face = ctx.region.shape
     h, length = d.course, d.length
-    _check_size(face, d)
+    _check_cells(face, d)
     mesh = base_mesh(face, corner_angle=p.corner_angle, tolerance=0.01 * h, labels=labels, label_distance=0.0)
     if ctx.controls.flow is not None:
         frame = FlowFrame(ctx.controls.flow, face, h / 2)
@@ -406,17 +401,21 @@ def _polygonal(geoms: np.ndarray) -> np.ndarray:
 def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndarray], list[str | None]]:
     """Bedding lines over ``face`` (solid or dashed), clipped to it: per line spec of the
     description, the lines and their style."""
-    step = d.course / 2
-    fine = step if not isinstance(frame, RotatedFrame) else math.inf  # a straight frame maps ends only
-    bounds = gen.st_bounds(frame, face, step)
+    x0, y0, x1, y1 = face.bounds
+    diag = math.hypot(x1 - x0, y1 - y0)  # bounds the face's extent along and across any course
+    for spec in d.lines or ():  # before any sampling: a tiny course, dash or wave would not end
+        points = _line_points(spec, d, _sample_step(frame, spec, d.course, diag), diag)
+        if points > MAX_SAMPLES:
+            raise ParameterError(f"the bedding lines would take about {points:,.0f} points (limit {MAX_SAMPLES:,}): "
+                                 "their course, dashes or wave period are too small for the region")  # fmt: skip
+    bounds = gen.st_bounds(frame, face, d.course / 2)
     out, styles = [], []
     for spec in d.lines or ():
         dash = spec.get("dash")
-        s_step = fine if math.isfinite(fine) else (bounds[2] - bounds[0] + 2 * d.course) if dash is None else max(dash)
+        s_step = _sample_step(frame, spec, d.course, bounds[2] - bounds[0])
         wave = None
-        if spec.get("wave") is not None:  # a wavy line: sampled finely enough to follow its profile
+        if spec.get("wave") is not None:
             wave = (np.asarray(spec["wave"], dtype=np.float64), float(spec["wave_period"]))
-            s_step = min(s_step, wave[1] / len(wave[0]))
         lines = gen.course_lines(frame, bounds, d.course, every=int(spec["every"]), start=int(spec["start"]),
                                  dash=None if dash is None else (float(dash[0]), float(dash[1])),
                                  offset=float(spec["offset"]), shift=float(spec["shift"]), step=s_step,
@@ -429,6 +428,33 @@ def bedding(frame, face: shapely.Geometry, d: Description) -> tuple[list[np.ndar
         out.append(lines)
         styles.append(spec.get("style"))
     return out, styles
+
+
+def _sample_step(frame, spec: dict, course: float, extent: float) -> float:
+    """The spacing along the courses of the points a line of ``spec`` is drawn with, for a face
+    ``extent`` long: a curved frame maps a point every half course; a straight frame only a solid
+    line's ends (one step longer than the face) or a dash's; a wavy line is sampled finely enough
+    to follow its profile."""
+    dash = spec.get("dash")
+    if not isinstance(frame, RotatedFrame):
+        step = course / 2
+    else:
+        step = extent + 2 * course if dash is None else max(dash)
+    if spec.get("wave") is not None:
+        step = min(step, float(spec["wave_period"]) / len(spec["wave"]))
+    return step
+
+
+def _line_points(spec: dict, d: Description, step: float, extent: float) -> float:
+    """About how many points :func:`.generators.course_lines` makes for ``spec`` over a face at
+    most ``extent`` long and wide, at ``step``: lines per course boundary crossed, points per line
+    (per dash, and dashes per line, when dashed)."""
+    per_t = len(d.bands.rows) / d.bands.period if d.bands is not None else 1.0 / d.course
+    lines = extent * per_t / int(spec["every"]) + 3
+    dash = spec.get("dash")
+    if dash is None:
+        return lines * (extent / step + 4)
+    return lines * (extent / (dash[0] + dash[1]) + 4) * (max(1, math.ceil(dash[0] / step)) + 1)
 
 
 def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arrangement:
