@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import secrets
 import sys
 from pathlib import Path
@@ -39,7 +38,7 @@ from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
 from svgtile.gis.layers import common_crs, is_gis
 from svgtile.runners.schedule import check_scheduler
-from svgtile.runners.tiling import halo
+from svgtile.runners.tiling import is_tiled
 from svgtile.svg.writer import fmt, result_document
 
 
@@ -109,10 +108,8 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     if engine == AUTO:
         engine, params = auto_params(ex, stats, params, controls.given())
     cellular = hasattr(get_engine(engine), "place_cells")
-    # the work is shared among workers only when the region is really cut into tiles: not without
-    # --tile-size, with --refine, for cells or an engine that is not tile-exact (runners.tiling.plan)
-    split = (tile_size is not None and not refine and not cellular and len(ex.motifs) > 0
-             and math.isfinite(halo(engine, ex, params)))  # fmt: skip
+    # the work is shared among workers only when the region is really cut into tiles
+    split = is_tiled(ex, engine, tile_size, params=params, refine=refine)
     check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if split else 1,
                limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True, params=params)  # fmt: skip
     if seed is None:

@@ -83,6 +83,15 @@ def halo(engine: Engine | str, exemplar: Exemplar, params: EngineParams | dict |
     return reach + motif_size(exemplar) + HALO_SLACK if math.isfinite(reach) else math.inf
 
 
+def is_tiled(exemplar: Exemplar, engine: Engine | str, tile_size: float | None, *,
+             params: EngineParams | dict | None = None, refine: int = 0) -> bool:  # fmt: skip
+    """Whether :func:`plan` cuts a run into tiles: a ``tile_size`` is given, the run is not
+    refined, the exemplar has motifs and the engine is tile-exact (finite :func:`halo`).
+    Otherwise the run goes whole, in one worker (or :func:`plan` refuses it)."""
+    return (tile_size is not None and not refine and len(exemplar.motifs) > 0
+            and math.isfinite(halo(engine, exemplar, params)))  # fmt: skip
+
+
 def plan(region: Region, exemplar: Exemplar, engine: Engine | str, tile_size: float | None, *,
          params: EngineParams | dict | None = None, refine: int = 0) -> list[Tile]:  # fmt: skip
     """The tiles of ``region`` in world order (bands by ``j``, then ``i``).
@@ -103,14 +112,13 @@ def plan(region: Region, exemplar: Exemplar, engine: Engine | str, tile_size: fl
     motif's size), or ``[WHOLE]`` when ``tile_size`` is None, the engine's reach is infinite or
     the run is refined.
     """
-    if tile_size is None or refine:
+    if tile_size is not None and not refine:
+        if not (tile_size > 0 and math.isfinite(tile_size)):
+            raise ParameterError(f"--tile-size must be a positive number, not {tile_size!r}")
+        check_motifs(exemplar, get_engine(engine) if isinstance(engine, str) else engine)  # no motif: no halo
+    if not is_tiled(exemplar, engine, tile_size, params=params, refine=refine):
         return [WHOLE]
-    if not (tile_size > 0 and math.isfinite(tile_size)):
-        raise ParameterError(f"--tile-size must be a positive number, not {tile_size!r}")
-    check_motifs(exemplar, get_engine(engine) if isinstance(engine, str) else engine)  # no motif: no halo
     h = halo(engine, exemplar, params)
-    if not math.isfinite(h):
-        return [WHOLE]
     grown = shapely.buffer(region.shape, motif_size(exemplar))
     x0, y0, x1, y1 = grown.bounds
     i = np.arange(math.floor(x0 / tile_size), math.floor(x1 / tile_size) + 1)
