@@ -229,12 +229,10 @@ def run_case(case: Case, fetches: _Fetches, *, timeout: float, memory_mb: float,
     watcher.join(1)
     peak_mb = usage.ru_maxrss / 1024
     cpu = usage.ru_utime + usage.ru_stime
-    timed_out = timed_out or cpu > timeout
+    timed_out = timed_out or cpu > timeout  # RLIMIT_CPU's SIGXCPU comes a second past the limit
     message = err_path.read_bytes().decode("utf-8", "replace")
     after = _snapshot(work)
     code = None if timed_out else proc.returncode
-    if proc.returncode in (-signal.SIGXCPU, -signal.SIGKILL) and cpu >= timeout:
-        timed_out, code = True, None
     flags = []
     if fetches.hits.get(case_id) or seen[0]:
         flags.append("fetch attempted")
