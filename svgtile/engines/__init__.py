@@ -46,7 +46,6 @@ from svgtile.engines.cellular import CELLULAR, CellularParams
 from svgtile.engines.choose import AUTO, Choice, choose, steerable, with_choice
 from svgtile.engines.growth import GROWTH, GrowthParams
 from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
-from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
@@ -221,6 +220,9 @@ def synthesize(
         arr = engine.place(ctx, p)
     arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
     if refine and len(arr) >= 2:  # (fewer: nothing to refine)
+        # imported here: the solver (numba) costs every command that does not refine its start-up
+        from svgtile.engines.optimize.solver import refine as _refine
+
         arr, _ = _refine(arr, exemplar, stats, _steered(region, controls), boundary, iterations=refine, key=ctx.key,
                          flow=controls.flow, progress=report)  # fmt: skip
     arr = reading_order(arr)
