@@ -108,6 +108,8 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
     mapping = np.empty(len(kinds), dtype=np.int64)
     for t, kind in enumerate(kinds):
         found = index.get(kind_key(kind))
+        if found is None:  # a residual written to 4 decimals may round the other way when read back
+            found = _nearest_kind(kind, exemplar.kinds)
         if found is None:
             raise ExemplarError(
                 f"motif kind {kind.name!r} is not in the exemplar {exemplar.source} "
@@ -116,6 +118,24 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
             )
         mapping[t] = found
     return mapping
+
+
+#: How far a kind's residual linear part read back from a texture may lie from its exemplar
+#: kind's: the writer rounds each entry to 4 decimals (half of 1e-4), which a rotation then
+#: spreads over the entries (a skewed kind: 1.27785 written 1.2779, read back 1.27784).
+RESIDUAL_TOLERANCE = 5e-4
+
+
+def _nearest_kind(kind: Kind, kinds: tuple[Kind, ...]) -> int | None:
+    """Index of the kind of ``kinds`` that draws the same element with the same attributes and
+    the residual nearest ``kind``'s, within :data:`RESIDUAL_TOLERANCE`; None if there is none."""
+    best, found = RESIDUAL_TOLERANCE, None
+    for i, k in enumerate(kinds):
+        if (k.href, tuple(k.use_attrs)) == (kind.href, tuple(kind.use_attrs)):
+            gap = float(np.abs(np.asarray(k.residual) - np.asarray(kind.residual)).max())
+            if gap <= best:
+                best, found = gap, i
+    return found
 
 
 # ----------------------------------------------------------------------------- svgtile's own form
