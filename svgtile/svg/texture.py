@@ -409,9 +409,11 @@ def _split(
     if (np.abs(det) < 1e-12).any():
         return None  # scaled to nothing: the reader drops it with a warning, or refuses a singular transform
     scale = np.sqrt(np.abs(det))
-    angle = np.fromiter(map(math.degrees, map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist())),
-                        np.float64, len(det))  # fmt: skip
-    turn = np.fromiter(map(math.radians, angle.tolist()), np.float64, len(angle))
+    # math.degrees and math.radians are one multiplication by a constant (CPython's radToDeg,
+    # degToRad): numpy's is the same, bit for bit; atan2, cos and sin stay the C library's
+    angle = np.fromiter(map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist()), np.float64, len(det))
+    angle *= 180.0 / math.pi
+    turn = angle * (math.pi / 180.0)
     cos = np.fromiter(map(math.cos, turn.tolist()), np.float64, len(turn))
     sin = np.fromiter(map(math.sin, turn.tolist()), np.float64, len(turn))
     rot = np.stack([np.stack([cos, -sin], 1), np.stack([sin, cos], 1)], 1)
