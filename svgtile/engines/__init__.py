@@ -16,6 +16,13 @@ follows :class:`~svgtile.engines.base.Engine`.  A plug-in cannot replace a built
 
 :func:`synthesize` is the one place an engine is called: the CLI, ``svgtile map``, ``compare``,
 ``swatches`` and the Inkscape bridge all go through it.
+
+The registry holds declarations only — each engine's parameter class and protocol object, in a
+module that imports none of its implementation (``growth`` and ``cellular``: their packages'
+``__init__``; ``optimize``: :mod:`.optimize.engine`).  An engine's implementation, with what it
+alone needs (numba, scipy's interpolators and sparse solvers), is imported when it runs, so
+``svgtile score``, ``analyze`` and every command's start-up do without them
+(``tests/test_layout.py`` checks it).
 """
 
 from __future__ import annotations
