@@ -475,3 +475,50 @@ def test_compare_says_which_columns_are_sampled_as_its_json_does(capsys, monkeyp
     lines = [t for t in out.splitlines() if t.startswith("sampled (")]
     assert [t.split(")")[0].removeprefix("sampled (") for t in lines] == ["tile", "random"]
     assert all(re.search(r"\): \d+ windows of [\d.]+ × [\d.]+, [\d,]+ of [\d,]+ motifs", t) for t in lines), lines
+
+
+#: A region with a hole (a lake): its clip path has two rings, and motifs lie around the hole.
+HOLED = shapely.box(-3.5, 2.25, 146.5, 112.25).difference(shapely.Point(70, 55).buffer(22))
+
+
+@pytest.mark.parametrize(
+    ("name", "engine", "options"),
+    [
+        ("gravel", "patch", {}),  # every motif rotated
+        ("gravel", "growth", {"rotation": "fit"}),
+        ("till", "optimize", {"passes": 2}),
+        ("breccia-plain", "patch", {"vary_orientation": True}),
+        ("varied", "random", {}),  # scaled uses, a matrix() suffix, <use> attributes
+        ("varied", "tile", {}),
+    ],
+)
+def test_texture_read_equals_the_exemplar_reader_around_a_hole(tmp_path, name, engine, options):
+    """read_texture on what ``synthesize`` and the writer make, engine by engine, in a region with
+    a hole: the text scan is taken, and it gives the exemplar reader's motifs bit for bit (kinds
+    renumbered to the exemplar's) and the region with its hole."""
+    from svgtile.engines import synthesize
+
+    ex = parse_exemplar(VARIED) if name == "varied" else read_exemplar(EXEMPLARS / f"{name}.svg")
+    region = Region.from_geometry(HOLED)
+    result = synthesize(ex, region, engine, seed=3, params=options)
+    path = tmp_path / "t.svg"
+    path.write_text(svg_document(ex, result.arrangement, region, boundary="clip", params={}))
+    assert _own_use_block(path.read_bytes()) is not None, "svgtile's own texture must take the text scan"
+    got, got_region = read_texture(path, ex)
+    want_kinds, want, _ = _general(path)
+    # each kind the exemplar reader finds in the texture is the exemplar's kind that draws the same
+    # element the same way, up to the writer's 4 decimals (a skewed, turned kind: 1.2779 ↔ 1.2778)
+    mapping = np.array([
+        min((i for i, k in enumerate(ex.kinds) if (k.href, k.use_attrs) == (w.href, w.use_attrs)),
+            key=lambda i: np.abs(ex.kinds[i].residual - w.residual).max())
+        for w in want_kinds
+    ])  # fmt: skip
+    assert all(np.abs(ex.kinds[i].residual - w.residual).max() < 1e-3 for i, w in zip(mapping, want_kinds, strict=True))
+    assert len(got) == len(want) > 20
+    assert _same_bits(got.kind, mapping[want.kind])
+    for field in ("xy", "angle", "scale"):
+        assert _same_bits(getattr(got, field), getattr(want, field)), field
+    assert got_region.shape.symmetric_difference(region.shape).area < 1e-6 * region.shape.area
+    assert len(got_region.shape.interiors) == 1
+    if engine != "tile":  # the texture's own turns and scales were read, not the identity
+        assert np.ptp(got.angle) > 1 or np.ptp(got.scale) > 0

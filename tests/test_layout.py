@@ -89,3 +89,26 @@ def test_no_import_cycle():
     for m in graph:
         if m not in state:
             visit(m, [m])
+
+
+#: What a command that synthesizes nothing must not import: the engines' implementations (the
+#: registry holds their light declarations) and the heavy libraries only they use.
+NOT_AT_START = ("numba", "scipy.interpolate", "svgtile.engines.growth.engine", "svgtile.engines.growth.kernel",
+                "svgtile.engines.cellular.engine", "svgtile.engines.cellular.frame", "svgtile.engines.optimize.solver")
+
+
+@pytest.mark.parametrize("module", ["svgtile.cli.score", "svgtile.cli.main", "svgtile.cli.analyze", "svgtile.engines"])
+def test_start_up_imports_no_engine_implementation(module):
+    """``svgtile score`` / ``analyze`` and the CLI's start-up import the engines' declarations only
+    (issue 11: numba and scipy.interpolate cost every command ~0.25 s); the registry still knows
+    every engine and its parameters."""
+    import subprocess
+    import sys
+
+    code = (f"import sys, {module}\n"
+            "from svgtile.engines import ENGINES, public_params\n"
+            "assert {'patch', 'growth', 'cellular', 'optimize', 'tile', 'random'} <= set(ENGINES)\n"
+            "assert {'relax_every', 'passes', 'strike'} <= set(public_params())\n"
+            f"print(sorted(m for m in sys.modules if m.split('.')[0] == 'numba' or m.startswith({NOT_AT_START!r})))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]", f"import {module} loaded {out.strip()}"

@@ -16,6 +16,13 @@ follows :class:`~svgtile.engines.base.Engine`.  A plug-in cannot replace a built
 
 :func:`synthesize` is the one place an engine is called: the CLI, ``svgtile map``, ``compare``,
 ``swatches`` and the Inkscape bridge all go through it.
+
+The registry holds declarations only — each engine's parameter class and protocol object, in a
+module that imports none of its implementation (``growth`` and ``cellular``: their packages'
+``__init__``; ``optimize``: :mod:`.optimize.engine`).  An engine's implementation, with what it
+alone needs (numba, scipy's interpolators and sparse solvers), is imported when it runs, so
+``svgtile score``, ``analyze`` and every command's start-up do without them
+(``tests/test_layout.py`` checks it).
 """
 
 from __future__ import annotations
@@ -46,7 +53,6 @@ from svgtile.engines.cellular import CELLULAR, CellularParams
 from svgtile.engines.choose import AUTO, Choice, choose, steerable, with_choice
 from svgtile.engines.growth import GROWTH, GrowthParams
 from svgtile.engines.optimize.engine import OPTIMIZE, OptimizeParams
-from svgtile.engines.optimize.solver import refine as _refine
 from svgtile.engines.patch.engine import PATCH, PatchParams
 from svgtile.engines.random import RANDOM, RandomParams
 from svgtile.engines.tile import TILE, TileParams
@@ -221,6 +227,9 @@ def synthesize(
         arr = engine.place(ctx, p)
     arr = arr.take(region.keep(arr, exemplar.prototypes, boundary))
     if refine and len(arr) >= 2:  # (fewer: nothing to refine)
+        # imported here: the solver (numba) costs every command that does not refine its start-up
+        from svgtile.engines.optimize.solver import refine as _refine
+
         arr, _ = _refine(arr, exemplar, stats, _steered(region, controls), boundary, iterations=refine, key=ctx.key,
                          flow=controls.flow, progress=report)  # fmt: skip
     arr = reading_order(arr)

@@ -378,11 +378,13 @@ def _set_covariance(window: shapely.Geometry, d: np.ndarray, reach: float = math
     box = (x1 - x0) * (y1 - y0)
     parts = _apart_rectangles(window, reach) if window.geom_type == "MultiPolygon" else None
     if window.geom_type == "Polygon" and abs(window.area - box) <= 1e-9 * box:
-        gamma = np.clip(x1 - x0 - np.abs(d[:, 0]), 0, None) * np.clip(y1 - y0 - np.abs(d[:, 1]), 0, None)
+        gamma = np.maximum(x1 - x0 - np.abs(d[:, 0]), 0.0) * np.maximum(y1 - y0 - np.abs(d[:, 1]), 0.0)
     elif parts is not None:
         w, h = parts[:, 2] - parts[:, 0], parts[:, 3] - parts[:, 1]
         ax, ay = np.abs(d[:, 0:1]), np.abs(d[:, 1:2])
-        gamma = (np.clip(w[None, :] - ax, 0, None) * np.clip(h[None, :] - ay, 0, None)).sum(axis=1)
+        # np.maximum, not np.clip(…, 0, None): the same values, and clip's slow path took ten times
+        # as long on the million pairs × 9 windows of a sampled 177k-motif texture
+        gamma = (np.maximum(w[None, :] - ax, 0.0) * np.maximum(h[None, :] - ay, 0.0)).sum(axis=1)
     else:
         step = math.sqrt(window.area) / 1000
         key, back = np.unique(np.round(d / step).astype(np.int64), axis=0, return_inverse=True)

@@ -24,6 +24,7 @@ import math
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
+from operator import itemgetter
 from pathlib import Path
 
 import numpy as np
@@ -107,6 +108,8 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
     mapping = np.empty(len(kinds), dtype=np.int64)
     for t, kind in enumerate(kinds):
         found = index.get(kind_key(kind))
+        if found is None:  # a residual written to 4 decimals may round the other way when read back
+            found = _nearest_kind(kind, exemplar.kinds)
         if found is None:
             raise ExemplarError(
                 f"motif kind {kind.name!r} is not in the exemplar {exemplar.source} "
@@ -115,6 +118,24 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
             )
         mapping[t] = found
     return mapping
+
+
+#: How far a kind's residual linear part read back from a texture may lie from its exemplar
+#: kind's: the writer rounds each entry to 4 decimals (half of 1e-4), which a rotation then
+#: spreads over the entries (a skewed kind: 1.27785 written 1.2779, read back 1.27784).
+RESIDUAL_TOLERANCE = 5e-4
+
+
+def _nearest_kind(kind: Kind, kinds: tuple[Kind, ...]) -> int | None:
+    """Index of the kind of ``kinds`` that draws the same element with the same attributes and
+    the residual nearest ``kind``'s, within :data:`RESIDUAL_TOLERANCE`; None if there is none."""
+    best, found = RESIDUAL_TOLERANCE, None
+    for i, k in enumerate(kinds):
+        if (k.href, tuple(k.use_attrs)) == (kind.href, tuple(kind.use_attrs)):
+            gap = float(np.abs(np.asarray(k.residual) - np.asarray(kind.residual)).max())
+            if gap <= best:
+                best, found = gap, i
+    return found
 
 
 # ----------------------------------------------------------------------------- svgtile's own form
@@ -133,16 +154,21 @@ _OWN_TRANSFORM = re.compile(
 )
 _SUFFIX_PART = re.compile(rf"(translate|matrix)\(((?:{_FIXED} ?)+)\)")
 
-
-_SUFFIX = rf"((?: translate\({_FIXED} {_FIXED}\))?(?: matrix\({_FIXED} {_FIXED} {_FIXED} {_FIXED} 0 0\))?)"
+#: :data:`_FIXED` with possessive quantifiers, for the scan of every ``<use>`` line: a number is
+#: followed by a space or ``)``, so giving back a digit never helps a match, and not trying
+#: spares the scan about a seventh of its time.
+_FIXED_SCAN = r"-?\d++(?:\.\d++)?+"
+_SUFFIX = (rf"((?: translate\({_FIXED_SCAN} {_FIXED_SCAN}\))?+"
+           rf"(?: matrix\({_FIXED_SCAN} {_FIXED_SCAN} {_FIXED_SCAN} {_FIXED_SCAN} 0 0\))?+)")  # fmt: skip
 #: The opening tag of svgtile's motif group, as :func:`svgtile.svg.writer.svg_document` writes it.
 _OWN_GROUP = re.compile(rb'<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>')
 #: One ``<use>`` line as :func:`svgtile.svg.writer.use_elements` writes it: its ``href`` and other
 #: attributes as written, then its transform as :data:`_OWN_TRANSFORM` splits it (the lookahead
 #: spares the scan of each transform as one more attribute).
 _OWN_USE = re.compile(
-    rf'^[ \t]*<use (xlink:href="#[^"<>\n]*"(?: (?!transform=)[A-Za-z_][-\w.:]*="[^"<>\n]*")*) '
-    rf'transform="translate\(({_FIXED}) ({_FIXED})\)(?: rotate\(({_FIXED})\))?(?: scale\(({_FIXED})\))?{_SUFFIX}"/>$',
+    rf'^[ \t]*+<use (xlink:href="#[^"<>\n]*+"(?: (?!transform=)[A-Za-z_][-\w.:]*+="[^"<>\n]*+")*+) '
+    rf'transform="translate\(({_FIXED_SCAN}) ({_FIXED_SCAN})\)(?: rotate\(({_FIXED_SCAN})\))?+'
+    rf'(?: scale\(({_FIXED_SCAN})\))?+{_SUFFIX}"/>$',
     re.M,
 )
 
@@ -153,16 +179,18 @@ class OwnLines:
 
     Attributes
     ----------
-    columns : five tuples of n strings, ``x``, ``y``, ``angle``, ``scale`` and ``suffix`` of
+    columns : five lists of n strings, ``x``, ``y``, ``angle``, ``scale`` and ``suffix`` of
         each motif as :data:`_OWN_TRANSFORM` finds them in its transform (``""`` if missing)
     group : (n,) int array, each motif's group — lines with the same ``href`` and attributes
         text and the same suffix — numbered in order of first appearance
     first : (g,) int array, the first motif of each group (increasing)
+    suffix : (n,) int array, each motif's suffix text numbered in order of first appearance
     """
 
-    columns: tuple[tuple[str, ...], ...]
+    columns: tuple[list[str], ...]
     group: np.ndarray
     first: np.ndarray
+    suffix: np.ndarray
 
 
 def _own_use_block(data: bytes) -> tuple[bytes, OwnLines] | None:
@@ -202,12 +230,13 @@ def _own_use_block(data: bytes) -> tuple[bytes, OwnLines] | None:
     found = _OWN_USE.findall(body)
     if len(found) != body.count("\n") + 1:
         return None  # a line that is not a <use> as svgtile writes it
-    heads, *columns = zip(*found, strict=True)
-    group = _numbered(list(zip(heads, columns[4], strict=True)))
-    first = np.unique(group, return_index=True)[1]
+    # the columns one by one (zip(*found) would step 177k tuples' iterators together, 4× slower)
+    heads, *columns = (list(map(itemgetter(i), found)) for i in range(6))
+    suffix = _numbered(columns[4])
+    first, group = _first_groups(_numbered(heads) * (int(suffix.max()) + 1) + suffix)
     lines = body.split("\n")
     kept = "\n".join(lines[i] for i in first.tolist()).encode("utf-8")
-    return data[: opening.end()] + b"\n" + kept + b"\n" + data[end:], OwnLines(tuple(columns), group, first)
+    return data[: opening.end()] + b"\n" + kept + b"\n" + data[end:], OwnLines(tuple(columns), group, first, suffix)
 
 
 def read_own_texture(
@@ -274,15 +303,14 @@ def read_own_texture(
             return None
         if parsed != [tuple(c[i] for c in lines.columns) for i in lines.first.tolist()]:
             return None
-        columns, first, motif_kind = lines.columns, lines.first, lines.group
+        columns, first, motif_kind, suffix = lines.columns, lines.first, lines.group, lines.suffix
     else:
         columns = tuple(zip(*parsed, strict=True))
         suffix = _numbered(columns[4])
         first, motif_kind = _first_groups(head * (int(suffix.max()) + 1) + suffix)
         uses = [uses[i] for i in first.tolist()]
     xs, ys, angles, scales, suffix_text = columns
-    suffix = _numbered(suffix_text)
-    suffixes = dict(zip(suffix_text, suffix.tolist(), strict=True))
+    suffixes = {suffix_text[i]: s for s, i in enumerate(np.unique(suffix, return_index=True)[1].tolist())}
 
     # the kinds, from the exemplar reader on one <use> per group (in order of first appearance),
     # without the viewBox: those first motifs may all lie outside it (clip keeps cut motifs)
@@ -381,9 +409,11 @@ def _split(
     if (np.abs(det) < 1e-12).any():
         return None  # scaled to nothing: the reader drops it with a warning, or refuses a singular transform
     scale = np.sqrt(np.abs(det))
-    angle = np.fromiter(map(math.degrees, map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist())),
-                        np.float64, len(det))  # fmt: skip
-    turn = np.fromiter(map(math.radians, angle.tolist()), np.float64, len(angle))
+    # math.degrees and math.radians are one multiplication by a constant (CPython's radToDeg,
+    # degToRad): numpy's is the same, bit for bit; atan2, cos and sin stay the C library's
+    angle = np.fromiter(map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist()), np.float64, len(det))
+    angle *= 180.0 / math.pi
+    turn = angle * (math.pi / 180.0)
     cos = np.fromiter(map(math.cos, turn.tolist()), np.float64, len(turn))
     sin = np.fromiter(map(math.sin, turn.tolist()), np.float64, len(turn))
     rot = np.stack([np.stack([cos, -sin], 1), np.stack([sin, cos], 1)], 1)

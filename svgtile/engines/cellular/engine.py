@@ -10,7 +10,8 @@ the ``--flow`` control.  Cells claim their space-filling shapes and are drawn sh
 mortar (§5.4); bedding lines follow the courses; exemplar motifs may be set in cells.
 
 The output is a :class:`~svgtile.core.cells.Cellwork` (cells and lines) beside the motifs
-(:meth:`CellularEngine.place_cells`); :meth:`CellularEngine.place` returns the motifs alone.
+(:meth:`~svgtile.engines.cellular.CellularEngine.place_cells`: :func:`description`, :func:`read_labels`,
+:func:`texture`); :meth:`~svgtile.engines.cellular.CellularEngine.place` returns the motifs alone.
 
 What a run keeps (the guarantees the tests hold it to): cells lie in the region whatever the
 boundary mode (edge cells follow the boundary instead of being cut by it), no two cells overlap,
@@ -21,7 +22,6 @@ of the boundary changes only the cells within about a course and a cell of it).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import shapely
@@ -32,7 +32,8 @@ from svgtile.core.cells import CORNER, EDGE, FACE, LINE, Cellwork, geometry_arra
 from svgtile.core.conflicts import cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
-from svgtile.engines.base import Context, EngineParams, param
+from svgtile.engines.base import Context
+from svgtile.engines.cellular import CellularParams
 from svgtile.errors import ParameterError
 
 from . import generators as gen
@@ -56,74 +57,6 @@ LINE_STYLE = "fill:none;stroke:#000000;stroke-width:0.3"
 SLIVER = 0.02
 #: Cell outlines closer than this share of a course are one joint (:func:`.joints.draw_joints`).
 JOINT_TOLERANCE = 1e-4
-
-
-@dataclass(frozen=True)
-class CellularParams(EngineParams):
-    """Parameters of the cellular engine.
-
-    Attributes
-    ----------
-    tree : path of a TOML/JSON pattern description (:mod:`.tree`); "" = the exemplar's own (as
-        ``svgtile import`` writes it), else the paper's "Bricks" tree sized to the exemplar
-    courses : ``strike`` (courses along ``strike``) or ``long-axis`` (along the unit's long
-        axis); the ``--flow`` control, when given, overrides both
-    strike : degrees, the courses' bearing in user space (0 = along +x)
-    course_height, cell_length, mortar : user units; 0 = the description's
-    label : ``NAME=MAP.svg#ID`` pairs, comma-separated: edges running along that map element are
-        labelled NAME (for the tree's ``label`` tests)
-    corner_angle : degrees; the boundary turning by more than this makes a corner (library only)
-    """
-
-    tree: str = param("", "Cellular pattern description, a TOML or JSON file (default: the exemplar's own, or running-bond bricks).", metavar="FILE")
-    courses: str = param("strike", "Cellular courses run along the --strike angle or along the unit's long axis (a --flow overrides both).", choices=("strike", "long-axis"))
-    strike: float = param(0.0, "Bearing of the cellular courses, degrees from +x.", interval=(-360.0, 360.0))
-    course_height: float = param(0.0, "Cellular course height, user units (0 = the description's).", interval=(0.0, math.inf))
-    cell_length: float = param(0.0, "Cellular cell length along a course, user units (0 = the description's).", interval=(0.0, math.inf))
-    mortar: float = param(0.0, "Gap between cellular cells, user units (0 = the description's).", interval=(0.0, math.inf))
-    label: str = param("", "Label the unit's edges that run along map lines, NAME=MAP.svg#ID[,NAME=MAP.svg#ID…] (cellular trees route labelled edges).", metavar="NAME=MAP.svg#ID")
-    halves: str = param("fewest", "Cellular bricks: the bond with the fewest cut bricks in each unit (legakis2001 §5.2), or anchored to the world (an edit then changes only the cells near it).", choices=("fewest", "anchored"))
-    corner_angle: float = 30.0
-
-    def __post_init__(self) -> None:
-        for name in ("course_height", "cell_length", "mortar"):
-            value = getattr(self, name)
-            if not (value >= 0 and math.isfinite(value)):
-                raise ParameterError(f"{name} must be a finite number ≥ 0, not {value:g}")
-        if not (math.isfinite(self.strike) and -360.0 <= self.strike <= 360.0):
-            raise ParameterError(f"strike must be in [-360, 360], not {self.strike:g}")
-        if not 0.0 < self.corner_angle < 180.0:
-            raise ParameterError(f"corner_angle must be in (0, 180), not {self.corner_angle:g}")
-
-
-class CellularEngine:
-    """Cellular textures behind the engine protocol (:mod:`svgtile.engines.base`)."""
-
-    name = "cellular"
-    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
-    seconds_per_motif = 1.5e-3
-    summary = ("cells in courses — bricks, blocks, random ashlar, rhombs, bedding lines, motifs set in cells — "
-               "turning the unit's corners and following its edges (Legakis et al. 2001)")
-    Params = CellularParams
-    controls = frozenset({"flow"})
-
-    def place(self, ctx: Context, p: CellularParams) -> Arrangement:
-        """The motifs set in cells (the cells themselves: :meth:`place_cells`)."""
-        return self.place_cells(ctx, p)[0]
-
-    def place_cells(self, ctx: Context, p: CellularParams) -> tuple[Arrangement, Cellwork]:
-        """Texture ``ctx.region``: corners, edges, then the face (§4.2); lines; motifs in cells."""
-        d = description(ctx.exemplar, p)
-        labels = read_labels(p.label, d.course)
-        return texture(ctx, d, p, labels)
-
-    def reach(self, exemplar: Exemplar, params: CellularParams) -> float:
-        """Not tile-exact: edge and corner cells follow the whole unit's boundary, and a tile's
-        boundary is not the unit's; run it whole."""
-        return math.inf
-
-
-CELLULAR = CellularEngine()
 
 
 def description(exemplar: Exemplar, p: CellularParams) -> Description:

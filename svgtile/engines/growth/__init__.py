@@ -2,11 +2,116 @@
 
 Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
-seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.engine` (world cells, the tools, the protocol).
+seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.engine` (world cells, the tools).
+
+This module is the engine's declaration — its parameters (:class:`GrowthParams`, from which the
+CLI options, styles keys and dialogs are made) and its protocol object (:data:`GROWTH`) — and
+imports none of the modules above: they (numba's compiled kernel, scipy's sparse solver) are
+imported when the engine runs, so a command that does not grow (``svgtile score``, ``analyze``,
+``--help``) does not pay for them.
 """
 
 from __future__ import annotations
 
-from svgtile.engines.growth.engine import GROWTH, GrowthParams
+import dataclasses
+import re
+from dataclasses import dataclass
 
-__all__ = ["GROWTH", "GrowthParams"]
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.engines.base import Context, EngineParams, param
+from svgtile.errors import ParameterError
+
+ROTATIONS = ("auto", "none", "fit", "flow")
+_PRIORITY_ITEM = re.compile(r"^\s*([^=,\s][^=,]*?)\s*=\s*(-?\d+)\s*$")
+
+
+@dataclass(frozen=True)
+class Weights:
+    """Weights of eq. (2) (:mod:`.matching`).
+
+    The paper uses w1 = w2 = 1, w3 = 100 on hand-made irregular references.  On a repeating tile
+    each element's ring is the only faithful continuation, and the sub-id term (1 when a target
+    neighbour and the reference neighbour it is matched with are the same exemplar motif) would
+    forbid exactly that; so w3 defaults to 0 and is a library setting.
+    """
+
+    distance: float = 1.0
+    kind: float = 1.0
+    subid: float = 0.0
+
+
+@dataclass(frozen=True)
+class GrowthParams(EngineParams):
+    """Parameters of the growth engine.
+
+    Attributes
+    ----------
+    rotation : ``auto`` (``flow`` with ``--flow``, else ``none``), ``none``, ``fit``, ``flow`` (§5.3)
+    priority : ``KIND=N,KIND=N …`` — kinds with a higher N grow first (§5.1); unnamed kinds keep
+        their default, which is by size: kinds within a factor 4 in footprint area share a level,
+        larger kinds higher (the paper grows its large stones before the fillers)
+    relax_every : relax each cell every this many growth steps (§5.5); 0 = once per cell, after
+        its growth (the final pass is always made)
+    relaxation : run relaxation at all (library only)
+    cell_widths : a cell is at least this many exemplar widths wide (library only)
+    weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
+    """
+
+    rotation: str = param("auto", "How motifs turn (growth engine): none = as in the exemplar; fit = the best "
+                          "rotation of each neighbourhood; flow = along --flow; auto = flow with --flow, else none.",
+                          choices=ROTATIONS)  # fmt: skip
+    priority: str = param("", "Growth order of kinds (growth engine), e.g. 'stone=2,dot=0': higher grows first; "
+                          "default: larger motifs first.", metavar="KIND=N,…")  # fmt: skip
+    relax_every: int = param(0, "Relax the growing texture every N motifs (growth engine); 0 = once per cell.",
+                             interval=(0, 1_000_000), metavar="N")  # fmt: skip
+    relaxation: bool = True
+    cell_widths: float = 1.0
+    weights: Weights = dataclasses.field(default_factory=Weights)
+
+    def __post_init__(self) -> None:
+        if self.rotation not in ROTATIONS:
+            raise ParameterError(f"rotation must be one of {', '.join(ROTATIONS)}, not {self.rotation!r}")
+        if not 0 <= self.relax_every <= 1_000_000:
+            raise ParameterError(f"relax_every must be at least 0, not {self.relax_every}")
+        if not self.cell_widths > 0:
+            raise ParameterError(f"cell_widths must be positive, not {self.cell_widths:g}")
+        self.priorities()
+
+    def priorities(self) -> dict[str, int]:
+        """``--priority`` parsed: kind name → priority."""
+        out: dict[str, int] = {}
+        for item in filter(str.strip, self.priority.split(",")):
+            m = _PRIORITY_ITEM.match(item)
+            if not m:
+                raise ParameterError(f"priority: {item.strip()!r} is not KIND=N (a kind name, '=', a whole number)")
+            out[m.group(1)] = int(m.group(2))
+        return out
+
+
+class GrowthEngine:
+    """Local growth (ijiri2008) behind the engine protocol (:mod:`svgtile.engines.base`)."""
+
+    name = "growth"
+    #: CPU seconds per motif of ``svgtile synth`` end to end (benchmarks/work_per_motif.py, rounded up)
+    seconds_per_motif = 3e-4
+    summary = ("motifs grown one by one from the exemplar's neighbourhoods (Ijiri et al. 2008): keeps rows, "
+               "lattices and bricks; honours --flow, --barrier and --grow-within")
+    Params = GrowthParams
+    controls = frozenset({"flow", "barriers", "grow_within"})
+
+    def place(self, ctx: Context, p: GrowthParams) -> Arrangement:
+        """Grow the texture over the cells that ``ctx.region`` needs (:mod:`.engine`)."""
+        from svgtile.engines.growth.engine import Growth
+
+        return Growth(ctx, p).run()
+
+    def reach(self, exemplar: Exemplar, params: GrowthParams) -> float:
+        """Tile-exact with no halo: a cell's motifs are a function of the key and the cell alone."""
+        return 0.0
+
+
+GROWTH = GrowthEngine()
+
+
+__all__ = ["GROWTH", "ROTATIONS", "GrowthEngine", "GrowthParams", "Weights"]

@@ -19,30 +19,13 @@ called once per seed by the growth loop); :func:`best_match` is its entry from P
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
-from svgtile.engines.growth import kernel
+from svgtile.engines.growth import Weights, kernel
 from svgtile.engines.growth.connectivity import Rings
 
 #: The rotation modes of §5.3 by name.
 ROTATION_MODES = {"none": kernel.NONE, "fit": kernel.FIT, "flow": kernel.FLOW}
-
-
-@dataclass(frozen=True)
-class Weights:
-    """Weights of eq. (2).
-
-    The paper uses w1 = w2 = 1, w3 = 100 on hand-made irregular references.  On a repeating tile
-    each element's ring is the only faithful continuation, and the sub-id term (1 when a target
-    neighbour and the reference neighbour it is matched with are the same exemplar motif) would
-    forbid exactly that; so w3 defaults to 0 and is a library setting.
-    """
-
-    distance: float = 1.0
-    kind: float = 1.0
-    subid: float = 0.0
 
 
 def best_match(rings: Rings, tar: np.ndarray, tkind: np.ndarray, tsub: np.ndarray, *, want: int,

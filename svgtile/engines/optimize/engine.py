@@ -15,15 +15,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.base import Context, EngineParams, param
-from svgtile.engines.optimize.init import patch_start
-from svgtile.engines.optimize.solver import Settings, refine
 from svgtile.errors import ParameterError
+
+if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engine runs, not when declared
+    from svgtile.engines.optimize.solver import Settings
 
 
 @dataclass(frozen=True)
@@ -65,6 +67,8 @@ class OptimizeParams(EngineParams):
             raise ParameterError("anchor must be positive, sweeps at least 1, similar and alpha at least 0")
 
     def settings(self) -> Settings:
+        from svgtile.engines.optimize.solver import Settings
+
         return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps)
 
 
@@ -83,6 +87,9 @@ class OptimizeEngine:
 
     def place(self, ctx: Context, p: OptimizeParams) -> Arrangement:
         """Exemplar patches (§4.1), refined by ``p.passes`` iterations (§4)."""
+        from svgtile.engines.optimize.init import patch_start
+        from svgtile.engines.optimize.solver import refine
+
         ex = ctx.exemplar
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
