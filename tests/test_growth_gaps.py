@@ -20,8 +20,9 @@ from test_growth import lattice_tile
 
 from svgtile import analyze
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
-from svgtile.engines import make_params, synthesize
+from svgtile.engines import Controls, make_params, synthesize
 from svgtile.engines.base import Context
 from svgtile.engines.growth.connectivity import reference_rings
 from svgtile.engines.growth.engine import Growth
@@ -129,3 +130,14 @@ def test_the_gap_fill_refills_a_hole_with_the_tiles_own_motifs():
     order = np.lexsort(filled.xy.T), np.lexsort(full.xy[out].T)
     assert np.allclose(filled.xy[order[0]], full.xy[out][order[1]], atol=1e-3)
     assert np.array_equal(ex.motifs.kind[np.concatenate(ksub)], filled.kind)
+
+
+def test_on_a_tile_a_barrier_is_never_crossed_and_both_sides_keep_to_the_sites():
+    ex, st = jittered()
+    river = shapely.LineString([(40, -5), (55, 105)])
+    arr = synthesize(ex, Region.rectangle(96, 100), "growth", seed=3, stats=st,
+                     controls=Controls(barriers=river)).arrangement  # fmt: skip
+    assert not shapely.intersects(world_footprints(arr, ex.prototypes), river).any()
+    side = np.sign((55 - 40) * (arr.xy[:, 1] + 5) - (105 + 5) * (arr.xy[:, 0] - 40))
+    assert (side > 0).sum() > 150 and (side < 0).sum() > 150
+    assert (off_site(arr, ex) < 1e-3).all() and brute_force_conflicts(arr, ex, st) == (0, 0)
