@@ -83,5 +83,5 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
     N = (A.T @ A + PULL * sp.identity(len(free))).tocsc()
     rhs = A.T @ b + PULL * xy[free]
     out = xy.copy()
-    out[free] = np.column_stack([spsolve(N, rhs[:, 0]), spsolve(N, rhs[:, 1])])
+    out[free] = spsolve(N, np.asarray(rhs))  # one factorisation for both coordinates
     return out[first:]
