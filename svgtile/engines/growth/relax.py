@@ -101,16 +101,25 @@ def _normal_equations(ci: np.ndarray, cj: np.ndarray, b: np.ndarray, f: int) -> 
     fi, fj = ci >= 0, cj >= 0
     diag = np.bincount(ci[fi], minlength=f) + np.bincount(cj[fj], minlength=f) + PULL
     both = fi & fj
-    r = np.r_[np.arange(f), ci[both], cj[both]]
-    c = np.r_[np.arange(f), cj[both], ci[both]]
-    v = np.r_[diag, -np.ones(2 * both.sum())]
-    N = sp.csc_matrix((v, (r, c)), shape=(f, f))
-    rhs = np.zeros((f, 2))
+    r = np.concatenate([np.arange(f), ci[both], cj[both]])
+    c = np.concatenate([np.arange(f), cj[both], ci[both]])
+    v = np.concatenate([diag, -np.ones(2 * both.sum())])
+    # canonical CSC: by column, then row, duplicates summed (exact: they are all −1)
+    key = c.astype(np.int64) * f + r
+    order = np.argsort(key, kind="stable")
+    key, v = key[order], v[order]
+    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+    data = np.add.reduceat(v, first)
+    rows = (key[first] % f).astype(np.int32)
+    indptr = np.searchsorted(key[first] // f, np.arange(f + 1)).astype(np.int32)
+    N = sp.csc_matrix((data, rows, indptr), shape=(f, f))
     # Aᵀb: the rows in order, as the sparse product sums them
-    at = np.r_[cj, ci]
-    sign = np.r_[np.ones(len(cj)), -np.ones(len(ci))]
-    row = np.r_[np.arange(len(cj)), np.arange(len(ci))]
-    keep = at >= 0
-    order = np.argsort(row[keep], kind="stable")
-    np.add.at(rhs, at[keep][order], sign[keep][order, None] * b[row[keep][order]])
+    at = np.concatenate([cj, ci])
+    sign = np.concatenate([np.ones(len(cj)), -np.ones(len(ci))])
+    row = np.concatenate([np.arange(len(cj)), np.arange(len(ci))])
+    keep = np.flatnonzero(at >= 0)
+    keep = keep[np.argsort(row[keep], kind="stable")]
+    w = sign[keep, None] * b[row[keep]]
+    rhs = np.column_stack([np.bincount(at[keep], weights=w[:, 0], minlength=f),
+                           np.bincount(at[keep], weights=w[:, 1], minlength=f)])  # fmt: skip
     return N, rhs
