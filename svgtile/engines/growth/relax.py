@@ -121,5 +121,5 @@ def _normal_equations(ci: np.ndarray, cj: np.ndarray, b: np.ndarray, f: int) -> 
     keep = keep[np.argsort(row[keep], kind="stable")]
     w = sign[keep, None] * b[row[keep]]
     rhs = np.column_stack([np.bincount(at[keep], weights=w[:, 0], minlength=f),
-                           np.bincount(at[keep], weights=w[:, 1], minlength=f)])  # fmt: skip
+                           np.bincount(at[keep], weights=w[:, 1], minlength=f)]).astype(np.float64)  # fmt: skip
     return N, rhs
