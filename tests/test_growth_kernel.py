@@ -108,3 +108,28 @@ def test_growth_golden(tmp_path, update_golden, name):
     if update_golden:
         golden.write_bytes(out.read_bytes())
     assert out.read_bytes() == golden.read_bytes(), f"{name} differs from {golden}"
+
+
+@pytest.mark.parametrize(("seed", "held"), [(0, 0.1), (1, 0.1), (2, 0.5), (3, 1.0)])  # 1.0: every row's ends fixed
+def test_the_normal_equations_are_the_sparse_products_bit_for_bit(seed, held):
+    import scipy.sparse as sp
+
+    from svgtile.engines.growth.relax import PULL, _normal_equations
+
+    rng = np.random.default_rng(seed)
+    f, e = 40, 150
+    ci, cj = rng.integers(0, f, e), rng.integers(0, f, e)
+    cj[cj == ci] = -1  # a row joins two different motifs (or a motif and a fixed one)
+    ci[rng.random(e) < held] = -1
+    cj[rng.random(e) < held] = -1
+    b = rng.normal(size=(e, 2)) * 10
+    N, rhs = _normal_equations(ci, cj, b, f)
+    rows = np.arange(e)
+    fi, fj = ci >= 0, cj >= 0
+    A = sp.csr_matrix((np.r_[np.ones(fj.sum()), -np.ones(fi.sum())], (np.r_[rows[fj], rows[fi]],
+                       np.r_[cj[fj], ci[fi]])), shape=(e, f))  # fmt: skip
+    want = (A.T @ A + PULL * sp.identity(f)).tocsc()
+    want.sum_duplicates()  # what spsolve does first: sorts each column's rows (the product leaves them unsorted)
+    assert np.array_equal(N.indptr, want.indptr) and np.array_equal(N.indices, want.indices)
+    assert np.array_equal(N.data, want.data)
+    assert rhs.dtype == np.float64 and np.array_equal(rhs, A.T @ b)

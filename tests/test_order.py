@@ -14,8 +14,8 @@ from svgtile.analysis.order import read_order
 from svgtile.analysis.stats import analyze
 from svgtile.cli.main import main
 from svgtile.core.region import Region
-from svgtile.engines import choose, synthesize
-from svgtile.engines.choose import RULES, Rule
+from svgtile.engines import ENGINES, choose, synthesize
+from svgtile.engines.choose import RULES, Rule, steerable
 from svgtile.engines.patch.engine import _lattice_centres
 from svgtile.engines.patch.lattice import lattice_steps
 from svgtile.svg.reader import parse_exemplar
@@ -185,15 +185,18 @@ def test_patch_grid_choices_refuse_an_unknown_layout():
 # ----------------------------------------------------------------------------- auto
 
 
-def test_auto_puts_a_tile_with_a_lattice_on_its_period_and_leaves_a_scatter_to_patch():
+def test_auto_puts_a_tile_with_a_lattice_on_its_period_grows_a_drawn_one_and_leaves_a_scatter_to_patch():
     tile = exemplar(grid_points(), period=True)
     c = choose(tile, analyze(tile))
     assert (c.engine, c.params, c.rule) == ("patch", {"grid": "lattice", "max_rotation": 0.0}, "tile-order")
     scatter = exemplar(random_points(100))
     c = choose(scatter, analyze(scatter))
     assert (c.engine, dict(c.params), c.rule) == ("patch", {}, "scatter")
-    drawn = exemplar(grid_points())  # a drawn lattice keeps the patch defaults (see RULES)
-    assert choose(drawn, analyze(drawn)).rule == "scatter"
+    drawn = exemplar(grid_points())  # a drawn lattice is grown (see RULES)
+    c = choose(drawn, analyze(drawn))
+    assert (c.engine, dict(c.params), c.rule) == ("growth", {}, "drawn-order")
+    # an option of patch's given with auto keeps auto to patch
+    assert choose(drawn, analyze(drawn), available=steerable(ENGINES, (), ("max_rotation",))).rule == "scatter"
 
 
 def test_a_rule_for_an_engine_not_registered_is_skipped(monkeypatch):

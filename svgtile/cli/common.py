@@ -271,6 +271,6 @@ def auto_params(ex, stats, given: dict, controls: frozenset[str] = frozenset()) 
     """Resolve ``--engine auto`` for an exemplar: the engine and parameters :func:`choose` picks
     among those that honour the map ``controls`` given, the user's options on top; says the
     choice on stderr."""
-    picked = choose(ex, stats, available=steerable(ENGINES, controls))
+    picked = choose(ex, stats, available=steerable(ENGINES, controls, given))
     click.echo(f"svgtile: auto: {picked.describe()}", err=True)
     return picked.engine, make_params(get_engine(picked.engine), with_choice(picked, given), spell=_spell)

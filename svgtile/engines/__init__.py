@@ -199,7 +199,8 @@ def synthesize(
     if engine == AUTO:
         stats = analyze(exemplar) if stats is None else stats
         given = Controls().given() if controls is None else controls.given()
-        picked = choose(exemplar, stats, available=steerable(ENGINES, given))
+        named = () if isinstance(params, EngineParams) else tuple(params or ())
+        picked = choose(exemplar, stats, available=steerable(ENGINES, given, named))
         engine, params = picked.engine, with_choice(picked, None if isinstance(params, EngineParams) else params)
     engine = get_engine(engine) if isinstance(engine, str) else engine
     check_motifs(exemplar, engine)

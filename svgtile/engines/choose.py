@@ -4,8 +4,8 @@ One default for every exemplar serves none of them well: the patch engine's copy
 rows into staircases, and its copy step lays seams through a lattice.  :func:`choose` reads the
 exemplar's order (:func:`svgtile.analysis.order.read_order`) and walks :data:`RULES`, a table of
 ``(name, test, engine, parameters, why)``; the first rule whose test holds wins.  Adding an engine
-to auto's choice is one row: e.g. a growth engine for rows and lattices, or a cellular engine for
-bedded tiles, placed above the patch rows it should take over from.
+to auto's choice is one row placed above the rows it should take over from: the cellular engine
+for bedded tiles, the growth engine for drawn rows and lattices.
 
 The choice is a plain value (:class:`Choice`), said on stderr by the CLI in one line
 (:meth:`Choice.describe`) and recorded in the texture's metadata as the engine and parameters
@@ -63,18 +63,20 @@ def _steps(o: Order) -> str:
 #: Rules in order; the last one always holds.  Engines not registered are skipped, so a row for
 #: an engine that has not landed yet is harmless.
 #:
-#: Drawn exemplars (no period) keep the patch defaults even when they show rows: copies of the
-#: bundled marsh on its row step (``--grid lattice --max-rotation 0``, turned by 180° and
-#: shifted by a step to break the copy period) measured repetition 0.30 against the defaults'
-#: 0.08 at 400 × 300, seed 1 — its hand-placed rows repeat their jitter at the copy step.  A
-#: growth engine, which grows rows rather than copying them, is the rule to add for them.
+#: Drawn exemplars (no period) with rows or a lattice get the growth engine (``drawn-order``),
+#: which grows rows and lattices motif by motif instead of copying them: on the bundled marsh
+#: (rows) and sand (lattice), 300 × 300, seeds 1–3 (benchmarks/README.md, "Growth as auto's
+#: choice", ``benchmarks/growth_auto.py``), growth keeps the order better in every run — likeness
+#: L 0.67–0.72 against patch's 0.55–0.65 on marsh, 0.87–0.89 against 0.23–0.46 on sand — with no
+#: overlaps or violators, at a cost: marsh's density ratio 0.90–0.91 against 0.93–0.96, sand's
+#: repetition 0.22 against 0.10, and 3–10 times patch's time.  (Copies of marsh on its row step,
+#: ``--grid lattice --max-rotation 0``, repeated its hand-placed jitter at the copy step:
+#: repetition 0.30 against 0.08.)
 #:
-#: Repeating tiles with rows or a lattice stay with patch on the period (``tile-order``), not the
-#: growth engine: on the 19 regular FGDC/osm-carto tiles (benchmarks/README.md, "Growth engine
-#: after the numba kernel", ``benchmarks/growth_vs_patch.py``) growth's likeness L and density
-#: ratio are at best equal to patch's (1.000 / 1.000) and lower on FGDC 619 (L 0.864, density
-#: 0.770) and 670 (density 0.665), and it is 10–100 times slower.  Growth becomes auto's choice
-#: for tiles when it is at least as good there (issue 13).
+#: Repeating tiles with rows or a lattice stay with patch on the period (``tile-order``): there
+#: the tile's exact period makes patch's copies the tile itself (L 1.000, density 1.000 on the 19
+#: regular FGDC/osm-carto tiles), and growth, which on a tile keeps to the tile's own sites, gives
+#: the same figures (L 1.000, density 1.000–1.001, repetition equal) 20–100 times slower.
 RULES: tuple[Rule, ...] = (
     Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
          lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "
@@ -82,24 +84,35 @@ RULES: tuple[Rule, ...] = (
     Rule("tile-order", lambda o, s, e: o.period is not None and o.kind != "scatter", "patch",
          {"grid": "lattice", "max_rotation": 0.0},
          lambda o: f"a repeating tile with {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): "
-                   "copies on its period, not turned, so they meet without seams"),
+                   "copies on its period, not turned, so they meet without seams (the tile itself; growth "
+                   "gives the same, slower)"),
+    Rule("drawn-order", lambda o, s, e: o.period is None and o.kind != "scatter", "growth", {},
+         lambda o: f"drawn {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): grown motif by "
+                   "motif from the exemplar's neighbourhoods, so rows and lattices continue"),
     Rule("scatter", lambda o, s, e: True, "patch", {},
          lambda o: "no repeating rows or lattice to keep: the patch engine's defaults"),
-    # reached only when the map controls given leave patch out (see :func:`steerable`)
+    # reached only when the map controls or options given leave patch out (see :func:`steerable`)
     Rule("steered", lambda o, s, e: True, "growth", {},
-         lambda o: "a flow field, barrier or growth area was given, which the growth engine honours"),
+         lambda o: "the map controls or options given (a flow field, barrier, growth area, a growth parameter) "
+                   "are the growth engine's"),
 )
 
 
-def steerable(engines: Mapping[str, object], given: Collection[str]) -> list[str]:
-    """Names of the engines that honour every map control in ``given`` (auto chooses among them).
+def steerable(engines: Mapping[str, object], given: Collection[str], params: Collection[str] = ()) -> list[str]:
+    """Names of the engines that honour every map control in ``given`` and take every parameter
+    in ``params`` (auto chooses among them): an option the user gave with auto, such as patch's
+    ``--max-rotation 0`` for upright reeds, keeps auto to the engines it belongs to.
 
     Parameters
     ----------
     engines : the registered engines by name (:data:`svgtile.engines.ENGINES`)
     given : :meth:`svgtile.engines.base.Controls.given`
+    params : names of the parameters given with auto (``EngineParams`` field names)
     """
-    return [name for name, e in engines.items() if set(given) <= set(getattr(e, "controls", ()))]
+    honour = [name for name, e in engines.items() if set(given) <= set(getattr(e, "controls", ()))]
+    takes = [name for name in honour
+             if set(params) <= set(getattr(getattr(engines[name], "Params", None), "__dataclass_fields__", ()))]  # fmt: skip
+    return takes or honour  # none takes them all: the engine chosen refuses the stray option in one line
 
 
 def choose(exemplar: Exemplar, stats: Stats, *, order: Order | None = None,

@@ -54,6 +54,10 @@ class GrowthParams(EngineParams):
     relax_every : relax each cell every this many growth steps (§5.5); 0 = once per cell, after
         its growth (the final pass is always made)
     relaxation : run relaxation at all (library only)
+    gap_fill : on a repeating tile, fill the gaps growth leaves with the motifs placed ones
+        predict (library only, see :mod:`.gapfill`)
+    snap : on a repeating tile grown with rotation ``none``, move each grown motif to the
+        nearest site of its kind in the tile's pattern (library only, see :meth:`.engine.Growth.on_sites`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
@@ -66,6 +70,8 @@ class GrowthParams(EngineParams):
     relax_every: int = param(0, "Relax the growing texture every N motifs (growth engine); 0 = once per cell.",
                              interval=(0, 1_000_000), metavar="N")  # fmt: skip
     relaxation: bool = True
+    gap_fill: bool = True
+    snap: bool = True
     cell_widths: float = 1.0
     weights: Weights = dataclasses.field(default_factory=Weights)
 

@@ -18,7 +18,15 @@ growth runs per *world cell*:
   (footprints: no overlap, the distance rule, no barrier crossed) against each other and the
   earlier motifs, and the conflicting ones leave (:func:`svgtile.core.conflicts.cull`, with
   world-anchored priorities); the holes they leave are regrown (:data:`REFILLS` rounds) from the
-  ring slots of the motifs kept that no motif fills — §5.4's seeding, restarted.
+  ring slots of the motifs kept that no motif fills — §5.4's seeding, restarted;
+* on a repeating tile grown unturned, each grown motif is moved to the nearest site of its kind
+  in the tile's pattern (:meth:`Growth.on_sites`) before that check: a hand-drawn tile's rings
+  are near duplicates, so the best match is often another motif's ring and each front drifts
+  off the lattice as a random walk, and fronts meeting out of step left gaps (FGDC 619 and 670
+  grew at density 0.77 and 0.67); growth still decides which sites are filled and the kinds,
+  and barriers, growth areas and priorities apply as before;
+* on a repeating tile a last pass fills the gaps that are left with the motifs the placed ones
+  predict (:mod:`.gapfill`), the tile's motifs that no whole ring places among them.
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
@@ -47,6 +55,7 @@ from svgtile.core.footprint import motif_radius, world_footprints
 from svgtile.engines.base import Context
 from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
+from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import grow
 from svgtile.engines.growth.relax import relax
 from svgtile.errors import ParameterError
@@ -104,6 +113,10 @@ class Growth:
         self.rotation = rotation
         self.priority = kind_priority(ex, p.priorities())
         self.gap = centre_gaps(ex, self.k)
+        # a repeating tile: what each motif predicts around it is the tile itself (see .gapfill)
+        self.pred = predictions(ex, self.rings) if p.gap_fill and ex.period is not None else None
+        # grown unturned, every motif of a tile belongs on a site of the tile's pattern
+        self.snap = p.snap and ex.period is not None and rotation == "none"
         x0, y0, x1, y1 = ex.region.bounds
         width = max(x1 - x0, y1 - y0, 6.0 * self.rings.mean_length) * p.cell_widths
         if ex.period is not None:
@@ -230,17 +243,23 @@ class Growth:
                     if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
                         held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
                     xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
+                sub = rings.element[g.ring]
                 angle = rings.angle[g.ring] + np.degrees(g.theta)
-                arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, rings.scale[g.ring])
+                if self.snap:
+                    xy, sub = self.on_sites(xy, rings.kind[g.ring])
+                    angle = self.ex.motifs.angle[sub]
+                arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, self.ex.motifs.scale[sub])
                 arr = arr.quantized(DECIMALS)
                 ok = self.settle(arr, fixed)
                 kept.append(arr.take(ok))
-                ksub.append(rings.element[g.ring[ok]])
+                ksub.append(sub[ok])
                 # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
                 more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
                                                   Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
                 if not len(more):
                     break
+            if self.pred is not None:
+                self.fill_gaps(piece, [before, *grown], [bsub, *gsub], kept, ksub)
             grown.extend(kept)
             gsub.extend(ksub)
         return Arrangement.concat(grown), np.concatenate(gsub) if gsub else np.zeros(0, np.int64)
@@ -274,9 +293,52 @@ class Growth:
         free = (d >= rings.short_length / 2) & shapely.contains_xy(piece, pos[:, 0], pos[:, 1])
         return pos[free], kind[free]
 
-    def settle(self, new: Arrangement, before: Arrangement) -> np.ndarray:
+    def on_sites(self, xy: np.ndarray, kind: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Each grown position moved to the nearest site of its kind in the tile's pattern (the
+        tile repeated from the world origin): (n, 2) positions and (n,) the exemplar motifs
+        (sub-ids) they now copy.
+
+        Parameters
+        ----------
+        xy : (n, 2) float array, user units
+        kind : (n,) int array
+        """
+        motifs = self.ex.motifs
+        period = np.asarray(self.ex.period, float)
+        out, sub = np.array(xy, float), np.zeros(len(xy), np.int64)
+        for k in np.unique(kind):  # (n_k, m_k) candidate sites: the kind's tile motifs, whole periods away
+            i, s = np.flatnonzero(kind == k), np.flatnonzero(motifs.kind == k)
+            site = motifs.xy[s][None] + np.round((xy[i, None] - motifs.xy[s][None]) / period) * period
+            best = np.argmin(np.hypot(*(site - xy[i, None]).transpose(2, 0, 1)), axis=1)
+            out[i], sub[i] = site[np.arange(len(i)), best], s[best]
+        return out, sub
+
+    def fill_gaps(self, piece: shapely.Geometry, fixed: list[Arrangement], fsub: list[np.ndarray],
+                  kept: list[Arrangement], ksub: list[np.ndarray]) -> None:  # fmt: skip
+        """Add to ``kept``/``ksub`` (this piece's motifs and sub-ids) the motifs that placed ones
+        predict inside ``piece`` and that break no rule (:mod:`.gapfill`), round by round."""
+        r_short = self.rings.short_length / 2
+        for _ in range(ROUNDS):
+            placed = Arrangement.concat([*fixed, *kept])
+            psub = np.concatenate([*fsub, *ksub]) if len(placed) else np.zeros(0, np.int64)
+            if not len(placed):
+                return
+            cand, csub, support = candidates(self.pred, self.ex, placed, psub)
+            use = shapely.contains_xy(piece, cand.xy[:, 0], cand.xy[:, 1])
+            use[use] = cKDTree(placed.xy).query(cand.xy[use])[0] >= r_short
+            if not use.any():
+                return
+            cand, csub, support = cand.take(use), csub[use], support[use]
+            ok = self.settle(cand, placed, support)
+            if not ok.any():
+                return
+            kept.append(cand.take(ok))
+            ksub.append(csub[ok])
+
+    def settle(self, new: Arrangement, before: Arrangement, support: np.ndarray | None = None) -> np.ndarray:
         """(n,) bool: the motifs of ``new`` that stay — no overlap, no distance-rule violation, no
-        barrier crossed, checked on footprints against each other and ``before`` (which stay)."""
+        barrier crossed, checked on footprints against each other and ``before`` (which stay).
+        Among conflicting new motifs those with more ``support`` ((n,) int, optional) stay first."""
         protos, d = self.ex.prototypes, self.stats.distance
         ok = np.ones(len(new), bool)
         if not len(new):
@@ -291,6 +353,8 @@ class Growth:
         sub = new.take(sel)
         grid = np.round(sub.xy * 16).astype(np.int64)
         prio = cellrng.uniform(self.ctx.key, _PRIORITY, grid[:, 0], grid[:, 1])
+        if support is not None:
+            prio = prio - support[sel]
         found = find_conflicts(sub, protos, d)
         violator = np.zeros(len(sub))
         side = found.violation & ~found.overlap

@@ -72,16 +72,54 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
         return xy[first:].copy()
     col = np.full(n, -1)
     col[free] = np.arange(len(free))
-    rows = np.arange(len(i))
     # row e: x_j − x_i = want_e; fixed ends move to the right-hand side
     b = want.copy()
     b -= np.where(fixed[j, None], xy[j], 0.0)
     b += np.where(fixed[i, None], xy[i], 0.0)
-    fj, fi = ~fixed[j], ~fixed[i]
-    A = sp.csr_matrix((np.r_[np.ones(fj.sum()), -np.ones(fi.sum())], (np.r_[rows[fj], rows[fi]],
-                       np.r_[col[j[fj]], col[i[fi]]])), shape=(len(i), len(free)))  # fmt: skip
-    N = (A.T @ A + PULL * sp.identity(len(free))).tocsc()
-    rhs = A.T @ b + PULL * xy[free]
+    N, rhs = _normal_equations(col[i], col[j], b, len(free))
+    rhs += PULL * xy[free]
     out = xy.copy()
-    out[free] = np.column_stack([spsolve(N, rhs[:, 0]), spsolve(N, rhs[:, 1])])
+    out[free] = spsolve(N, rhs)  # one factorisation for both coordinates
     return out[first:]
+
+
+def _normal_equations(ci: np.ndarray, cj: np.ndarray, b: np.ndarray, f: int) -> tuple[sp.csc_matrix, np.ndarray]:
+    """``AᵀA + λI`` and ``Aᵀb`` of the rows ``x_cj − x_ci = b`` over ``f`` unknowns, assembled
+    directly (−1 marks a fixed end, whose term is already in ``b``).
+
+    ``A`` has +1 at ``cj`` and −1 at ``ci`` in each row, so ``AᵀA`` counts on its diagonal the rows
+    each unknown is in and holds −(rows joining p and q) off it: the values, the structure (in
+    the canonical order ``spsolve`` sorts a matrix into) and the summation order of ``Aᵀb`` that
+    the ``scipy.sparse`` products give, bit for bit, without building ``A`` (tests/test_growth_kernel.py).
+
+    Parameters
+    ----------
+    ci, cj : (e,) int arrays — each row's unknowns (−1: fixed)
+    b : (e, 2) float array, user units
+    f : number of unknowns
+    """
+    fi, fj = ci >= 0, cj >= 0
+    diag = np.bincount(ci[fi], minlength=f) + np.bincount(cj[fj], minlength=f) + PULL
+    both = fi & fj
+    r = np.concatenate([np.arange(f), ci[both], cj[both]])
+    c = np.concatenate([np.arange(f), cj[both], ci[both]])
+    v = np.concatenate([diag, -np.ones(2 * both.sum())])
+    # canonical CSC: by column, then row, duplicates summed (exact: they are all −1)
+    key = c.astype(np.int64) * f + r
+    order = np.argsort(key, kind="stable")
+    key, v = key[order], v[order]
+    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+    data = np.add.reduceat(v, first)
+    rows = (key[first] % f).astype(np.int32)
+    indptr = np.searchsorted(key[first] // f, np.arange(f + 1)).astype(np.int32)
+    N = sp.csc_matrix((data, rows, indptr), shape=(f, f))
+    # Aᵀb: the rows in order, as the sparse product sums them
+    at = np.concatenate([cj, ci])
+    sign = np.concatenate([np.ones(len(cj)), -np.ones(len(ci))])
+    row = np.concatenate([np.arange(len(cj)), np.arange(len(ci))])
+    keep = np.flatnonzero(at >= 0)
+    keep = keep[np.argsort(row[keep], kind="stable")]
+    w = sign[keep, None] * b[row[keep]]
+    rhs = np.column_stack([np.bincount(at[keep], weights=w[:, 0], minlength=f),
+                           np.bincount(at[keep], weights=w[:, 1], minlength=f)]).astype(np.float64)  # fmt: skip
+    return N, rhs

@@ -1,0 +1,86 @@
+"""``--engine auto`` grows drawn rows and lattices (issue 13): the choice on every bundled exemplar,
+the reason for it (growth keeps their order better than patch), and issue 13's gates on them.
+
+Figures at 300 × 300, seed 1, centroid boundary, scored by :func:`svgtile.metrics.score` (seeds 1–3
+in benchmarks/README.md, "Growth as auto's choice"); gates not met are ``xfail(strict=True)``
+with the measured value, never loosened.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+from svgtile import analyze, read_exemplar
+from svgtile.cli.main import main
+from svgtile.core.region import Region
+from svgtile.engines import ENGINES, choose, synthesize
+from svgtile.metrics import score
+
+REPO = Path(__file__).resolve().parents[1]
+EXEMPLARS = sorted(p.stem for p in (REPO / "exemplars").glob("*.svg"))
+#: The bundled exemplars whose order (svgtile analyze) is rows or a lattice.
+ORDERED = {"marsh": "rows", "sand": "lattice"}
+
+
+@cache
+def loaded(name: str):
+    ex = read_exemplar(REPO / "exemplars" / f"{name}.svg")
+    return ex, analyze(ex)
+
+
+@cache
+def figures(name: str, engine: str):
+    ex, st = loaded(name)
+    region = Region.rectangle(300, 300)
+    arr = synthesize(ex, region, engine, seed=1, stats=st, boundary="centroid").arrangement
+    return score(ex, st, arr, region)
+
+
+@pytest.mark.parametrize("name", EXEMPLARS)
+def test_auto_grows_the_drawn_rows_and_lattices_and_leaves_the_rest_to_patch(name):
+    ex, st = loaded(name)
+    c = choose(ex, st, available=ENGINES)
+    assert (c.engine, c.rule) == (("growth", "drawn-order") if name in ORDERED else ("patch", "scatter"))
+    if name in ORDERED:
+        assert c.why.startswith(f"drawn {'a lattice' if ORDERED[name] == 'lattice' else 'rows'} (steps ")
+
+
+def test_cli_says_growth_for_marsh_and_a_patch_option_keeps_patch(tmp_path, capsys):
+    marsh = str(REPO / "exemplars" / "marsh.svg")
+    out = tmp_path / "m.svg"
+    assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "svgtile: auto: engine growth: drawn rows (steps 5.18 units at 180°)" in err
+    assert 'engine="growth"' in out.read_text()
+    assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1", "--max-rotation", "0"]) == 0
+    assert "svgtile: auto: engine patch: " in capsys.readouterr().err
+    # options of two engines that none takes both: the engine chosen refuses the stray one in one line
+    rc = main(["synth", marsh, "-o", str(out), "--size", "60x40", "--max-rotation", "0", "--priority", "x=1"])
+    err = capsys.readouterr().err
+    assert rc != 0 and "has no parameter --" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("name", sorted(ORDERED))
+def test_growth_keeps_the_order_better_than_patch(name):
+    grown, patched = figures(name, "growth"), figures(name, "patch")
+    assert grown.likeness > patched.likeness + 0.1, (grown.likeness, patched.likeness)
+    assert grown.overlaps_total == grown.violators_total == 0
+
+
+#: Issue 13's gates not met on the bundled drawn exemplars (seed 1): marsh's hand-placed rows
+#: wander (its rings are all different), sand's lattice repeats at the rings' few shapes.
+NOT_MET = {("marsh", "likeness"): 0.668, ("sand", "repetition"): 0.224}
+GATES = {"likeness": lambda s: s.likeness >= 0.8, "repetition": lambda s: s.repetition <= 0.2,
+         "density": lambda s: 0.9 <= s.density_ratio <= 1.1,
+         "conflicts": lambda s: s.overlaps_total == s.violators_total == 0}  # fmt: skip
+
+
+@pytest.mark.parametrize(("name", "gate"), [
+    pytest.param(n, g, marks=pytest.mark.xfail(strict=True, reason=f"{g} {NOT_MET[n, g]:.3f}"))
+    if (n, g) in NOT_MET else (n, g) for n in sorted(ORDERED) for g in GATES])  # fmt: skip
+def test_growth_gates_on_the_drawn_rows_and_lattices(name, gate):
+    s = figures(name, "growth")
+    assert GATES[gate](s), (s.likeness, s.repetition, s.density_ratio, s.overlaps_total, s.violators_total)
