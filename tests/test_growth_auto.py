@@ -84,3 +84,22 @@ GATES = {"likeness": lambda s: s.likeness >= 0.8, "repetition": lambda s: s.repe
 def test_growth_gates_on_the_drawn_rows_and_lattices(name, gate):
     s = figures(name, "growth")
     assert GATES[gate](s), (s.likeness, s.repetition, s.density_ratio, s.overlaps_total, s.violators_total)
+
+
+def test_auto_passes_over_growth_when_its_work_is_over_the_limit(tmp_path, capsys, monkeypatch):
+    """A region too large for growth's work (the limit lowered here, so the test stays small) gets
+    patch, with a line saying why; --force keeps growth."""
+    import svgtile.cli.synth as synth_cli
+
+    marsh = str(REPO / "exemplars" / "marsh.svg")
+    out = tmp_path / "m.svg"
+    # about 130 motifs: growth ≈ 0.04 s of declared work, patch ≈ 0.003 s
+    monkeypatch.setattr(synth_cli, "MAX_WORK_SECONDS", 0.01)
+    assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "engine growth (drawn-order) would be over the work limit for this region" in err
+    assert "svgtile: auto: engine patch: " in err
+    assert 'engine="patch"' in out.read_text()
+    assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1", "--force"]) == 0
+    assert "svgtile: auto: engine growth: drawn rows" in capsys.readouterr().err
+    assert 'engine="growth"' in out.read_text()

@@ -267,10 +267,25 @@ def honoured_by(control: str) -> str:
     return ", ".join(e.name for e in ENGINES.values() if control in honoured(e)) or "none"
 
 
-def auto_params(ex, stats, given: dict, controls: frozenset[str] = frozenset()) -> tuple[str, EngineParams]:
+def auto_params(ex, stats, given: dict, controls: frozenset[str] = frozenset(), *,
+                affordable: Callable[[str], bool] | None = None) -> tuple[str, EngineParams]:  # fmt: skip
     """Resolve ``--engine auto`` for an exemplar: the engine and parameters :func:`choose` picks
     among those that honour the map ``controls`` given, the user's options on top; says the
-    choice on stderr."""
-    picked = choose(ex, stats, available=steerable(ENGINES, controls, given))
+    choice on stderr.
+
+    ``affordable(name)`` tells whether an engine's work for this region is within the run's
+    limit: auto does not pick an engine the work check would then refuse (growth's rows on a
+    region of a million motifs) while another that honours the same controls and options fits;
+    it says which it passed over.
+    """
+    names = steerable(ENGINES, controls, given)
+    picked = choose(ex, stats, available=names)
+    if affordable is not None and not affordable(picked.engine):
+        cheaper = [n for n in names if affordable(n)]
+        if cheaper:
+            passed = picked
+            picked = choose(ex, stats, available=cheaper)
+            click.echo(f"svgtile: auto: engine {passed.engine} ({passed.rule}) would be over the work limit for this "
+                       f"region (--force runs it)", err=True)  # fmt: skip
     click.echo(f"svgtile: auto: {picked.describe()}", err=True)
     return picked.engine, make_params(get_engine(picked.engine), with_choice(picked, given), spell=_spell)

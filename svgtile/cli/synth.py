@@ -105,13 +105,21 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
         check_style(output, protect=inputs)
     ex, stats = load(exemplar, as_tile=as_tile)
     estimate = check_motif_count(ex, stats, region, where, limit=float("inf") if force else MAX_MOTIFS, forceable=True)
+    limit = float("inf") if force else MAX_WORK_SECONDS
     if engine == AUTO:
-        engine, params = auto_params(ex, stats, params, controls.given())
+        def affordable(name: str) -> bool:  # one worker: the cheaper guess, as a tiled run may not be
+            try:
+                check_work(estimate, name, where, refine=refine, limit=limit)
+            except ParameterError:
+                return False
+            return True
+
+        engine, params = auto_params(ex, stats, params, controls.given(), affordable=affordable)
     cellular = hasattr(get_engine(engine), "place_cells")
     # the work is shared among workers only when the region is really cut into tiles
     split = is_tiled(ex, engine, tile_size, params=params, refine=refine)
     check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if split else 1,
-               limit=float("inf") if force else MAX_WORK_SECONDS, forceable=True, params=params)  # fmt: skip
+               limit=limit, forceable=True, params=params)  # fmt: skip
     if seed is None:
         seed = secrets.randbelow(2**31)
         click.echo(f"svgtile: seed {seed}", err=True)
