@@ -16,7 +16,7 @@ that of the start.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -25,8 +25,9 @@ from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
-from svgtile.engines.optimize.assign import predictions, solve_positions, vote
+from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
 from svgtile.engines.optimize.controls import conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.match import pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
     coherent_candidates,
@@ -103,10 +104,18 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         energies.append(float(cost.mean()))
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
+        kind, match, cost, take = assign_kinds(samples, hoods, arr.kind, cand, match, cost, dst, predicted, s.alpha)
+        if (kind != arr.kind).any():
+            # the predictions of the matches the new kinds brought
+            hoods = replace(hoods, kind=np.where(hoods.index >= 0, kind[np.maximum(hoods.index, 0)], -1))
+            slots = pairings(hoods.rel, hoods.kind, match, samples.rel, samples.nkind, s.alpha)
+            src, dst, d, predicted = predictions(samples, hoods, match, slots)
         xy = solve_positions(arr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
-        take = vote(samples, match, dst, predicted, len(arr))
-        angle = samples.angle[take] if flow is None else (samples.angle[take] + turn + 180.0) % 360.0 - 180.0
-        new = Arrangement(samples.kind[take], xy, angle, samples.scale[take]).quantized(DECIMALS)
+        got = take >= 0
+        t = np.maximum(take, 0)
+        angle = np.where(got, samples.angle[t] if flow is None else (samples.angle[t] + turn + 180.0) % 360.0 - 180.0,
+                         arr.angle)  # fmt: skip
+        new = Arrangement(kind, xy, angle, np.where(got, samples.scale[t], arr.scale)).quantized(DECIMALS)
         arr, known = settle(arr, new, exemplar, stats, region, boundary, known, lax)
         if flow is not None:
             turn = local_turn(flow, arr.xy)
