@@ -26,8 +26,8 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
-from svgtile.engines.optimize.controls import conflict_codes, flawed, local_turn, settle
-from svgtile.engines.optimize.match import pairings
+from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.match import candidate_costs, pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
     coherent_candidates,
@@ -48,6 +48,8 @@ class Settings:
     similar : K, the k-coherence similarity set size (§4.2)
     anchor : λ of the least squares, against one prediction (:mod:`.assign`)
     sweeps : Jacobi sweeps per assignment (:mod:`.assign`)
+    domain : λ of eq. (6), the cost of each exemplar neighbour that a candidate would put outside
+        the output region, squared spacings (:class:`.controls.DomainTerm`; 0: no domain term)
     """
 
     neighbours: int = 6
@@ -55,6 +57,7 @@ class Settings:
     similar: int = 2
     anchor: float = 1.0
     sweeps: int = 3
+    domain: float = 1.0
 
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
@@ -93,6 +96,7 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     start = conflict_codes(arr, exemplar, stats)
     known = start[0]  # none for an engine's output
     lax = flawed(arr, exemplar, stats, start)
+    domain = DomainTerm(region, samples, s.neighbours) if s.domain > 0 else None
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
         hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
@@ -101,7 +105,10 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         else:
             cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
         match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
-        energies.append(float(cost.mean()))
+        extra = np.zeros(len(arr))
+        if domain is not None:
+            match, cost, slots, extra = _domain_search(domain, s, samples, hoods, arr, cand, match, cost, slots)
+        energies.append(float((cost + extra).mean()))
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
         kind, match, cost, take = assign_kinds(samples, hoods, arr.kind, cand, match, cost, dst, predicted, s.alpha)
@@ -120,3 +127,28 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         if flow is not None:
             turn = local_turn(flow, arr.xy)
     return arr, energies
+
+
+def _domain_search(domain: DomainTerm, s: Settings, samples: Samples, hoods, arr: Arrangement, cand: np.ndarray,
+                   match: np.ndarray, cost: np.ndarray, slots: np.ndarray):  # fmt: skip
+    """The search of the elements near the region's edge again, with eq. (6) added (§5).
+
+    Returns match, the eq. (1) cost and slots (all (n, …), changed near the edge only), and the
+    eq. (6) term of each element's match, λ-weighted, (n,) squared spacings.
+    """
+    extra = np.zeros(len(arr))
+    edge = domain.near_edge(arr.xy)
+    if len(edge) == 0:
+        return match, cost, slots, extra
+    c = np.ascontiguousarray(cand[edge], dtype=np.int64)
+    eq1 = candidate_costs(hoods.rel[edge], hoods.kind[edge], arr.kind[edge], c, samples.rel, samples.nkind,
+                          samples.kind, s.alpha)  # fmt: skip
+    eq6 = s.domain * domain.costs(arr.xy[edge], hoods.turn[edge], c)
+    best = np.argmin(eq1 + eq6, axis=1)
+    rows = np.arange(len(edge))
+    match, cost, slots = match.copy(), cost.copy(), slots.copy()
+    match[edge] = c[rows, best]
+    cost[edge] = eq1[rows, best]
+    extra[edge] = eq6[rows, best]
+    slots[edge] = pairings(hoods.rel[edge], hoods.kind[edge], match[edge], samples.rel, samples.nkind, s.alpha)
+    return match, cost, slots, extra
