@@ -49,7 +49,8 @@ class Settings:
     anchor : λ of the least squares, against one prediction (:mod:`.assign`)
     sweeps : Jacobi sweeps per assignment (:mod:`.assign`)
     domain : λ of eq. (6), the cost of each exemplar neighbour that a candidate would put outside
-        the output region, squared spacings (:class:`.controls.DomainTerm`; 0: no domain term)
+        the output region, squared spacings (:class:`.controls.DomainTerm`; 0: no domain term;
+        none on a repeating tile, whose samples all have whole neighbourhoods)
     """
 
     neighbours: int = 6
@@ -96,7 +97,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     start = conflict_codes(arr, exemplar, stats)
     known = start[0]  # none for an engine's output
     lax = flawed(arr, exemplar, stats, start)
-    domain = DomainTerm(region, samples, s.neighbours) if s.domain > 0 else None
+    # a repeating tile has no edge: every sample's neighbourhood is whole, none is like an edge's
+    domain = DomainTerm(region, samples, s.neighbours) if s.domain > 0 and samples.period is None else None
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
         hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
