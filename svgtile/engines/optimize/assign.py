@@ -79,6 +79,10 @@ def solve_positions(xy: np.ndarray, src: np.ndarray, dst: np.ndarray, d: np.ndar
     return p
 
 
+#: How far each kind's share may stray from the exemplar's by a kind change (:func:`assign_kinds`).
+MIX = 0.01
+
+
 def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, candidates: np.ndarray,
                  match: np.ndarray, cost: np.ndarray, dst: np.ndarray, predicted: np.ndarray,
                  alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
@@ -88,7 +92,9 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, cand
     samples its neighbours' matches put where it stands).  Of those kinds the one kept is the
     one of least energy over every neighbourhood the element belongs to, each neighbourhood
     matched again among its own k-coherence candidates (:func:`.match.descend_kinds`); elements
-    are visited in reading order, each seeing the kinds already chosen.  A majority count (the
+    are visited in reading order, each seeing the kinds already chosen.  A change may not take a
+    kind's share further than :data:`MIX` from the exemplar's (a kind already past it can only
+    come back).  A majority count (the
     energy with every match held fixed) cannot undo a seam between two exemplar patches: each
     side out-votes the other at its own elements; the energy, with the matches free, sees that
     one side's kinds let the other side's neighbourhoods match the exemplar.
@@ -122,7 +128,12 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, cand
     cand = np.ascontiguousarray(candidates, dtype=np.int64)
     best = (cand == match[:, None]).argmax(axis=1).astype(np.int64)
     new, cost = kind.astype(np.int64), cost.astype(np.float64)
-    descend_kinds(new, voted, hoods.index, rev_ptr, rev_idx, hoods.rel, cand, best, cost, samples.rel,
+    # the exemplar's kind mix, give or take one motif in a hundred (see descend_kinds)
+    share = np.bincount(samples.kind, minlength=nk) / len(samples)
+    count = np.bincount(new, minlength=nk).astype(np.int64)
+    lo = np.minimum(np.floor((share - MIX) * n), count).astype(np.int64)
+    hi = np.maximum(np.ceil((share + MIX) * n), count).astype(np.int64)
+    descend_kinds(new, voted, count, lo, hi, hoods.index, rev_ptr, rev_idx, hoods.rel, cand, best, cost, samples.rel,
                   samples.nkind, samples.kind, alpha)  # fmt: skip
     match = cand[np.arange(n), best]
     take = np.where(samples.kind[match] == new, match, -1)
