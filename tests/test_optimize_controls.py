@@ -73,3 +73,64 @@ def test_the_domain_term_lowers_the_energy_at_the_region_edge():
             runs.append(_edge_energy(arr, ex, samples, region))
         got[domain] = float(np.mean(runs))
     assert got[1.0] < got[0.0], got
+
+
+def _kind_case():
+    """A breccia texture from the optimize start, its neighbourhoods, candidates and search."""
+    from svgtile.engines.optimize.assign import predictions
+    from svgtile.engines.optimize.search import coherent_candidates, first_candidates, search
+
+    ex = read_exemplar(REPO / "exemplars" / "breccia.svg")
+    stats = analyze(ex)
+    region = Region.rectangle(120, 120)
+    samples = exemplar_samples(ex, 6)
+    arr = patch_start(ex, stats, region, "clip", key=3, cell=5 * samples.spacing, overlap=0.25)
+    hoods = output_neighbourhoods(arr.xy, arr.kind, 6, samples.spacing, np.zeros(len(arr)))
+    match, _, _ = search(samples, hoods, arr.kind, first_candidates(samples, arr.xy, arr.kind, key=3), 1.0)
+    cand = np.ascontiguousarray(coherent_candidates(samples, hoods, match, lambda q: q))
+    match, cost, slots = search(samples, hoods, arr.kind, cand, 1.0)
+    _, dst, _, predicted = predictions(samples, hoods, match, slots)
+    return samples, hoods, arr, cand, match, cost, dst, predicted
+
+
+def test_kinds_are_the_vote_of_least_energy():
+    """The first element whose kind changes takes the voted kind of least energy over the
+    neighbourhoods it is in (each matched again among its candidates), by brute force."""
+    from svgtile.engines.optimize.assign import assign_kinds
+
+    samples, hoods, arr, cand, match, cost, dst, predicted = _kind_case()
+    kind, _, _, take = assign_kinds(samples, hoods, arr.kind, cand, match, cost, dst, predicted, 1.0)
+    changed = np.flatnonzero(kind != arr.kind)
+    assert len(changed) > 0
+    o = changed[0]
+    rows = np.r_[o, np.flatnonzero((hoods.index == o).any(axis=1))]
+    voted = set(samples.kind[match[o : o + 1]]) | set(samples.kind[predicted[dst == o]])
+
+    def energy(q):
+        k = arr.kind.copy()
+        k[o] = q
+        nk = np.where(hoods.index[rows] >= 0, k[np.maximum(hoods.index[rows], 0)], -1)
+        c = candidate_costs(hoods.rel[rows], nk, k[rows], cand[rows], samples.rel, samples.nkind, samples.kind, 1.0)
+        return c.min(axis=1).sum()
+
+    totals = {int(q): energy(q) for q in voted | {int(arr.kind[o])}}
+    assert kind[o] in voted
+    assert totals[int(kind[o])] == min(totals.values()) < totals[int(arr.kind[o])]
+    # every element takes angle and scale from a sample of its new kind
+    got = take >= 0
+    assert (samples.kind[take[got]] == kind[got]).all()
+
+
+def test_kind_changes_keep_the_exemplar_mix():
+    from svgtile.engines.optimize.assign import MIX, assign_kinds
+
+    samples, hoods, arr, cand, match, cost, dst, predicted = _kind_case()
+    nk = int(samples.kind.max()) + 1
+    share = np.bincount(samples.kind, minlength=nk) / len(samples)
+    before = np.bincount(arr.kind, minlength=nk) / len(arr)
+    kind, *_ = assign_kinds(samples, hoods, arr.kind, cand, match, cost, dst, predicted, 1.0)
+    after = np.bincount(kind, minlength=nk) / len(arr)
+    assert (kind != arr.kind).sum() > 0
+    # no kind's share strays further from the exemplar's than MIX (or than it already was)
+    room = np.maximum(np.abs(before - share), MIX) + 1.0 / len(arr)
+    assert (np.abs(after - share) <= room).all(), (share, before, after)
