@@ -40,7 +40,7 @@ class OptimizeParams(EngineParams):
         Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
-    anchor, sweeps, similar, alpha, domain : solver settings (:class:`.solver.Settings`)
+    anchor, sweeps, similar, alpha, domain, elongated : solver settings (:class:`.solver.Settings`)
     """
 
     passes: int = param(10, "Optimisation iterations (search, then assignment) after the patch-copy start.",
@@ -54,6 +54,7 @@ class OptimizeParams(EngineParams):
     similar: int = 2
     alpha: float = 1.0
     domain: float = 1.0
+    elongated: float = 0.0
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -63,11 +64,12 @@ class OptimizeParams(EngineParams):
         if not (self.start_cell > 0 and self.start_overlap >= 0):
             raise ParameterError("start_cell must be positive and start_overlap at least 0")
         if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0
-                and self.domain >= 0):
-            raise ParameterError("anchor must be positive, sweeps at least 1, similar, alpha and domain at least 0")
+                and self.domain >= 0 and self.elongated >= 0):
+            raise ParameterError("anchor must be positive, sweeps at least 1, similar, alpha, domain and elongated at least 0")
 
     def settings(self) -> Settings:
-        return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps, self.domain)
+        return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps, self.domain,
+                        self.elongated)
 
 
 class OptimizeEngine:

@@ -27,6 +27,7 @@ from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
 from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.elements import Layout, layout
 from svgtile.engines.optimize.match import candidate_costs, pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
@@ -51,6 +52,8 @@ class Settings:
     domain : λ of eq. (6), the cost of each exemplar neighbour that a candidate would put outside
         the output region, squared spacings (:class:`.controls.DomainTerm`; 0: no domain term;
         none on a repeating tile, whose samples all have whole neighbourhoods)
+    elongated : length over width from which a motif is two samples (§3.1, :mod:`.elements`;
+        0, the default: one sample per motif; :data:`.elements.ELONGATED` is the value measured)
     """
 
     neighbours: int = 6
@@ -59,6 +62,7 @@ class Settings:
     anchor: float = 1.0
     sweeps: int = 3
     domain: float = 1.0
+    elongated: float = 0.0
 
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
@@ -91,8 +95,13 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     s = settings
     # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
     arr = arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
-    samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
-    turn = local_turn(flow, arr.xy)
+    lay = layout(exemplar.prototypes, s.elongated)
+    if samples is None:
+        ex_samples = None
+        if lay is not None:
+            exy, eattr, eowner = lay.samples(exemplar.motifs)
+            ex_samples = Arrangement(eattr, exy, exemplar.motifs.angle[eowner], exemplar.motifs.scale[eowner])
+        samples = exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar, motifs=ex_samples)
     match = None
     start = conflict_codes(arr, exemplar, stats)
     known = start[0]  # none for an engine's output
@@ -101,33 +110,39 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     domain = DomainTerm(region, samples, s.neighbours) if s.domain > 0 and samples.period is None else None
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
-        hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
+        if lay is None:
+            sarr, owner = arr, None
+        else:
+            sxy, sattr, owner = lay.samples(arr)
+            sarr = Arrangement(sattr, sxy, arr.angle[owner], arr.scale[owner])
+        turn = local_turn(flow, sarr.xy)
+        hoods = output_neighbourhoods(sarr.xy, sarr.kind, s.neighbours, samples.spacing, turn)
         if match is None:
-            cand = first_candidates(samples, arr.xy, arr.kind, key=key)
+            cand = first_candidates(samples, sarr.xy, sarr.kind, key=key)
         else:
             cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
-        match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
-        extra = np.zeros(len(arr))
+        match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
+        extra = np.zeros(len(sarr))
         if domain is not None:
-            match, cost, slots, extra = _domain_search(domain, s, samples, hoods, arr, cand, match, cost, slots)
+            match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
         energies.append(float((cost + extra).mean()))
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
-        kind, match, cost, take = assign_kinds(samples, hoods, arr.kind, cand, match, cost, dst, predicted, s.alpha)
-        if (kind != arr.kind).any():
+        kind, match, cost, take = assign_kinds(samples, hoods, sarr.kind, cand, match, cost, dst, predicted, s.alpha)
+        if (kind != sarr.kind).any():
             # the predictions of the matches the new kinds brought
             hoods = replace(hoods, kind=np.where(hoods.index >= 0, kind[np.maximum(hoods.index, 0)], -1))
             slots = pairings(hoods.rel, hoods.kind, match, samples.rel, samples.nkind, s.alpha)
             src, dst, d, predicted = predictions(samples, hoods, match, slots)
-        xy = solve_positions(arr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
+        xy = solve_positions(sarr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
         got = take >= 0
         t = np.maximum(take, 0)
         angle = np.where(got, samples.angle[t] if flow is None else (samples.angle[t] + turn + 180.0) % 360.0 - 180.0,
-                         arr.angle)  # fmt: skip
-        new = Arrangement(kind, xy, angle, np.where(got, samples.scale[t], arr.scale)).quantized(DECIMALS)
-        arr, known = settle(arr, new, exemplar, stats, region, boundary, known, lax)
-        if flow is not None:
-            turn = local_turn(flow, arr.xy)
+                         sarr.angle)  # fmt: skip
+        new = Arrangement(kind, xy, angle, np.where(got, samples.scale[t], sarr.scale))
+        if lay is not None:
+            new = _motifs(lay, arr, new, owner)
+        arr, known = settle(arr, new.quantized(DECIMALS), exemplar, stats, region, boundary, known, lax)
     return arr, energies
 
 
@@ -154,3 +169,17 @@ def _domain_search(domain: DomainTerm, s: Settings, samples: Samples, hoods, arr
     extra[edge] = eq6[rows, best]
     slots[edge] = pairings(hoods.rel[edge], hoods.kind[edge], match[edge], samples.rel, samples.nkind, s.alpha)
     return match, cost, slots, extra
+
+
+def _motifs(lay: Layout, arr: Arrangement, new: Arrangement, owner: np.ndarray) -> Arrangement:
+    """The motifs of the assigned samples ``new`` (§3.1): each at the middle of its samples; a
+    two-sample motif turned along them, a one-sample motif with its sample's angle; the kind and
+    scale of its first sample — unless that kind has another number of samples (the layout of
+    the samples is kept from one iteration to the next, and with it the matches)."""
+    centre, axis, two = lay.poses(arr, new.xy, owner)
+    first = np.r_[0, np.cumsum(np.bincount(owner, minlength=len(arr)))[:-1]]
+    kind = new.kind[first] // 3
+    same = lay.elongated[kind] == lay.elongated[arr.kind]
+    kind = np.where(same, kind, arr.kind)
+    angle = np.where(two & (kind == arr.kind), axis, np.where(same, new.angle[first], arr.angle))
+    return Arrangement(kind, centre, angle, np.where(same, new.scale[first], arr.scale))
