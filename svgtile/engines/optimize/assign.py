@@ -79,11 +79,15 @@ def solve_positions(xy: np.ndarray, src: np.ndarray, dst: np.ndarray, d: np.ndar
     return p
 
 
-#: How far each kind's share may stray from the exemplar's by a kind change (:func:`assign_kinds`).
+#: How far each kind's share in a window may stray from the exemplar's by a kind change, and the
+#: side of the world-anchored windows, exemplar spacings (:func:`assign_kinds`).  Windows, not the
+#: whole texture: a count over the whole texture would let an edit anywhere change kinds
+#: everywhere (the engine contract's edit stability).
 MIX = 0.01
+WINDOW = 12.0
 
 
-def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, candidates: np.ndarray,
+def assign_kinds(samples: Samples, hoods: Neighbourhoods, xy: np.ndarray, kind: np.ndarray, candidates: np.ndarray,
                  match: np.ndarray, cost: np.ndarray, dst: np.ndarray, predicted: np.ndarray,
                  alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
     """Kinds by eq. (5) as Pseudocode 1 states it: the vote that minimises the energy.
@@ -93,15 +97,15 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, cand
     one of least energy over every neighbourhood the element belongs to, each neighbourhood
     matched again among its own k-coherence candidates (:func:`.match.descend_kinds`); elements
     are visited in reading order, each seeing the kinds already chosen.  A change may not take a
-    kind's share further than :data:`MIX` from the exemplar's (a kind already past it can only
-    come back).  A majority count (the
+    kind's share in its world-anchored window (:data:`WINDOW`) further than :data:`MIX` from the
+    exemplar's (a kind already past it can only come back).  A majority count (the
     energy with every match held fixed) cannot undo a seam between two exemplar patches: each
     side out-votes the other at its own elements; the energy, with the matches free, sees that
     one side's kinds let the other side's neighbourhoods match the exemplar.
 
     Parameters
     ----------
-    kind : (n,) int, the current kinds
+    xy : (n, 2) float, user units; kind : (n,) int — the elements' positions and current kinds
     candidates : (n, C) int, the search's candidates; match, cost : (n,) the search's result
     dst, predicted : (e,) int, the predictions (:func:`predictions`)
 
@@ -128,12 +132,18 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, kind: np.ndarray, cand
     cand = np.ascontiguousarray(candidates, dtype=np.int64)
     best = (cand == match[:, None]).argmax(axis=1).astype(np.int64)
     new, cost = kind.astype(np.int64), cost.astype(np.float64)
-    # the exemplar's kind mix, give or take one motif in a hundred (see descend_kinds)
+    # the exemplar's kind mix in every world-anchored window, give or take MIX (see descend_kinds)
     share = np.bincount(samples.kind, minlength=nk) / len(samples)
-    count = np.bincount(new, minlength=nk).astype(np.int64)
-    lo = np.minimum(np.floor((share - MIX) * n), count).astype(np.int64)
-    hi = np.maximum(np.ceil((share + MIX) * n), count).astype(np.int64)
-    descend_kinds(new, voted, count, lo, hi, hoods.index, rev_ptr, rev_idx, hoods.rel, cand, best, cost, samples.rel,
+    cells = np.floor(xy / (WINDOW * samples.spacing)).astype(np.int64)
+    _, window = np.unique(cells, axis=0, return_inverse=True)
+    window = window.ravel().astype(np.int64)
+    nw = int(window.max()) + 1
+    count = np.zeros((nw, nk), dtype=np.int64)
+    np.add.at(count, (window, new), 1)
+    size = count.sum(axis=1, keepdims=True)
+    lo = np.minimum(np.floor((share - MIX) * size), count).astype(np.int64)
+    hi = np.maximum(np.ceil((share + MIX) * size), count).astype(np.int64)
+    descend_kinds(new, voted, window, count, lo, hi, hoods.index, rev_ptr, rev_idx, hoods.rel, cand, best, cost, samples.rel,
                   samples.nkind, samples.kind, alpha)  # fmt: skip
     match = cand[np.arange(n), best]
     take = np.where(samples.kind[match] == new, match, -1)

@@ -195,7 +195,7 @@ def _row_best(r, index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, s
 
 
 @numba.njit(cache=True)
-def descend_kinds(kind, voted, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
+def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
                   centre_e, alpha):  # pragma: no cover  # fmt: skip
     """Each element's kind chosen among its votes as the one of least energy (eq. (5), Pseudocode 1).
 
@@ -206,8 +206,9 @@ def descend_kinds(kind, voted, count, lo, hi, index, rev_ptr, rev_idx, rel_o, ca
     total is kept (the current one on a tie) and the rows' best candidates and costs with it.
     Sequential (a change is seen by the next element's evaluation), so a numba loop.
 
-    The kind mix is held to the exemplar's: a change from kind ``a`` to ``q`` is tried only while
-    ``count[a] > lo[a]`` and ``count[q] < hi[q]`` (``count`` (nk,) updated in place).  Without
+    The kind mix is held to the exemplar's window by window: a change of an element of window
+    ``w = window[o]`` from kind ``a`` to ``q`` is tried only while ``count[w, a] > lo[w, a]`` and
+    ``count[w, q] < hi[w, q]`` (``count`` (nw, nk) updated in place).  Without
     it the mix drifts towards the smaller motifs: the non-penetration step undoes a change to a
     larger footprint more often than one to a smaller, and each iteration ratchets.
 
@@ -239,7 +240,8 @@ def descend_kinds(kind, voted, count, lo, hi, index, rev_ptr, rev_idx, rel_o, ca
         lowest = now - 1e-9 * (1.0 + abs(now))
         won = own
         for q in range(nk):
-            if q == own or not voted[o, q] or count[own] <= lo[own] or count[q] >= hi[q]:
+            w = window[o]
+            if q == own or not voted[o, q] or count[w, own] <= lo[w, own] or count[w, q] >= hi[w, q]:
                 continue
             kind[o] = q
             total = 0.0
@@ -260,8 +262,8 @@ def descend_kinds(kind, voted, count, lo, hi, index, rev_ptr, rev_idx, rel_o, ca
         kind[o] = won
         if won != own:
             changed += 1
-            count[own] -= 1
-            count[won] += 1
+            count[window[o], own] -= 1
+            count[window[o], won] += 1
             for t in range(rows):
                 best[nb[t]] = keep_b[t]
                 cost[nb[t]] = keep_c[t]

@@ -128,7 +128,7 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         energies.append(float((cost + extra).mean()))
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
-        kind, match, cost, take = assign_kinds(samples, hoods, sarr.kind, cand, match, cost, dst, predicted, s.alpha)
+        kind, match, cost, take = assign_kinds(samples, hoods, sarr.xy, sarr.kind, cand, match, cost, dst, predicted, s.alpha)
         if (kind != sarr.kind).any():
             # the predictions of the matches the new kinds brought
             hoods = replace(hoods, kind=np.where(hoods.index >= 0, kind[np.maximum(hoods.index, 0)], -1))
