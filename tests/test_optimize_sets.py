@@ -40,7 +40,7 @@ MISSES: dict[str, str] = {
 #: The first tile of each set that misses a bound, with its figures (2 x 2 tiles, seed 1; re-measured
 #: with issue 12's repetition, which leaves out the lattice of an exact tile: allotments passes now).
 SET_MISSES: dict[str, str] = {
-    "fgdc": "601.svg: L = 0.79, density / rho 0.80 measured",
+    "fgdc": "601.svg: L = 0.79, density / rho 0.82 measured",
     "osm-carto": "dog_park.svg: L = 0.42, density / rho 0.75 measured",
     "equinor": "10000.svg: repetition 0.23, density / rho 0.79 measured",
 }
