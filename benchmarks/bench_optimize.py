@@ -55,7 +55,7 @@ def main() -> None:
     spent: dict[str, float] = {}
     if args.stages:
         for name in ("output_neighbourhoods", "first_candidates", "coherent_candidates", "search", "predictions",
-                     "solve_positions", "vote", "settle", "conflict_codes", "flawed"):  # fmt: skip
+                     "solve_positions", "assign_kinds", "pairings", "settle", "conflict_codes", "flawed"):  # fmt: skip
             setattr(solver, name, _timed(getattr(solver, name), name, spent))
     t2 = time.perf_counter()
     c2 = time.process_time()

@@ -82,7 +82,10 @@ def test_energy_decreases_over_iterations():
     assert len(energies) == 6
     # the non-penetration step and the vote may cost a little: never more than 1 % in an iteration
     assert all(b <= 1.01 * a for a, b in itertools.pairwise(energies)), energies
-    assert energies[-1] < 0.85 * energies[0], energies
+    # 0.85–0.86 measured: kind changes that would take a window's mix past the exemplar's are not
+    # made (assign.MIX; without that limit below 0.85 here, but the mix drifts to the smaller
+    # motifs elsewhere)
+    assert energies[-1] < 0.87 * energies[0], energies
     assert len(arr) == len(start) and brute_force_conflicts(arr, ex, stats) == (0, 0)
 
 

@@ -25,6 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from svgtile.core.footprint import rotation
+from svgtile.engines.optimize.match import descend_kinds
 from svgtile.engines.optimize.samples import Samples
 from svgtile.engines.optimize.search import Neighbourhoods
 
@@ -78,32 +79,82 @@ def solve_positions(xy: np.ndarray, src: np.ndarray, dst: np.ndarray, d: np.ndar
     return p
 
 
-def vote(samples: Samples, match: np.ndarray, dst: np.ndarray, predicted: np.ndarray, n: int):
-    """Kind, angle and scale of every element by voting (eq. (5)).
+#: How far each kind's share in a window may stray from the exemplar's by a kind change, and the
+#: side of the world-anchored windows, exemplar spacings (:func:`assign_kinds`).  Windows, not the
+#: whole texture: a count over the whole texture would let an edit anywhere change kinds
+#: everywhere (the engine contract's edit stability).
+MIX = 0.01
+WINDOW = 12.0
+
+
+def assign_kinds(samples: Samples, hoods: Neighbourhoods, xy: np.ndarray, kind: np.ndarray, candidates: np.ndarray,
+                 match: np.ndarray, cost: np.ndarray, dst: np.ndarray, predicted: np.ndarray,
+                 alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """Kinds by eq. (5) as Pseudocode 1 states it: the vote that minimises the energy.
+
+    Each element's votes are the kind of its own match and of every prediction about it (the
+    samples its neighbours' matches put where it stands).  Of those kinds the one kept is the
+    one of least energy over every neighbourhood the element belongs to, each neighbourhood
+    matched again among its own k-coherence candidates (:func:`.match.descend_kinds`); elements
+    are visited in reading order, each seeing the kinds already chosen.  A change may not take a
+    kind's share in its world-anchored window (:data:`WINDOW`) further than :data:`MIX` from the
+    exemplar's (a kind already past it can only come back).  A majority count (the
+    energy with every match held fixed) cannot undo a seam between two exemplar patches: each
+    side out-votes the other at its own elements; the energy, with the matches free, sees that
+    one side's kinds let the other side's neighbourhoods match the exemplar.
 
     Parameters
     ----------
-    match : (n,) int, each element's own sample
-    dst : (e,) int, the element each prediction is about; predicted : (e,) int, its sample
+    xy : (n, 2) float, user units; kind : (n,) int — the elements' positions and current kinds
+    candidates : (n, C) int, the search's candidates; match, cost : (n,) the search's result
+    dst, predicted : (e,) int, the predictions (:func:`predictions`)
 
     Returns
     -------
-    sample : (n,) int — the sample whose kind, angle and scale each element takes
+    kind : (n,) int, the new kinds
+    match, cost : (n,) the best candidate of every element under them
+    take : (n,) int — the sample whose angle and scale each element takes: its match if that is
+        of its kind, else the first prediction of its kind; −1 for an element keeping a kind
+        nobody voted for (it keeps its angle and scale)
     """
-    nk = int(samples.kind.max()) + 1
-    votes = np.zeros((n, nk))
-    np.add.at(votes, (dst, samples.kind[predicted]), 1.0)
-    votes[np.arange(n), samples.kind[match]] += 1.5  # its own vote, and ties to it
-    won = votes.argmax(axis=1)
-    out = match.copy()
-    other = np.flatnonzero(won != samples.kind[match])
-    if len(other):
-        # the first prediction (lowest source element) of the winning kind
-        hit = samples.kind[predicted] == won[dst]
+    n = len(kind)
+    nk = max(int(samples.kind.max()), int(kind.max(initial=0))) + 1
+    voted = np.zeros((n, nk), dtype=bool)
+    voted[np.arange(n), samples.kind[match]] = True
+    voted[dst, samples.kind[predicted]] = True
+    # the elements that have each element as a neighbour (CSR)
+    present = hoods.index >= 0
+    owner = np.repeat(np.arange(n), hoods.index.shape[1])[present.ravel()]
+    target = hoods.index[present]
+    order = np.argsort(target, kind="stable")
+    rev_idx = owner[order].astype(np.int64)
+    rev_ptr = np.r_[0, np.cumsum(np.bincount(target, minlength=n))].astype(np.int64)
+    cand = np.ascontiguousarray(candidates, dtype=np.int64)
+    best = (cand == match[:, None]).argmax(axis=1).astype(np.int64)
+    new, cost = kind.astype(np.int64), cost.astype(np.float64)
+    # the exemplar's kind mix in every world-anchored window, give or take MIX (see descend_kinds)
+    share = np.bincount(samples.kind, minlength=nk) / len(samples)
+    cells = np.floor(xy / (WINDOW * samples.spacing)).astype(np.int64)
+    _, window = np.unique(cells, axis=0, return_inverse=True)
+    window = window.ravel().astype(np.int64)
+    nw = int(window.max()) + 1
+    count = np.zeros((nw, nk), dtype=np.int64)
+    np.add.at(count, (window, new), 1)
+    size = count.sum(axis=1, keepdims=True)
+    lo = np.minimum(np.floor((share - MIX) * size), count).astype(np.int64)
+    hi = np.maximum(np.ceil((share + MIX) * size), count).astype(np.int64)
+    descend_kinds(new, voted, window, count, lo, hi, hoods.index, rev_ptr, rev_idx, hoods.rel, cand, best, cost, samples.rel,
+                  samples.nkind, samples.kind, alpha)  # fmt: skip
+    match = cand[np.arange(n), best]
+    take = np.where(samples.kind[match] == new, match, -1)
+    lack = np.flatnonzero(take < 0)
+    if len(lack):
+        # the first prediction (lowest source element) of the element's kind
+        hit = samples.kind[predicted] == new[dst]
         sel = np.flatnonzero(hit)
         first = np.full(n, -1)
         order = sel[np.argsort(dst[sel], kind="stable")]
         uniq, at = np.unique(dst[order], return_index=True)
         first[uniq] = predicted[order[at]]
-        out[other] = first[other]
-    return out
+        take[lack] = first[lack]
+    return new, match, cost, take

@@ -3,10 +3,14 @@
 * Local orientation (§5, eq. (7)): with a flow field, each output neighbourhood is turned into
   the exemplar's frame by the field's angle at its element before it is compared, predictions are
   turned back, and motifs take their sample's angle plus the field's (:func:`local_turn`).
-* Domain shape (§5, eq. (6)): the region is a hard constraint here — an element that would leave
-  what the boundary mode keeps is moved back (see :func:`settle`); output neighbourhoods at the
-  region's edge are one-sided and so match exemplar samples at the exemplar's edge, which is the
-  paper's constrained selection for a non-repeating exemplar.
+* Domain shape (§5, eq. (6)): each candidate exemplar neighbourhood, shifted onto the output
+  element (and turned by eq. (7)), costs ``λ`` for each of its samples that falls outside the
+  output region (:class:`DomainTerm`), so elements at the region's edge take exemplar samples
+  from a like edge.  ``c`` is exact (inside or not, by the region's shape) rather than the
+  paper's rasterised map, and is asked only for elements near the edge: for the others every
+  candidate's neighbourhood lies inside and the term is 0.  The region stays a hard constraint
+  besides: an element that would leave what the boundary mode keeps is moved back
+  (:func:`settle`).
 * Non-penetration: the paper runs physics sub-steps; :func:`settle` instead relaxes each
   conflicting element halfway back to where it was, a few times, and finally returns whatever
   still conflicts to its previous state.  A conflict counts only if the previous state did not
@@ -17,6 +21,7 @@
 from __future__ import annotations
 
 import numpy as np
+import shapely
 from scipy.spatial import cKDTree
 
 from svgtile.analysis.stats import Stats
@@ -24,11 +29,51 @@ from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import find_conflicts, pair_conflicts, slack
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
-from svgtile.core.footprint import motif_radius
+from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
+from svgtile.engines.optimize.samples import Samples
 
 #: Halfway-back relaxation sub-steps before conflicting elements are returned to their place.
 RELAX_STEPS = 1
+
+
+class DomainTerm:
+    """Eq. (6) of Ma, Wei & Tong 2011 against the output region, for the search (§4.2, §5).
+
+    ``c(s_o, s_i) = Σ_{s'_i ∈ n(s_i)} |1 − c(p(s_o) + R(θ)(p(s'_i) − p(s_i)))|²`` with ``c`` 1
+    inside the region and 0 outside, ``n(s_i)`` the sample's ``k`` nearest neighbours (the output
+    neighbourhood's size) and ``θ`` the local orientation of eq. (7).
+
+    Parameters
+    ----------
+    region : the output region
+    samples : the exemplar's samples
+    k : neighbours of each exemplar sample shifted onto the output
+    """
+
+    def __init__(self, region: Region, samples: Samples, k: int) -> None:
+        self.rel = np.nan_to_num(samples.rel[:, :k] * samples.spacing, nan=0.0)  # (m, k, 2) user units
+        reach = float(np.hypot(*self.rel.reshape(-1, 2).T).max(initial=0.0))
+        self.shape = region.shape
+        # elements deeper inside than every shifted neighbourhood reaches: the term is 0 for them
+        self.deep = shapely.buffer(region.shape, -reach * (1 + 1e-9) - 10.0**-DECIMALS)
+        shapely.prepare(self.deep)
+
+    def near_edge(self, xy: np.ndarray) -> np.ndarray:
+        """(e,) int: the elements of ``xy`` (n, 2) for which the term may not be 0."""
+        return np.flatnonzero(~shapely.contains_xy(self.deep, xy[:, 0], xy[:, 1]))
+
+    def costs(self, xy: np.ndarray, turn: np.ndarray, cand: np.ndarray) -> np.ndarray:
+        """(e, C) float: the number of each candidate's shifted samples outside the region.
+
+        Parameters
+        ----------
+        xy : (e, 2) float, user units; turn : (e,) degrees; cand : (e, C) int samples
+        """
+        rel = np.einsum("eij,eckj->ecki", rotation(turn), self.rel[cand])
+        q = xy[:, None, None, :] + rel
+        inside = shapely.contains_xy(self.shape, q[..., 0], q[..., 1])
+        return (~inside).sum(axis=-1).astype(np.float64)
 
 
 def local_turn(flow: FlowField | None, xy: np.ndarray) -> np.ndarray:

@@ -42,7 +42,7 @@ class OptimizeParams(EngineParams):
         Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
-    anchor, sweeps, similar, alpha : solver settings (:class:`.solver.Settings`)
+    anchor, sweeps, similar, alpha, domain, elongated : solver settings (:class:`.solver.Settings`)
     """
 
     passes: int = param(10, "Optimisation iterations (search, then assignment) after the patch-copy start.",
@@ -55,6 +55,8 @@ class OptimizeParams(EngineParams):
     sweeps: int = 3
     similar: int = 2
     alpha: float = 1.0
+    domain: float = 1.0
+    elongated: float = 0.0
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -63,13 +65,15 @@ class OptimizeParams(EngineParams):
             raise ParameterError(f"--neighbourhood must be between 2 and 24, not {self.neighbourhood}")
         if not (self.start_cell > 0 and self.start_overlap >= 0):
             raise ParameterError("start_cell must be positive and start_overlap at least 0")
-        if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0):
-            raise ParameterError("anchor must be positive, sweeps at least 1, similar and alpha at least 0")
+        if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0
+                and self.domain >= 0 and self.elongated >= 0):
+            raise ParameterError("anchor must be positive, sweeps at least 1, similar, alpha, domain and elongated at least 0")
 
     def settings(self) -> Settings:
         from svgtile.engines.optimize.solver import Settings
 
-        return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps)
+        return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps, self.domain,
+                        self.elongated)
 
 
 class OptimizeEngine:

@@ -165,3 +165,106 @@ def best_candidates(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alph
         best[i] = bi
         cost[i] = bc
     return best, cost
+
+
+@numba.njit(cache=True)
+def _row_best(r, index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, slots, d, used, rowmin, rowarg):  # pragma: no cover
+    """The best candidate of output row ``r`` under the current ``kind`` (n,): (index into
+    ``cand[r]``, cost); ``ko`` (k,) receives the row's neighbour kinds."""
+    k = index.shape[1]
+    for a in range(k):
+        ko[a] = kind[index[r, a]] if index[r, a] >= 0 else -1
+    bi = 0
+    bc = np.inf
+    c = cand.shape[1]
+    for j in range(c):
+        e = cand[r, j]
+        seen = False
+        for t in range(j):
+            if cand[r, t] == e:
+                seen = True
+                break
+        if seen:
+            continue
+        start = alpha if kind[r] != centre_e[e] else 0.0
+        v = _pair(rel_o[r], ko, rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg, start, bc)
+        if v < bc:
+            bc = v
+            bi = j
+    return bi, bc
+
+
+@numba.njit(cache=True)
+def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
+                  centre_e, alpha):  # pragma: no cover  # fmt: skip
+    """Each element's kind chosen among its votes as the one of least energy (eq. (5), Pseudocode 1).
+
+    Elements are visited in order; for each kind ``q`` voted for element ``o`` (``voted[o, q]``)
+    other than its own, the energy of every neighbourhood ``o`` belongs to — its own and those
+    of the elements that have it as a neighbour (``rev_idx[rev_ptr[o]:rev_ptr[o + 1]]``) — is
+    found again by the best of their candidates with ``o`` of kind ``q``; the kind of least
+    total is kept (the current one on a tie) and the rows' best candidates and costs with it.
+    Sequential (a change is seen by the next element's evaluation), so a numba loop.
+
+    The kind mix is held to the exemplar's window by window: a change of an element of window
+    ``w = window[o]`` from kind ``a`` to ``q`` is tried only while ``count[w, a] > lo[w, a]`` and
+    ``count[w, q] < hi[w, q]`` (``count`` (nw, nk) updated in place).  Without
+    it the mix drifts towards the smaller motifs: the non-penetration step undoes a change to a
+    larger footprint more often than one to a smaller, and each iteration ratchets.
+
+    ``kind`` (n,), ``best`` (n,) index into ``cand``'s rows and ``cost`` (n,) are updated in
+    place; returns how many kinds changed.
+    """
+    n, k = index.shape
+    ke = rel_e.shape[1]
+    nk = voted.shape[1]
+    ko = np.empty(k, dtype=np.int64)
+    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
+    m = rev_ptr[n] - rev_ptr[0]
+    nb = np.empty(m + 1, dtype=np.int64)
+    tb = np.empty(m + 1, dtype=np.int64)
+    tc = np.empty(m + 1)
+    keep_b = np.empty(m + 1, dtype=np.int64)
+    keep_c = np.empty(m + 1)
+    changed = 0
+    for o in range(n):
+        own = kind[o]
+        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
+        nb[0] = o
+        for t in range(rev_ptr[o], rev_ptr[o + 1]):
+            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        now = 0.0
+        for t in range(rows):
+            now += cost[nb[t]]
+        lowest = now - 1e-9 * (1.0 + abs(now))
+        won = own
+        for q in range(nk):
+            w = window[o]
+            if q == own or not voted[o, q] or count[w, own] <= lo[w, own] or count[w, q] >= hi[w, q]:
+                continue
+            kind[o] = q
+            total = 0.0
+            for t in range(rows):
+                bi, bc = _row_best(nb[t], index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, slots, d,
+                                   used, rowmin, rowarg)  # fmt: skip
+                tb[t] = bi
+                tc[t] = bc
+                total += bc
+                if total >= lowest:
+                    break
+            if total < lowest:
+                lowest = total
+                won = q
+                for t in range(rows):
+                    keep_b[t] = tb[t]
+                    keep_c[t] = tc[t]
+        kind[o] = won
+        if won != own:
+            changed += 1
+            count[window[o], own] -= 1
+            count[window[o], won] += 1
+            for t in range(rows):
+                best[nb[t]] = keep_b[t]
+                cost[nb[t]] = keep_c[t]
+    return changed

@@ -16,6 +16,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from svgtile.analysis.neighbourhood import EXEMPLAR_FACTOR
+from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.optimize.match import candidate_costs
 
@@ -78,7 +79,8 @@ def _block(xy: np.ndarray, period: tuple[float, float] | None, k: int) -> tuple[
     return pts, np.tile(np.arange(m), len(shifts)), (len(shifts) // 2) * m
 
 
-def exemplar_samples(exemplar: Exemplar, k: int, *, alpha: float = 1.0, similar: int = 2) -> Samples:
+def exemplar_samples(exemplar: Exemplar, k: int, *, alpha: float = 1.0, similar: int = 2,
+                     motifs: Arrangement | None = None) -> Samples:
     """The samples of ``exemplar`` with neighbourhoods of ``2k`` and similarity sets of ``similar``.
 
     Ma, Wei & Tong 2011 §3.1 (one sample per rigid motif, at its centroid), §3.2 (neighbourhoods)
@@ -91,11 +93,14 @@ def exemplar_samples(exemplar: Exemplar, k: int, *, alpha: float = 1.0, similar:
     k : output neighbourhood size
     alpha : cost of a kind mismatch, squared spacings
     similar : K, the size of each similarity set
+    motifs : the samples when they are not the motifs (several per elongated motif,
+        :mod:`.elements`: kind is then the sample's attribute); positions are still measured in
+        the motifs' spacing
     """
-    motifs = exemplar.motifs
+    spacing = float(np.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1)))
+    motifs = exemplar.motifs if motifs is None else motifs
     m = len(motifs)
     period = getattr(exemplar, "period", None)
-    spacing = float(np.sqrt(exemplar.region.area / max(m, 1)))
     ke = EXEMPLAR_FACTOR * k
     pts, index, own = _block(motifs.xy, period, ke)
     tree = cKDTree(pts)

@@ -16,7 +16,7 @@ that of the start.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -25,8 +25,10 @@ from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
-from svgtile.engines.optimize.assign import predictions, solve_positions, vote
-from svgtile.engines.optimize.controls import conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
+from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
+from svgtile.engines.optimize.elements import Layout, layout
+from svgtile.engines.optimize.match import candidate_costs, pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
     coherent_candidates,
@@ -47,6 +49,11 @@ class Settings:
     similar : K, the k-coherence similarity set size (§4.2)
     anchor : λ of the least squares, against one prediction (:mod:`.assign`)
     sweeps : Jacobi sweeps per assignment (:mod:`.assign`)
+    domain : λ of eq. (6), the cost of each exemplar neighbour that a candidate would put outside
+        the output region, squared spacings (:class:`.controls.DomainTerm`; 0: no domain term;
+        none on a repeating tile, whose samples all have whole neighbourhoods)
+    elongated : length over width from which a motif is two samples (§3.1, :mod:`.elements`;
+        0, the default: one sample per motif; :data:`.elements.ELONGATED` is the value measured)
     """
 
     neighbours: int = 6
@@ -54,6 +61,8 @@ class Settings:
     similar: int = 2
     anchor: float = 1.0
     sweeps: int = 3
+    domain: float = 1.0
+    elongated: float = 0.0
 
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
@@ -86,28 +95,91 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     s = settings
     # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
     arr = arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
-    samples = samples or exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar)
-    turn = local_turn(flow, arr.xy)
+    lay = layout(exemplar.prototypes, s.elongated)
+    if samples is None:
+        ex_samples = None
+        if lay is not None:
+            exy, eattr, eowner = lay.samples(exemplar.motifs)
+            ex_samples = Arrangement(eattr, exy, exemplar.motifs.angle[eowner], exemplar.motifs.scale[eowner])
+        samples = exemplar_samples(exemplar, s.neighbours, alpha=s.alpha, similar=s.similar, motifs=ex_samples)
     match = None
     start = conflict_codes(arr, exemplar, stats)
     known = start[0]  # none for an engine's output
     lax = flawed(arr, exemplar, stats, start)
+    # a repeating tile has no edge: every sample's neighbourhood is whole, none is like an edge's
+    domain = DomainTerm(region, samples, s.neighbours) if s.domain > 0 and samples.period is None else None
     report = progress or (lambda stage, fraction: None)
     for it in range(iterations):
-        hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
+        if lay is None:
+            sarr, owner = arr, None
+        else:
+            sxy, sattr, owner = lay.samples(arr)
+            sarr = Arrangement(sattr, sxy, arr.angle[owner], arr.scale[owner])
+        turn = local_turn(flow, sarr.xy)
+        hoods = output_neighbourhoods(sarr.xy, sarr.kind, s.neighbours, samples.spacing, turn)
         if match is None:
-            cand = first_candidates(samples, arr.xy, arr.kind, key=key)
+            cand = first_candidates(samples, sarr.xy, sarr.kind, key=key)
         else:
             cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
-        match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
-        energies.append(float(cost.mean()))
+        match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
+        extra = np.zeros(len(sarr))
+        if domain is not None:
+            match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
+        energies.append(float((cost + extra).mean()))
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
-        xy = solve_positions(arr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
-        take = vote(samples, match, dst, predicted, len(arr))
-        angle = samples.angle[take] if flow is None else (samples.angle[take] + turn + 180.0) % 360.0 - 180.0
-        new = Arrangement(samples.kind[take], xy, angle, samples.scale[take]).quantized(DECIMALS)
-        arr, known = settle(arr, new, exemplar, stats, region, boundary, known, lax)
-        if flow is not None:
-            turn = local_turn(flow, arr.xy)
+        kind, match, cost, take = assign_kinds(samples, hoods, sarr.xy, sarr.kind, cand, match, cost, dst, predicted, s.alpha)
+        if (kind != sarr.kind).any():
+            # the predictions of the matches the new kinds brought
+            hoods = replace(hoods, kind=np.where(hoods.index >= 0, kind[np.maximum(hoods.index, 0)], -1))
+            slots = pairings(hoods.rel, hoods.kind, match, samples.rel, samples.nkind, s.alpha)
+            src, dst, d, predicted = predictions(samples, hoods, match, slots)
+        xy = solve_positions(sarr.xy, src, dst, d, anchor=s.anchor, sweeps=s.sweeps)
+        got = take >= 0
+        t = np.maximum(take, 0)
+        angle = np.where(got, samples.angle[t] if flow is None else (samples.angle[t] + turn + 180.0) % 360.0 - 180.0,
+                         sarr.angle)  # fmt: skip
+        new = Arrangement(kind, xy, angle, np.where(got, samples.scale[t], sarr.scale))
+        if lay is not None:
+            new = _motifs(lay, arr, new, owner)
+        arr, known = settle(arr, new.quantized(DECIMALS), exemplar, stats, region, boundary, known, lax)
     return arr, energies
+
+
+def _domain_search(domain: DomainTerm, s: Settings, samples: Samples, hoods, arr: Arrangement, cand: np.ndarray,
+                   match: np.ndarray, cost: np.ndarray, slots: np.ndarray):  # fmt: skip
+    """The search of the elements near the region's edge again, with eq. (6) added (§5).
+
+    Returns match, the eq. (1) cost and slots (all (n, …), changed near the edge only), and the
+    eq. (6) term of each element's match, λ-weighted, (n,) squared spacings.
+    """
+    extra = np.zeros(len(arr))
+    edge = domain.near_edge(arr.xy)
+    if len(edge) == 0:
+        return match, cost, slots, extra
+    c = np.ascontiguousarray(cand[edge], dtype=np.int64)
+    eq1 = candidate_costs(hoods.rel[edge], hoods.kind[edge], arr.kind[edge], c, samples.rel, samples.nkind,
+                          samples.kind, s.alpha)  # fmt: skip
+    eq6 = s.domain * domain.costs(arr.xy[edge], hoods.turn[edge], c)
+    best = np.argmin(eq1 + eq6, axis=1)
+    rows = np.arange(len(edge))
+    match, cost, slots = match.copy(), cost.copy(), slots.copy()
+    match[edge] = c[rows, best]
+    cost[edge] = eq1[rows, best]
+    extra[edge] = eq6[rows, best]
+    slots[edge] = pairings(hoods.rel[edge], hoods.kind[edge], match[edge], samples.rel, samples.nkind, s.alpha)
+    return match, cost, slots, extra
+
+
+def _motifs(lay: Layout, arr: Arrangement, new: Arrangement, owner: np.ndarray) -> Arrangement:
+    """The motifs of the assigned samples ``new`` (§3.1): each at the middle of its samples; a
+    two-sample motif turned along them, a one-sample motif with its sample's angle; the kind and
+    scale of its first sample — unless that kind has another number of samples (the layout of
+    the samples is kept from one iteration to the next, and with it the matches)."""
+    centre, axis, two = lay.poses(arr, new.xy, owner)
+    first = np.r_[0, np.cumsum(np.bincount(owner, minlength=len(arr)))[:-1]]
+    kind = new.kind[first] // 3
+    same = lay.elongated[kind] == lay.elongated[arr.kind]
+    kind = np.where(same, kind, arr.kind)
+    angle = np.where(two & (kind == arr.kind), axis, np.where(same, new.angle[first], arr.angle))
+    return Arrangement(kind, centre, angle, np.where(same, new.scale[first], arr.scale))
