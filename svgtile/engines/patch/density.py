@@ -247,11 +247,16 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
         return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[t_of]).T) <= radius[t_of]
     if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
-        near, idx = tree.query(new.xy, k=1, workers=-1)
         inner = np.array([pr.inner for pr in protos])
+        # no clash is possible beyond the widest rule plus two of the largest inscribed radii: the
+        # search stops there (a motif not found there gets idx = len(arr) and is no clash)
+        reach = max(float(rule.max()), 0.0) + float(inner.max()) * (float(new.scale.max()) + float(arr.scale.max()))
+        near, idx = tree.query(new.xy, k=1, distance_upper_bound=reach, workers=-1)
+        found = idx < len(arr)
+        idx = np.where(found, idx, 0)
         a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
-        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
+        clash = found & (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     free = ~cross_conflicts(new, arr, protos, rule, tree)
