@@ -89,3 +89,34 @@ def test_patch_texture_is_full_and_clean_after_density_repair():
     assert s_full.overlaps_total == s_full.violators_total == 0
     assert 0.9 <= s_full.density_ratio <= 1.1
     assert s_none.density_ratio < s_full.density_ratio - 0.03
+
+
+def _plain_empty_discs(arr, tree, protos, region, origin, size, ids, samples=12):
+    """The reference: the k-neighbour clearance bound at every sample (the search before its
+    shortcut)."""
+    g = (np.arange(samples) + 0.5) / samples
+    gx, gy = (v.ravel() for v in np.meshgrid(g, g))
+    lo = origin + ids * size
+    pts = (lo[:, None, :] + np.stack([gx, gy], -1)[None, :, :] * size).reshape(-1, 2)
+    owner = np.repeat(np.arange(len(ids)), len(gx))
+    edge = np.minimum(np.minimum(pts[:, 0] - lo[owner, 0], lo[owner, 0] + size[0] - pts[:, 0]),
+                      np.minimum(pts[:, 1] - lo[owner, 1], lo[owner, 1] + size[1] - pts[:, 1]))  # fmt: skip
+    radius = np.array([p.radius for p in protos])[arr.kind] * arr.scale
+    dist, idx = tree.query(pts, k=6)
+    clear = np.minimum(edge, np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max()))
+    clear[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+    best = _by_sort(clear, owner)
+    return pts[best], np.maximum(clear[best], 0.0)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_empty_discs_are_those_of_the_plain_search(seed):
+    arr, protos = _scatter(seed)
+    if seed % 2:  # a denser texture with a cleared hole: the best sample is one of few
+        arr = arr.take(np.hypot(*(arr.xy - 120).T) > 25)
+    tree = cKDTree(arr.xy)
+    region = Region(shapely.box(0, 0, 190, 170))
+    size, ids, origin = np.array([50.0, 40.0]), np.array([[a, b] for a in range(-1, 4) for b in range(5)]), np.zeros(2)
+    centre, radius, _ = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
+    plain_centre, plain_radius = _plain_empty_discs(arr, tree, protos, region, origin, size, ids)
+    assert np.array_equal(centre, plain_centre) and np.array_equal(radius, plain_radius)
