@@ -120,3 +120,27 @@ def test_empty_discs_are_those_of_the_plain_search(seed):
     centre, radius, _ = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
     plain_centre, plain_radius = _plain_empty_discs(arr, tree, protos, region, origin, size, ids)
     assert np.array_equal(centre, plain_centre) and np.array_equal(radius, plain_radius)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_cross_conflicts_staged_tests_find_what_every_pair_finds(seed):
+    """cross_conflicts tests each new motif's nearest pair first and skips the rest of a motif
+    found in conflict: the same motifs conflict as when every pair is tested."""
+    from svgtile.core.conflicts import cross_conflicts, cross_pairs
+
+    rng = np.random.default_rng(seed)
+    bar = Prototype.from_geometry(shapely.box(-3, -0.3, 3, 0.3), tolerance=0.0)  # thin: inscribed discs decide little
+    dot = Prototype.from_geometry(shapely.Point(0, 0).buffer(0.8, 16), tolerance=0.0)
+    protos = [bar, dot]
+
+    def scatter(n):
+        return Arrangement(rng.integers(0, 2, n), rng.uniform(0, 60, (n, 2)), rng.uniform(-90, 90, n), np.ones(n))
+
+    old, new = scatter(150), scatter(200)
+    rule = np.array([[1.0, 0.5], [0.5, 0.3]])
+    a, _ = cross_pairs(new, old, protos, rule, complete=True)
+    every = np.zeros(len(new), dtype=bool)
+    every[a] = True
+    staged = cross_conflicts(new, old, protos, rule)
+    assert 0 < every.sum() < len(new)
+    assert np.array_equal(staged, every)
