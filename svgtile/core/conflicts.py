@@ -258,13 +258,26 @@ def cross_pairs(
     hit = np.zeros(len(ta), dtype=bool)
     if len(ta):
         used_a, a_local = np.unique(ta, return_inverse=True)
-        used_b, b_local = np.unique(tb, return_inverse=True)
-        close, share = _test_pairs(
-            world_footprints(new.take(used_a), protos)[a_local],
-            world_footprints(old.take(used_b), protos)[b_local],
-            d_rule[test],
-        )
-        hit = close | share
+        geoms_a = world_footprints(new.take(used_a), protos)
+        if complete:
+            stages = [np.arange(len(ta))]
+        else:
+            # the nearest pair of each new motif first: a motif found in conflict needs no more
+            # GEOS tests (most candidates conflict with their nearest neighbour, if at all)
+            order = np.lexsort((centre[test], ta))
+            first = np.r_[True, ta[order][1:] != ta[order][:-1]]
+            stages = [order[first], order[~first]]
+        found = np.zeros(len(new), dtype=bool)
+        for at in stages:
+            at = at[~found[ta[at]]]
+            if not len(at):
+                continue
+            used_b, b_local = np.unique(tb[at], return_inverse=True)
+            close, share = _test_pairs(
+                geoms_a[a_local[at]], world_footprints(old.take(used_b), protos)[b_local], d_rule[test][at],
+            )
+            hit[at] = close | share
+            found[ta[at[hit[at]]]] = True
     return np.r_[a[sure], ta[hit]], np.r_[b[sure], tb[hit]]
 
 

@@ -50,6 +50,13 @@ REFINE_KEEP, REFINE = 3, 4
 #: leaves the most (:func:`_roomiest`).
 SCREEN = 24
 
+#: Empty discs and room are searched on a grid of this many × this many samples per window.
+SAMPLES = 12
+
+#: The empty-disc search bounds every sample by its nearest motif and measures this many of the
+#: most promising per window first (:func:`_largest_empty_discs`).
+LED_FIRST = 8
+
 
 # ----------------------------------------------------------------------------- §3.4
 
@@ -199,7 +206,7 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     """
     protos = exemplar.prototypes
     tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False) if len(arr) else None
-    centre, radius = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
+    centre, radius, nearest = _largest_empty_discs(arr, tree, protos, region, origin, size, ids)
 
     ex = exemplar.motifs
     x0, y0, x1, y1 = exemplar.region.bounds
@@ -223,7 +230,7 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     pick = by_kind[first[wid] + (u[:, 0] * count[wid]).astype(np.int64) % count[wid]]
     odd = tid % 2 == 1
     source = np.where(odd[:, None], ex.xy[pick], source)
-    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, want, rule, ex)
+    spot, room = _roomiest(arr, tree, protos, region, origin, size, ids, want, rule, ex, nearest=nearest)
     centre = np.where(odd[:, None], spot[wid], centre[wid])  # (tries, 2): where each try is pasted
     radius = np.where(odd, room[wid], radius[wid])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
@@ -244,11 +251,16 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
         return new, np.zeros(len(arr), dtype=bool)
     in_disc = np.hypot(*(new.xy - centre[t_of]).T) <= radius[t_of]
     if tree is not None:  # most candidates land on a motif: the nearest centroid tells, cheaply
-        near, idx = tree.query(new.xy, k=1, workers=-1)
         inner = np.array([pr.inner for pr in protos])
+        # no clash is possible beyond the widest rule plus two of the largest inscribed radii: the
+        # search stops there (a motif not found there gets idx = len(arr) and is no clash)
+        reach = max(float(rule.max()), 0.0) + float(inner.max()) * (float(new.scale.max()) + float(arr.scale.max()))
+        near, idx = tree.query(new.xy, k=1, distance_upper_bound=reach, workers=-1)
+        found = idx < len(arr)
+        idx = np.where(found, idx, 0)
         a_in, b_in = inner[new.kind] * new.scale, inner[arr.kind[idx]] * arr.scale[idx]
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
-        clash = (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
+        clash = found & (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     free = ~cross_conflicts(new, arr, protos, rule, tree)
@@ -332,12 +344,20 @@ def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
     return displace, victim_of
 
 
-def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = 12):
+def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, samples: int = SAMPLES):
     """Centre and radius of (approximately) the largest empty disc in each window.
 
     Each window is sampled on a ``samples × samples`` grid; a sample's clearance is a lower bound
     of its distance to every footprint (distance to the nearest centroids minus their bounding
     radius, and the window's edges), so the returned disc is empty.
+
+    Returns
+    -------
+    centre : (w, 2) float array, user units
+    radius : (w,) float array, ≥ 0
+    nearest : the samples' nearest motif and whether each lies in the region, ``(d, m, inside)``
+        each (w·samples²,) in the order :func:`_roomiest` samples them (``d``, ``m`` None for an
+        empty texture) — one neighbour query serves both searches
     """
     g = (np.arange(samples) + 0.5) / samples
     gx, gy = (v.ravel() for v in np.meshgrid(g, g))
@@ -349,23 +369,53 @@ def _largest_empty_discs(arr, tree, protos, region: Region, origin, size, ids, s
         np.minimum(pts[:, 0] - lo[owner, 0], lo[owner, 0] + size[0] - pts[:, 0]),
         np.minimum(pts[:, 1] - lo[owner, 1], lo[owner, 1] + size[1] - pts[:, 1]),
     )
-    clear = edge.copy()
-    if len(arr):
-        radius = motif_radius(arr, protos)
-        k = min(6, len(arr))
-        dist, idx = tree.query(pts, k=k, workers=-1)
-        dist, idx = dist.reshape(len(pts), k), idx.reshape(len(pts), k)
-        bound = np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max())
-        clear = np.minimum(clear, bound)
-    clear[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+    inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
+    if not len(arr):
+        clear = np.where(inside, edge, -np.inf)
+        best = _best_per_owner(clear, owner)
+        return pts[best], np.maximum(clear[best], 0.0), (None, None, inside)
+    radius = motif_radius(arr, protos)
+    k = min(6, len(arr))
+
+    def exact(at):
+        dist, idx = tree.query(pts[at], k=k, workers=-1)
+        dist, idx = dist.reshape(len(at), k), idx.reshape(len(at), k)
+        return np.minimum(edge[at], np.minimum((dist - radius[idx]).min(axis=1), dist[:, -1] - radius.max()))
+
+    # the nearest motif alone bounds a sample's clearance from above; the bound over k neighbours
+    # is computed only where that upper bound can still reach the window's best (ties included),
+    # which gives the same discs as computing it at every sample
+    d1, m1 = tree.query(pts, k=1, workers=-1)
+    upper = np.where(inside, np.minimum(edge, d1 - radius[m1]), -np.inf)
+    clear = np.full(len(pts), -np.inf)
+    per = len(gx)
+    first = np.argsort(-upper.reshape(len(ids), per), axis=1, kind="stable")[:, :LED_FIRST]
+    first = (first + (np.arange(len(ids)) * per)[:, None]).ravel()
+    first = first[inside[first]]
+    clear[first] = exact(first)
+    top = np.full(len(ids), -np.inf)
+    np.maximum.at(top, owner[first], clear[first])
+    done = np.zeros(len(pts), dtype=bool)
+    done[first] = True
+    rest = np.flatnonzero(~done & inside & (upper >= top[owner]))
+    if len(rest):
+        clear[rest] = exact(rest)
     best = _best_per_owner(clear, owner)
-    return pts[best], np.maximum(clear[best], 0.0)
+    return pts[best], np.maximum(clear[best], 0.0), (d1, m1, inside)
 
 
 def _best_per_owner(value: np.ndarray, owner: np.ndarray) -> np.ndarray:
-    """Index of the largest ``value`` of each owner present (the last of ties), by owner."""
-    order = np.lexsort((value, owner))
-    return order[np.r_[np.flatnonzero(np.diff(owner[order])), len(order) - 1]]
+    """Index of the largest ``value`` of each owner present (the last of ties), by owner.
+
+    ``value`` must hold no NaN.  Two scatter-maxima instead of a sort of every sample.
+    """
+    present, inv = np.unique(owner, return_inverse=True)
+    top = np.full(len(present), -np.inf)
+    np.maximum.at(top, inv, value)
+    tied = np.flatnonzero(value == top[inv])
+    best = np.full(len(present), -1, dtype=np.int64)
+    np.maximum.at(best, inv[tied], tied)
+    return best
 
 
 def _rank_within(labels: np.ndarray) -> np.ndarray:
@@ -376,7 +426,8 @@ def _rank_within(labels: np.ndarray) -> np.ndarray:
     return rank
 
 
-def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, ex, samples: int = 12):
+def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, ex, samples: int = SAMPLES, *,
+              nearest=None):  # fmt: skip
     """Per window, the point where a motif of ``kind[window]`` has the most room under ``rule``.
 
     The largest empty disc (§3.4) is where a small motif fits best, not a large one with wide
@@ -393,6 +444,7 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     kind : (w,) int array, the kind to make room for in each window
     rule : (k, k) float array, user units
     ex : the exemplar's motifs (their largest scale per kind sizes the motif)
+    nearest : ``(d, m, inside)`` of the same samples from :func:`_largest_empty_discs`, if at hand
 
     Returns
     -------
@@ -405,7 +457,8 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     np.maximum.at(largest, ex.kind, ex.scale)
     size_of = np.array([p.radius for p in protos]) * largest  # (k,) bounding radius at the largest scale
     # a kind's motifs are exemplar copies: none is larger than the kind at its largest exemplar scale
-    trees = [(j, cKDTree(arr.xy[arr.kind == j]), float(size_of[j])) for j in np.unique(arr.kind)]
+    trees = [(j, cKDTree(arr.xy[arr.kind == j], balanced_tree=False, compact_nodes=False), float(size_of[j]))
+             for j in np.unique(arr.kind)]  # fmt: skip
     far = float(rule.max() + size_of.max()) + float(size.max())  # beyond: room to spare (+ r_j)
     lo = origin + ids * size  # (w, 2)
 
@@ -429,10 +482,11 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     owner = np.repeat(np.arange(len(ids)), len(cell))
     if tree is not None and len(cell) > SCREEN:
         # the nearest motif's term bounds the room from above: only the best bounds are measured
-        d, m = tree.query(pts, k=1, workers=-1)
+        d, m, inside = nearest if nearest is not None and nearest[0] is not None else (
+            *tree.query(pts, k=1, workers=-1), shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1]))  # fmt: skip
         want = kind[owner]
         upper = d - radius[m] - size_of[want] - rule[want, arr.kind[m]]
-        upper[~shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])] = -np.inf
+        upper[~inside] = -np.inf
         upper = upper.reshape(len(ids), len(cell))
         pick = np.argsort(-upper, axis=1, kind="stable")[:, :SCREEN]
         cell_of = pick.ravel()
