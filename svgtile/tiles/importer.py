@@ -12,10 +12,10 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
 3. **group** — pieces are joined into motifs on a 3 × 3 block of tiles, so that motifs cut at
    an edge are reassembled: footprints that touch or overlap belong together, and so do two
    pieces closer than :data:`JOIN_RATIO` times the smaller one's size (729's pairs of parallel
-   lines), and subpaths of one icon (an element spanning at most :data:`ICON_SPAN` of the tile)
-   closer than :data:`ELEMENT_JOIN` times the pattern's spacing (an icon drawn as one ``<path>``
-   stays whole); a group that reaches its own repeat is a continuous line or hatching, and the pattern
-   is refused (:class:`TileRefused`);
+   lines), and pieces of one icon (an element, ``<g>`` or ``<use>`` expansion spanning at most
+   :data:`ICON_SPAN` of the tile) closer than :data:`ELEMENT_JOIN` times the pattern's spacing
+   (an icon drawn as one ``<path>`` or one group stays whole); a group that reaches its own
+   repeat is a continuous line or hatching, and the pattern is refused (:class:`TileRefused`);
 4. **pick** — each part of the periodic pattern is kept once (the copy whose lowest piece
    lies in the central tile) and moved by whole periods so its centroid is in the tile;
    **repeat** — parts that recur at the same offset and relative rotation in every copy are one
@@ -25,7 +25,10 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
    (:func:`svgtile.svg.kinds.match_kinds`, the rule of plain exemplars);
 6. **write** — one ``<symbol>`` per kind (the first motif, redrawn as polylines around its
    centroid), one ``<use>`` per motif, and the tile as ``<rect id="region">`` with
-   ``svgtile:period``, so that analysis measures distances across the tile's edges.
+   ``svgtile:period``, so that analysis measures distances across the tile's edges;
+7. **own overlaps** — no two motifs of the exemplar overlap as analysis measures them: a motif
+   that would only through its kind's drawing keeps its own, motifs whose outlines overlap are
+   joined, or the notes say why not (:mod:`svgtile.tiles.overlaps`).
 
 The result is an exemplar SVG text that :func:`svgtile.svg.reader.parse_exemplar` reads back to
 the same motifs.  Grouping follows the perceptual rule of AlMeraj et al. 2013 §3.1 that an
@@ -65,9 +68,11 @@ KIND_TOLERANCE = 0.08
 #: Subpaths of one element (an icon drawn as one ``<path>``: osm-carto's dog-park paw is a pad and
 #: four toes, the Muslim graveyard's crescent and star) closer than this share of the pattern's
 #: spacing, ``√(tile area / pieces)``, are one motif.  Icons measured 0.04–0.06; the dashes FGDC
-#: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.
+#: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.  The same share
+#: holds for the shapes of one ``<g>`` or ``<use>``: osm-carto swamp's two trees in one def stand
+#: 0.07 apart (0.95 units at a spacing of 12.8).
 ELEMENT_JOIN = 0.15
-#: … when the element is an icon: its subpaths span at most this share of the tile each way.
+#: … when the element or group is an icon: its pieces span at most this share of the tile each way.
 ICON_SPAN = 0.5
 #: Gaps below this share of the tile's size count as touching (coordinates are rounded in files).
 TOUCH = 2e-4
