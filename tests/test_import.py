@@ -476,3 +476,99 @@ def test_import_writes_svgtile_prefixes_whatever_was_imported_first(tmp_path):
     code = f"from svgtile.tiles.importer import import_tile; print(import_tile({str(src)!r}).text)"
     text = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert "svgtile:period=" in text and "ns0:" not in text and "ns1:" not in text
+
+
+# ----------------------------------------------------------------------------- groups and own overlaps (issue 12.5)
+
+XLINK_HEAD = '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 10 10">'
+#: A paw as five separate shapes: a pad and four toes 0.1–0.5 apart (none touching).
+PAW = ('<rect x="4" y="5" width="2" height="1.6"/><rect x="3.6" y="3.9" width="0.6" height="0.6"/>'
+       '<rect x="4.5" y="3.5" width="0.6" height="0.6"/><rect x="5.4" y="3.5" width="0.6" height="0.6"/>'
+       '<rect x="6.3" y="3.9" width="0.6" height="0.6"/>')  # fmt: skip
+
+
+def own_overlap_count(t) -> int:
+    return analyze(parse_exemplar(t.text, source="t.svg")).overlaps
+
+
+def test_children_of_one_group_stay_one_icon_unless_they_stand_apart():
+    """A paw drawn as a <g> of five shapes is one motif (ungrouped, the toes are motifs of their
+    own); a <g> of dashes a pattern spacing apart stays four motifs, small or large."""
+    assert (len(tile(f"<g>{PAW}</g>")), len(tile(PAW))) == (1, 5)
+    assert len(tile('<g stroke="#000" stroke-width="0.3"><path d="M1 2 h2"/><path d="M6 2 h2"/>'
+                    '<path d="M1 7 h2"/><path d="M6 7 h2"/></g>')) == 4  # fmt: skip
+    small = ('<g stroke="#000" stroke-width="0.1"><path d="M1 1 h0.5"/><path d="M3.5 1 h0.5"/>'
+             '<path d="M1 3.5 h0.5"/><path d="M3.5 3.5 h0.5"/></g><circle cx="8" cy="8" r="0.2"/>')  # fmt: skip
+    assert len(tile(small)) == 5
+
+
+def test_an_icon_used_in_two_places_is_two_whole_motifs_of_one_kind():
+    t = tile(f'<defs><g id="paw" transform="scale(0.5)">{PAW}</g></defs>'
+             '<use xlink:href="#paw"/><use xlink:href="#paw" x="5" y="5"/>', head=XLINK_HEAD)  # fmt: skip
+    assert (len(t), t.kinds, t.pieces.tolist()) == (2, 1, [5, 5])
+
+
+def test_a_group_cut_at_the_tile_edge_is_one_motif():
+    """The paw drawn across the right edge (two toes beyond it) and again a period to the left,
+    as jsdotpattern writes periodic copies: the wrapped pieces are still one icon."""
+    moved = f'<g transform="translate(4.5 0)">{PAW}</g><g transform="translate(-5.5 0)">{PAW}</g>'
+    t = tile(moved)
+    assert (len(t), t.pieces.tolist(), bool(t.wrapped[0])) == (1, [5], True)
+
+
+def test_a_motif_inside_anothers_outline_is_joined_to_it():
+    """A ring of two arcs (closed only together) round a dot: as separate motifs the ring's
+    footprint would cover the dot; the importer joins them.  A dot outside stays apart."""
+    ring = (f'<path d="M3 5 A2 2 0 0 1 7 5" {STROKE}/><path d="M7 5 A2 2 0 0 1 3 5" {STROKE}/>')
+    t = tile(ring + '<circle cx="5" cy="5" r="0.3"/>')
+    assert (len(t), own_overlap_count(t)) == (1, 0)
+    assert any("joined 1 pair" in n for n in t.notes)
+    apart = tile(ring + '<circle cx="9" cy="9" r="0.3"/>')
+    assert (len(apart), own_overlap_count(apart), apart.notes) == (2, 0, ())
+
+
+def test_a_near_copy_that_would_overlap_a_neighbour_keeps_its_own_drawing():
+    """Two rectangles 7 % apart in width match as one kind, drawn as the first (wider) one; in
+    the second's place that drawing would cover the dot 0.04 beside it.  The second gets a kind
+    of its own, and the exemplar has no overlap."""
+    body = '<rect x="0.93" y="2" width="2.14" height="1"/><rect x="5" y="7" width="2" height="1"/><circle cx="7.19" cy="7.5" r="0.15"/>'
+    t = tile(body)
+    assert (len(t), t.kinds, own_overlap_count(t)) == (3, 3, 0)
+    assert any("keep their own drawing" in n for n in t.notes)
+    far = tile(body.replace('cx="7.19"', 'cx="8.5"'))  # nothing near: one kind for both rectangles
+    assert (far.kinds, own_overlap_count(far)) == (2, 0)
+
+
+@needs_data
+@pytest.mark.parametrize("name", ["scrub", "wetland", "marsh", "swamp", "reed", "bog", "mangrove", "reef", "salt-dots-2"])
+def test_osm_jsdotpattern_tiles_import_one_motif_per_use(name):
+    """The raw jsdotpattern files draw each motif as a <use> of a <g> def, with periodic copies
+    written out: the import has one motif per unique use and the classes of the defs (marsh,
+    reed, bog and mangrove split icons cut at the edge before <g> grouping: 489–491 motifs)."""
+    _, truth = flattened(OSM / f"{name}.svg")
+    t = import_tile(OSM / f"{name}.svg")
+    assert len(t) == len(truth)
+    assert sorted(np.bincount(t.kind).tolist()) == sorted(np.bincount(truth).tolist())
+
+
+@needs_data
+@pytest.mark.parametrize(
+    ("path", "note"),
+    [
+        ("fgdc-geologic-patterns/lithology/614.svg", "keep their own drawing"),  # a lens drawn as its kind's first reached a dot
+        ("equinor-lithology/svg/11030.svg", "joined 5 pair"),  # dots 0.1–0.2 from pebbles, within the outlines' tolerance
+    ],
+)
+def test_real_tiles_whose_motifs_overlapped_import_without_overlaps(path, note):
+    t = import_tile(DATA / path)
+    assert own_overlap_count(t) == 0
+    assert any(note in n for n in t.notes)
+
+
+@needs_data
+def test_equinor_11026_says_why_its_overlapping_motifs_are_not_joined():
+    """Pebbles and dashes 0.2 apart along each row: joined they would make an endless row, so the
+    importer leaves them and says so."""
+    t = import_tile(DATA / "equinor-lithology/svg/11026.svg")
+    assert own_overlap_count(t) > 0
+    assert any("not joined: a motif would join its own repeat" in n for n in t.notes)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import re
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -78,6 +78,10 @@ class TilePieces:
     filled_frame : bool
         One of them is painted (a solid fill or a background colour).
     warnings : list of str
+    groups : list of n tuples of int
+        The drawn groups each piece lies in, outermost first: one id per ``<g>`` (``<a>``,
+        ``<switch>``) and per ``<use>`` expansion walked, so that the subpaths of an icon drawn as
+        a group (or ``<use>``d once per place) can be kept together.
     """
 
     source: str
@@ -90,6 +94,7 @@ class TilePieces:
     frames: list[str]
     filled_frame: bool
     warnings: list[str]
+    groups: list[tuple[int, ...]] = field(default_factory=list)
 
 
 def read_tile(path: str | Path) -> TilePieces:
@@ -137,7 +142,7 @@ def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
     return TilePieces(
         source, box, footprint, walk.points, np.array(walk.closed, dtype=bool),
         np.array(walk.element, dtype=np.int64), walk.paint, walk.frames, walk.filled_frame,
-        reader.warnings,
+        reader.warnings, walk.groups,
     )  # fmt: skip
 
 
@@ -187,6 +192,19 @@ class _TileWalk:
         self.elements = 0
         self.visited = 0  # elements walked, each <use> expansion counted again
         self.local: dict[tuple, list] = {}  # (element, paint) -> [(points, closed, footprint)], own frame
+        self.groups: list[tuple[int, ...]] = []
+        self.chain: tuple[int, ...] = ()  # the groups being walked, outermost first
+        self.opened = 0  # groups walked so far (the next group's id)
+
+    def enter(self, visit, *args) -> None:
+        """``visit(*args)`` inside a new drawn group (see :attr:`TilePieces.groups`)."""
+        outer = self.chain
+        self.chain = (*outer, self.opened)
+        self.opened += 1
+        try:
+            visit(*args)
+        finally:
+            self.chain = outer
 
     def visit(self, el: ET.Element, style: dict[str, str], m: np.ndarray, stack: tuple[str, ...]) -> None:
         for child in el:
@@ -205,7 +223,7 @@ class _TileWalk:
             if tag in SHAPES:
                 self.shape(child, cstyle, cm)
             elif tag in CONTAINERS:
-                self.visit(child, cstyle, cm, stack)
+                self.enter(self.visit, child, cstyle, cm, stack)
             elif tag == "svg":
                 if "viewBox" in child.attrib:
                     raise self.reader.error(f"nested {describe(child)} with a viewBox is not supported; flatten it first")
@@ -221,9 +239,9 @@ class _TileWalk:
                 holder.append(target)
                 tm = cm @ translation(x, y) @ view
                 if local_tag(target.tag) in ("symbol", "svg"):
-                    self.visit(target, cascade_style(target, cstyle), tm, (*stack, ref))
+                    self.enter(self.visit, target, cascade_style(target, cstyle), tm, (*stack, ref))
                 else:
-                    self.visit(holder, cstyle, tm, (*stack, ref))
+                    self.enter(self.visit, holder, cstyle, tm, (*stack, ref))
             elif tag in ("text", "image"):
                 self.reader.warn(f"{describe(child)} is ignored (only shapes are motifs)")
 
@@ -268,6 +286,7 @@ class _TileWalk:
             self.closed.append(closed)
             self.element.append(self.elements)
             self.paint.append(key)
+            self.groups.append(self.chain)
         self.elements += 1
 
     def is_frame(self, geom: shapely.Geometry, stroke: float) -> bool:

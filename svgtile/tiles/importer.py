@@ -12,10 +12,10 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
 3. **group** — pieces are joined into motifs on a 3 × 3 block of tiles, so that motifs cut at
    an edge are reassembled: footprints that touch or overlap belong together, and so do two
    pieces closer than :data:`JOIN_RATIO` times the smaller one's size (729's pairs of parallel
-   lines), and subpaths of one icon (an element spanning at most :data:`ICON_SPAN` of the tile)
-   closer than :data:`ELEMENT_JOIN` times the pattern's spacing (an icon drawn as one ``<path>``
-   stays whole); a group that reaches its own repeat is a continuous line or hatching, and the pattern
-   is refused (:class:`TileRefused`);
+   lines), and pieces of one icon (an element, ``<g>`` or ``<use>`` expansion spanning at most
+   :data:`ICON_SPAN` of the tile) closer than :data:`ELEMENT_JOIN` times the pattern's spacing
+   (an icon drawn as one ``<path>`` or one group stays whole); a group that reaches its own
+   repeat is a continuous line or hatching, and the pattern is refused (:class:`TileRefused`);
 4. **pick** — each part of the periodic pattern is kept once (the copy whose lowest piece
    lies in the central tile) and moved by whole periods so its centroid is in the tile;
    **repeat** — parts that recur at the same offset and relative rotation in every copy are one
@@ -25,7 +25,10 @@ elements, and motifs crossing the tile's edge are cut there.  The pipeline, stag
    (:func:`svgtile.svg.kinds.match_kinds`, the rule of plain exemplars);
 6. **write** — one ``<symbol>`` per kind (the first motif, redrawn as polylines around its
    centroid), one ``<use>`` per motif, and the tile as ``<rect id="region">`` with
-   ``svgtile:period``, so that analysis measures distances across the tile's edges.
+   ``svgtile:period``, so that analysis measures distances across the tile's edges;
+7. **own overlaps** — no two motifs of the exemplar overlap as analysis measures them: a motif
+   that would only through its kind's drawing keeps its own, motifs whose outlines overlap are
+   joined, or the notes say why not (:mod:`svgtile.tiles.overlaps`).
 
 The result is an exemplar SVG text that :func:`svgtile.svg.reader.parse_exemplar` reads back to
 the same motifs.  Grouping follows the perceptual rule of AlMeraj et al. 2013 §3.1 that an
@@ -46,6 +49,7 @@ from svgtile.errors import ExemplarError
 from svgtile.files import read_input
 from svgtile.svg.kinds import match_kinds
 from svgtile.svg.tilepieces import TilePieces, parse_tile
+from svgtile.tiles.overlaps import merge_motifs, own_overlaps, separate_kinds
 from svgtile.tiles.repeat import radii, repeat_groups, symmetry_orders
 from svgtile.tiles.write import exemplar_text
 
@@ -64,9 +68,11 @@ KIND_TOLERANCE = 0.08
 #: Subpaths of one element (an icon drawn as one ``<path>``: osm-carto's dog-park paw is a pad and
 #: four toes, the Muslim graveyard's crescent and star) closer than this share of the pattern's
 #: spacing, ``√(tile area / pieces)``, are one motif.  Icons measured 0.04–0.06; the dashes FGDC
-#: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.
+#: 303-K and 305-K draw all in one path stand 0.25–0.31 apart, and stay apart.  The same share
+#: holds for the shapes of one ``<g>`` or ``<use>``: osm-carto swamp's two trees in one def stand
+#: 0.07 apart (0.95 units at a spacing of 12.8).
 ELEMENT_JOIN = 0.15
-#: … when the element is an icon: its subpaths span at most this share of the tile each way.
+#: … when the element or group is an icon: its pieces span at most this share of the tile each way.
 ICON_SPAN = 0.5
 #: Gaps below this share of the tile's size count as touching (coordinates are rounded in files).
 TOUCH = 2e-4
@@ -84,6 +90,9 @@ DUPLICATE_DECIMALS = 5
 #: Centred footprints whose outline points agree on a grid of this share of their radius are taken
 #: as copies without the rotation search of :func:`svgtile.svg.kinds.match_kinds` (a speed-up only).
 COPY_GRID = 0.02
+#: Rounds of joining overlapping motifs (:func:`svgtile.tiles.overlaps.merge_motifs`) before
+#: the importer gives up and says so in its notes.
+MERGE_ROUNDS = 3
 #: The 3 × 3 block of tiles, central tile (0, 0) at index 4.
 OFFSETS = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64)
 CENTRE = 4
@@ -180,8 +189,9 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     # 2. wrap pieces into the tile and drop duplicates
     bounds = shapely.bounds(tile.footprint)
     centre = (bounds[:, :2] + bounds[:, 2:]) / 2
-    shift = -np.floor((centre - origin) / period) * period
-    keep = _unique_pieces(tile, shift)
+    shift = shift_all = -np.floor((centre - origin) / period) * period
+    first = _unique_pieces(tile, shift)
+    keep = first == np.arange(len(first))
     if (~keep).any():
         notes.append(f"dropped {int((~keep).sum())} piece(s) repeating others by whole periods")
     idx = np.flatnonzero(keep)
@@ -194,7 +204,7 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     copy = np.repeat(np.arange(9), n)
     lines = _Lines.of(tile, idx, np.tile(shift, (9, 1)) + np.repeat(OFFSETS * period, n, axis=0), 9)
     # subpaths of one element (an icon drawn as one <path>) in one copy, and the spacing of pieces
-    element = np.where(_icons(tile, idx)[base], tile.element[idx][base] * 9 + copy, -1 - np.arange(len(base)))
+    element = _icon_places(tile, first, np.round(shift_all / period).astype(np.int64), idx, copy)
     spacing = float(np.sqrt(w * h / n))
     comp = _components(block, lines, scale=float(max(w, h)), element=element, near=ELEMENT_JOIN * spacing,
                        source=tile.source)
@@ -229,25 +239,60 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     pkind, pangle = _kinds(pcentred, part_paint)
     order = symmetry_orders(pcentred[np.unique(pkind, return_index=True)[1]], KIND_TOLERANCE)
     motif_of, join = repeat_groups(pxy, pkind, pangle, radii(pcentred), period, origin, order)
-    n_motifs = int(motif_of.max(initial=-1)) + 1
-    motif = motif_of[part]
-    footprint = _group_union(_moved(part_fp, pmove + join), motif_of, n_motifs) if n_motifs < n_parts else _moved(part_fp, pmove)
-    cxy = shapely.get_coordinates(shapely.centroid(footprint))
-    move = -np.floor((cxy - origin) / period) * period
-    centred = _moved(footprint, -cxy)
-    cxy = cxy + move
+    for round_ in range(MERGE_ROUNDS + 1):
+        n_motifs = int(motif_of.max(initial=-1)) + 1
+        motif = motif_of[part]
+        footprint = _group_union(_moved(part_fp, pmove + join), motif_of, n_motifs) if n_motifs < n_parts else _moved(part_fp, pmove)
+        cxy = shapely.get_coordinates(shapely.centroid(footprint))
+        move = -np.floor((cxy - origin) / period) * period
+        centred = _moved(footprint, -cxy)
+        cxy = cxy + move
 
-    # 5. kinds up to rotation
-    paints = _paints(tile, idx, base[members], motif, n_motifs)
-    kind, angle = _kinds(centred, paints)
-    # number kinds by size of their motif counts (most common first), stable
-    counts = np.bincount(kind)
-    rank = np.argsort(np.argsort(-counts, kind="stable"), kind="stable")
-    kind = rank[kind]
+        # 5. kinds up to rotation
+        paints = _paints(tile, idx, base[members], motif, n_motifs)
+        kind, angle = _kinds(centred, paints)
+        # number kinds by size of their motif counts (most common first), stable
+        counts = np.bincount(kind)
+        rank = np.argsort(np.argsort(-counts, kind="stable"), kind="stable")
+        kind = rank[kind]
 
-    # 6. the drawing of each kind: its first motif's pieces around its centroid
-    offset = OFFSETS[copy[members]] * period + shift[base[members]] + pmove[part] + join[part] + move[motif]
-    text = exemplar_text(tile, idx, kind, cxy, angle, motif, base[members], offset)
+        # 6. the drawing of each kind: its first motif's pieces around its centroid
+        offset = OFFSETS[copy[members]] * period + shift[base[members]] + pmove[part] + join[part] + move[motif]
+        text = exemplar_text(tile, idx, kind, cxy, angle, motif, base[members], offset)
+
+        # 7. no two motifs of the exemplar overlap (svgtile.tiles.overlaps)
+        if len(own_overlaps(text, source=tile.source)[0]) == 0:
+            break
+
+        def clashes(k: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return own_overlaps(exemplar_text(tile, idx, k, cxy, a, motif, base[members], offset), source=tile.source)  # noqa: B023
+
+        kinds_before, as_read = int(kind.max()) + 1, (kind, angle, text)
+        kind, angle, left = separate_kinds(kind, angle, clashes, lambda m: _kinds(centred[m], [paints[g] for g in m]))  # noqa: B023
+        text = exemplar_text(tile, idx, kind, cxy, angle, motif, base[members], offset)
+        if int(kind.max()) + 1 > kinds_before and not left:
+            notes.append(f"{int(kind.max()) + 1 - kinds_before} kind(s) added: motifs a few percent off their "
+                         f"kind's shape would overlap a neighbour drawn as it, and keep their own drawing")  # fmt: skip
+        if not left:
+            break
+        pairs, pair_shift = clashes(kind, angle)
+        merged = merge_motifs(motif_of, join, move, pairs, pair_shift)
+        why = merged if isinstance(merged, str) else None
+        if why is None:
+            new_of, new_join = merged
+            fp = _group_union(_moved(part_fp, pmove + new_join), new_of, int(new_of.max()) + 1)
+            b = shapely.bounds(fp)
+            if ((b[:, 2:] - b[:, :2]) / period > 1.0 + 1e-9).any():
+                why = "joined they would span more than the tile"
+        if why is None and round_ == MERGE_ROUNDS:
+            why = f"they still overlap after {MERGE_ROUNDS} rounds of joining"
+        if why is not None:
+            notes.append(f"{left} pair(s) of motifs overlap in the exemplar (their outlines, drawn to the "
+                         f"analysis' tolerance, meet) and are not joined: {why}")  # fmt: skip
+            kind, angle, text = as_read  # own drawings would not have helped: the kinds as matched
+            break
+        notes.append(f"joined {len(pairs)} pair(s) of motifs whose outlines overlap into one motif each")
+        motif_of, join = merged
     wrapped = np.zeros(n_motifs, dtype=bool)
     np.logical_or.at(wrapped, motif, (copy[members] != CENTRE) | (join[part] != 0).any(axis=1))
     return ImportedTile(
@@ -266,32 +311,94 @@ def _moved(geoms: np.ndarray, by: np.ndarray) -> np.ndarray:
 
 
 def _unique_pieces(tile: TilePieces, shift: np.ndarray) -> np.ndarray:
-    """(n,) bool: the first of each set of pieces identical after wrapping into the tile."""
+    """(n,) int: for each piece, the first piece identical to it after wrapping into the tile
+    (itself for the pieces kept)."""
     decimals = DUPLICATE_DECIMALS - int(np.ceil(np.log10(max(tile.box[2], tile.box[3]))))
-    seen: set = set()
-    keep = np.zeros(len(tile.points), dtype=bool)
+    seen: dict = {}
+    first = np.arange(len(tile.points))
     for i, (pts, paint) in enumerate(zip(tile.points, tile.paint, strict=True)):
         key = (paint, bool(tile.closed[i]), np.round(pts + shift[i], decimals).tobytes())
-        if key not in seen:
-            seen.add(key)
-            keep[i] = True
-    return keep
+        first[i] = seen.setdefault(key, i)
+    return first
 
 
 def _icons(tile: TilePieces, idx: np.ndarray) -> np.ndarray:
-    """(n,) bool for the pieces ``idx``: the piece is a subpath of an *icon*, an element whose
-    subpaths together span at most :data:`ICON_SPAN` of the tile each way.  A path that spans
-    the tile is a pattern drawn in one path (FGDC 305-K's dashes, osm-carto's flattened
-    jsdotpattern fills), whose subpaths are motifs of their own."""
+    """(n,) int for the pieces ``idx``: the *icon* each piece belongs to, or -1.
+
+    An icon is an element (an icon drawn as one ``<path>``) or a drawn group (a ``<g>``, a
+    ``<use>`` expansion: an icon of a symbol set drawn as several shapes) whose pieces together
+    span at most :data:`ICON_SPAN` of the tile each way; a piece belongs to the outermost icon
+    that holds it.  An element or group that spans the tile is a pattern drawn in one path or one
+    group (FGDC 305-K's dashes, osm-carto's flattened jsdotpattern fills, the one ``<g>`` of
+    every FGDC tile), whose subpaths are motifs of their own.
+    """
     bounds = shapely.bounds(tile.footprint)
-    el = tile.element
-    k = int(el.max(initial=-1)) + 1
-    lo = np.full((k, 2), np.inf)
-    hi = np.full((k, 2), -np.inf)
-    np.minimum.at(lo, el, bounds[:, :2])
-    np.maximum.at(hi, el, bounds[:, 2:])
-    span = (hi - lo) / np.array(tile.box[2:])
-    return (span <= ICON_SPAN).all(axis=1)[el[idx]]
+    n = len(tile.element)
+    chains = tile.groups if len(tile.groups) == n else [()] * n
+    n_el = int(tile.element.max(initial=-1)) + 1
+    out = np.full(n, -1)
+    # holders innermost to outermost: the element, then each enclosing group (ids after the elements)
+    for level in range(max((len(c) for c in chains), default=0) + 1):
+        if level == 0:
+            holder = tile.element.astype(np.int64)
+        else:
+            holder = np.array([n_el + c[-level] if len(c) >= level else -1 for c in chains], dtype=np.int64)
+        held = holder >= 0
+        k = int(holder.max(initial=-1)) + 1
+        lo, hi = np.full((k, 2), np.inf), np.full((k, 2), -np.inf)
+        np.minimum.at(lo, holder[held], bounds[held, :2])
+        np.maximum.at(hi, holder[held], bounds[held, 2:])
+        icon = np.zeros(n, dtype=bool)
+        icon[held] = ((hi - lo) / np.array(tile.box[2:]) <= ICON_SPAN).all(axis=1)[holder[held]]
+        out[icon] = holder[icon]
+    return out[idx]
+
+
+def _icon_places(tile: TilePieces, first: np.ndarray, wrap: np.ndarray, idx: np.ndarray, copy: np.ndarray) -> np.ndarray:
+    """(9 n,) int label of each piece of the 3 × 3 block: pieces of one icon (:func:`_icons`) as
+    drawn in one place share a label, wherever wrapping into the tile moved them; every other
+    piece has a label of its own (negative).
+
+    Parameters
+    ----------
+    first : (all,) int, the first piece identical to each after wrapping (:func:`_unique_pieces`)
+    wrap : (all, 2) int, whole periods that moved each piece into the tile
+    idx : (n,) int, the pieces kept
+    copy : (9 n,) int, the block's tile of each piece (``OFFSETS`` row)
+
+    An icon drawn again a period away (jsdotpattern's explicit periodic copies) is the same icon:
+    a dropped duplicate ties its icon to the kept piece's, at the offset between their places.
+    """
+    n = len(idx)
+    icon = _icons(tile, np.arange(len(first)))
+    k = int(icon.max(initial=-1)) + 1
+    if k == 0:
+        return -1 - np.arange(9 * n)
+    # each icon's offset (whole periods) into the frame of the first icon it is tied to
+    root, off = np.arange(k), np.zeros((k, 2), dtype=np.int64)
+    dup = np.flatnonzero((first != np.arange(len(first))) & (icon >= 0) & (icon[first] >= 0))
+    ties: dict[int, list[tuple[int, np.ndarray]]] = {}
+    for p in dup.tolist():  # one tie per dropped duplicate: a plain walk of a small graph
+        a, b, d = int(icon[p]), int(icon[first[p]]), wrap[p] - wrap[first[p]]
+        ties.setdefault(a, []).append((b, -d))
+        ties.setdefault(b, []).append((a, d))
+    done = np.zeros(k, dtype=bool)
+    for start in sorted(ties):
+        if done[start]:
+            continue
+        done[start], todo = True, [start]
+        while todo:
+            a = todo.pop()
+            for b, d in ties[a]:
+                if not done[b]:
+                    done[b], root[b], off[b] = True, root[start], off[a] + d
+                    todo.append(b)
+    base = np.tile(np.arange(n), 9)
+    own = icon[idx][base]
+    place = wrap[idx][base] + OFFSETS[copy].astype(np.int64) - off[np.maximum(own, 0)]
+    rows = np.column_stack([root[np.maximum(own, 0)], place])
+    label = np.unique(rows, axis=0, return_inverse=True)[1].ravel()
+    return np.where(own >= 0, label, -1 - np.arange(len(base)))
 
 
 def _components(geoms: np.ndarray, lines: _Lines, *, scale: float, source: str, element: np.ndarray | None = None,
