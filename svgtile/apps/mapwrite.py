@@ -20,12 +20,15 @@ import numpy as np
 from svgtile.apps.load import load_exemplar
 from svgtile.apps.mapfill import MapFill, Styles
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.cells import Cellwork
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.files import atomic_output
 from svgtile.gis import geojson
 from svgtile.runners.spool import Spool
+from svgtile.svg.numbers import fmt
 from svgtile.svg.writer import (
     MapLayer,
+    cell_elements,
     map_document_parts,
     prefixed_defs,
     svg_document_parts,
@@ -34,6 +37,8 @@ from svgtile.svg.writer import (
 
 GEOJSON_HEAD = '{"type": "FeatureCollection", "features": [\n'
 GEOJSON_TAIL = "]}\n"
+#: The band a cellular unit's cells are spooled as: before its motifs (band 0, a unit run whole).
+CELL_BAND = -1
 
 
 def class_prefix(cls: str) -> str:
@@ -68,6 +73,24 @@ class BandWriter:
             for f in feats:
                 f["properties"] = {**props, **f["properties"]}
         self._put(unit, band, ",\n".join(json.dumps(f, separators=(", ", ": "), allow_nan=False) for f in feats))
+
+    def cells_svg(self, unit: int, cells: Cellwork, scale: float = 1.0) -> None:
+        """Spool a cellular unit's cells and lines as ``<path>`` lines (in the exemplar's user
+        units, in a ``scale(SCALE)`` group when its class's unit is not 1, so that strokes scale
+        with the cells), drawn before its motifs."""
+        lines = cell_elements(cells)
+        if lines and scale != 1.0:
+            lines = [f'    <g transform="scale({fmt(scale)})">', *(f"  {line}" for line in lines), "    </g>"]
+        self._put(unit, CELL_BAND, "\n".join(lines))
+
+    def cell_features(self, unit: int, cells: Cellwork, props: dict | None = None, *, scale: float = 1.0) -> None:
+        """Spool a cellular unit's cells (Polygons) and lines (LineStrings) as GeoJSON features in
+        map units (``scale`` map units per user unit), ``props`` first, before its motifs."""
+        feats = geojson.cellwork_features(cells, unit=scale)
+        if props:
+            for f in feats:
+                f["properties"] = {**props, **f["properties"]}
+        self._put(unit, CELL_BAND, ",\n".join(json.dumps(f, separators=(", ", ": "), allow_nan=False) for f in feats))
 
     def _put(self, unit: int, band: int, text: str) -> None:
         self.spool.put((unit, band), text)

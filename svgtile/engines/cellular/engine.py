@@ -73,6 +73,8 @@ class CellularParams(EngineParams):
     label : ``NAME=MAP.svg#ID`` pairs, comma-separated: edges running along that map element are
         labelled NAME (for the tree's ``label`` tests)
     corner_angle : degrees; the boundary turning by more than this makes a corner (library only)
+    label_unit : units of the ``label`` files per user unit (library only: ``svgtile map`` sets a
+        class's ``unit``, its map lines then label edges of the unit in the exemplar's units)
     """
 
     tree: str = param("", "Cellular pattern description, a TOML or JSON file (default: the exemplar's own, or running-bond bricks).", metavar="FILE")
@@ -84,6 +86,7 @@ class CellularParams(EngineParams):
     label: str = param("", "Label the unit's edges that run along map lines, NAME=MAP.svg#ID[,NAME=MAP.svg#ID…] (cellular trees route labelled edges).", metavar="NAME=MAP.svg#ID")
     halves: str = param("fewest", "Cellular bricks: the bond with the fewest cut bricks in each unit (legakis2001 §5.2), or anchored to the world (an edit then changes only the cells near it).", choices=("fewest", "anchored"))
     corner_angle: float = 30.0
+    label_unit: float = 1.0
 
     def __post_init__(self) -> None:
         for name in ("course_height", "cell_length", "mortar"):
@@ -92,6 +95,8 @@ class CellularParams(EngineParams):
                 raise ParameterError(f"{name} must be a finite number ≥ 0, not {value:g}")
         if not (math.isfinite(self.strike) and -360.0 <= self.strike <= 360.0):
             raise ParameterError(f"strike must be in [-360, 360], not {self.strike:g}")
+        if not (self.label_unit > 0 and math.isfinite(self.label_unit)):
+            raise ParameterError(f"label_unit must be a positive number, not {self.label_unit:g}")
         if not 0.0 < self.corner_angle < 180.0:
             raise ParameterError(f"corner_angle must be in (0, 180), not {self.corner_angle:g}")
 
@@ -114,7 +119,7 @@ class CellularEngine:
     def place_cells(self, ctx: Context, p: CellularParams) -> tuple[Arrangement, Cellwork]:
         """Texture ``ctx.region``: corners, edges, then the face (§4.2); lines; motifs in cells."""
         d = description(ctx.exemplar, p)
-        labels = read_labels(p.label, d.course)
+        labels = read_labels(p.label, d.course, unit=p.label_unit)
         return texture(ctx, d, p, labels)
 
     def reach(self, exemplar: Exemplar, params: CellularParams) -> float:
@@ -160,8 +165,9 @@ def _check_cells(face: shapely.Geometry, d: Description) -> None:
                              f"{samples:,.0f} points (limit {MAX_SAMPLES:,})")  # fmt: skip
 
 
-def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
-    """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course."""
+def read_labels(spec: str, course: float, *, unit: float = 1.0) -> dict[str, shapely.Geometry]:
+    """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course, in
+    user units (the file's units divided by ``unit``)."""
     from svgtile.svg.mapdoc import SvgShapes
 
     out: dict[str, shapely.Geometry] = {}
@@ -171,7 +177,8 @@ def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
         if not (eq and sep and name.strip() and path and ident):
             raise ParameterError(f"--label {item!r}: expected NAME=MAP.svg#ID")
         doc = SvgShapes.read(path)
-        out[name.strip()] = doc.keep_clear(doc.element(ident), 0.1 * course)
+        zone = doc.keep_clear(doc.element(ident), 0.1 * course * unit)
+        out[name.strip()] = zone if unit == 1.0 else shapely.transform(zone, lambda c, u=unit: c / u)
     return out
 
 
