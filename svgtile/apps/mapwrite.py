@@ -113,16 +113,17 @@ def write_map_svg(out: str | Path, result: MapFill, bands: BandWriter, params: d
     """The filled map, as :func:`svgtile.svg.writer.map_document` would write it."""
     styles: Styles = result.styles
     written = [n for n, ok in enumerate(result.filled) if ok]
-    defs, kinds = [], {}
+    defs, kinds, grounds = [], {}, {}
     for cls in sorted({result.regions[n].cls for n in written}):
         ex, _ = load_exemplar(str(styles.classes[cls].exemplar))
         style_defs, kinds[cls] = prefixed_defs(ex, class_prefix(cls))
         defs.extend(style_defs)
+        grounds[cls] = ex.ground
     layers = []
     for n in written:
         r = result.regions[n]
         layers.append(MapLayer(r.ident, r.cls, r.shape, kinds[r.cls], Arrangement.empty(),
-                               styles.classes[r.cls].boundary, r.element, r.matrix))  # fmt: skip
+                               styles.classes[r.cls].boundary, r.element, r.matrix, grounds[r.cls]))  # fmt: skip
     doc = result.doc
     parts = map_document_parts(None if doc is None else doc.root, defs, layers, params=params,
                                namespaces=() if doc is None else doc.namespaces)  # fmt: skip

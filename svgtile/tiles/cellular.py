@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from svgtile.errors import ExemplarError
-from svgtile.svg.dialect import CELLULAR_ATTR, PERIOD_ATTR, SVG_NS
+from svgtile.svg.dialect import CELLULAR_ATTR, GROUND_ATTR, PERIOD_ATTR, SVG_NS
 from svgtile.svg.numbers import fmt, fmt_array
 from svgtile.svg.tilepieces import TilePieces
 
@@ -561,8 +561,11 @@ def _empty(tile: TilePieces) -> str:
     x0, y0, w, h = tile.box
     box = " ".join(fmt_array(np.array([x0, y0, w, h])))
     root = ET.Element(f"{{{SVG_NS}}}svg", {"viewBox": box, "width": fmt(w), "height": fmt(h)})
-    ET.SubElement(root, f"{{{SVG_NS}}}rect", {"id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
-                                               "height": fmt(h), "fill": "none", PERIOD_ATTR: f"{fmt(w)} {fmt(h)}"})  # fmt: skip
+    region = ET.SubElement(root, f"{{{SVG_NS}}}rect", {"id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
+                                                        "height": fmt(h), "fill": "none",
+                                                        PERIOD_ATTR: f"{fmt(w)} {fmt(h)}"})  # fmt: skip
+    if tile.ground:
+        region.set(GROUND_ATTR, tile.ground)
     return ET.tostring(root, encoding="unicode")
 
 
