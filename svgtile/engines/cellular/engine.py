@@ -380,8 +380,9 @@ def _laid(frame, free: shapely.Geometry, generator: str, d: Description, phase: 
     bounds = gen.st_bounds(frame, free, step)
     quads, _ = gen.face_rectangles(generator, bounds, d.course, d.length, d.offset, key=key, ashlar=d.ashlar,
                                    rhomb_angle=d.rhomb_angle, bands=d.bands, phase=phase)  # fmt: skip
-    subdivide = 1 if isinstance(frame, RotatedFrame) else max(2, math.ceil(d.length / step))
-    cells = gen.map_quads(frame, quads, subdivide)
+    straight = isinstance(frame, RotatedFrame)
+    subdivide = 1 if straight else max(2, math.ceil(d.length / step))
+    cells = gen.map_quads(frame, quads, subdivide, None if straight else step)
     cells = cells[cells != None]  # noqa: E711 - an object array of geometries
     shapely.prepare(free)
     cells = cells[shapely.intersects(free, cells)]
