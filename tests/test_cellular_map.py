@@ -172,3 +172,14 @@ def test_a_label_in_the_styles_file_is_checked_and_resolved(folder):
     params = styles.classes["limestone"].params
     assert params["label"] == f"fault=#faults,coast={folder / 'lines.svg'}#coast"
     assert params["tree"] == str(folder / "t.json")
+
+
+def test_the_qgis_provider_refuses_a_cellular_class_by_name(folder):
+    from svgtile.apps.qgis import fill
+
+    (folder / "units.geojson").write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"class": "limestone"},
+         "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [50, 0], [50, 50], [0, 50], [0, 0]]]}}]}))  # fmt: skip
+    with pytest.raises(ParameterError, match="class 'limestone' is cellular"):
+        fill(str(folder / "units.geojson"), exemplar=None, styles_file=str(folder / "styles.toml"), class_field="class",
+             engine="patch", params={}, boundary="inside", unit=1.0, seed=1)  # fmt: skip
