@@ -102,6 +102,45 @@ def test_fgdc_limestone_627():
     assert d["course"] == pytest.approx(54.125 / 14, rel=1e-3)  # 14 bedding lines per tile
     assert d["length"] == pytest.approx(54.125 / 4, rel=1e-3)  # 4 bricks per course
     assert abs(d["offset"] - 0.5) < 0.05
+    # the stubs of the joints the tile's bottom edge cuts are parts of joints, not motifs (ticks)
+    assert len(t.kind) == 0 and "motifs" not in d
+
+
+def test_joint_stubs_cut_by_the_tile_edge_belong_to_their_joints(tmp_path):
+    """The bricks tile moved down by 2: the last course's joints cross the tile's edge, drawn as
+    strokes of 8 at the bottom and stubs of 2 at the top (a fifth of a course, too short to be
+    joints themselves)."""
+    parts = [f'<line x1="0" y1="{j * 10 + 2}" x2="40" y2="{j * 10 + 2}" {STROKE}/>' for j in range(4)]
+    for j in range(4):
+        for i in range(2):
+            x = (i + 0.5 * (j % 2)) * 20
+            y0, y1 = j * 10 + 2, j * 10 + 12
+            if y1 <= 40:
+                parts.append(f'<line x1="{x}" y1="{y0}" x2="{x}" y2="{y1}" {STROKE}/>')
+            else:
+                parts.append(f'<line x1="{x}" y1="{y0}" x2="{x}" y2="40" {STROKE}/>')
+                parts.append(f'<line x1="{x}" y1="0" x2="{x}" y2="{y1 - 40}" {STROKE}/>')
+    t = imported(HEAD + "".join(parts) + "</svg>", tmp_path)
+    d = t.cellular
+    assert d["course"] == pytest.approx(10.0) and d["length"] == pytest.approx(20.0)
+    assert len(t.kind) == 0 and "motifs" not in d
+
+
+@needs_data
+@pytest.mark.parametrize(("code", "least"), [("657", 20), ("733", 4)])
+def test_fgdc_fragments_drawn_over_the_linework_are_kept(code, least):
+    """Peat's fragments (657) and ore's lenses (733) are larger than a course and drawn over the
+    lines: imported as motifs laid over the cells (733's among hatching the scatter import
+    refuses), placed at the tile's bearing, not turned by the courses' 135°."""
+    t = import_tile(FGDC / f"{code}.svg")
+    assert len(t.kind) >= least and t.cellular["motifs"].get("over") is True
+    ex = parse_exemplar(t.text, source=code)
+    stats = analyze(ex)
+    w = t.box[2]
+    r = synthesize(ex, Region(shapely.box(0, 0, 2 * w, 2 * w)), "cellular", seed=1, stats=stats, boundary="inside")
+    assert len(r.arrangement) >= least  # (before: 0 of 733's, a few of 657's)
+    arc = (r.arrangement.angle - stats.arc_start[r.arrangement.kind]) % 360.0
+    assert (arc <= stats.arc_width[r.arrangement.kind] + 1e-6).all()
 
 
 @needs_data

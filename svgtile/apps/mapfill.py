@@ -35,12 +35,13 @@ import math
 import os
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import shapely
 
 from svgtile.apps.load import check_motif_count, load_exemplar
+from svgtile.apps.mapcells import fill_cells, implied_engine, is_cellular, map_labels, styles_labels
 from svgtile.apps.mapread import (
     AVOID_MARGIN,
     MAX_AVOID_MARGIN,
@@ -51,8 +52,9 @@ from svgtile.apps.mapread import (
     split_spec,
 )
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.cells import Cellwork
 from svgtile.core.region import BOUNDARY_MODES, Region
-from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
+from svgtile.engines import ENGINES, engines_with, make_params, public_params
 from svgtile.errors import ParameterError, RegionError, SvgtileError
 from svgtile.files import read_input
 from svgtile.gis import geojson, layers
@@ -78,6 +80,9 @@ RUN_KEYS = ("avoid", "avoid_margin", "class_attribute", "class_property", "class
 Progress = Callable[[int, int, str, "str | None"], None]
 #: ``sink(index, region, band, motifs)``: one complete band of a region, map units, in any order.
 Sink = Callable[[int, MapRegion, int, Arrangement], None]
+#: ``cell_sink(index, region, cells)``: a cellular region's cells and lines, the exemplar's user
+#: units (its class's ``unit`` makes them map units), before its motifs' band.
+CellSink = Callable[[int, MapRegion, Cellwork], None]
 
 
 @dataclass(frozen=True)
@@ -152,7 +157,11 @@ def parse_styles(data: dict, *, source: str = "<styles>", folder: Path = Path(),
         bad = sorted(set(table) - set(CLASS_KEYS))
         if bad:
             raise ParameterError(f"classes.{name}: unknown key {bad[0]!r} (expected {', '.join(CLASS_KEYS)})", source=source)
-        engine = table.get("engine", defaults.get("engine", "patch"))
+        engine = table.get("engine", defaults.get("engine"))
+        if engine is None and isinstance(table.get("exemplar", defaults.get("exemplar")), str):
+            # no engine named: a cellular exemplar (svgtile import of a bedded tile) draws cells
+            engine = implied_engine(folder / table.get("exemplar", defaults.get("exemplar")))
+            table = {**table, "engine": engine}
         own = ENGINES[engine].Params.public_names() if isinstance(engine, str) and engine in ENGINES else set()
         used |= own
         # a top-level engine parameter is a default for the classes whose engine has it
@@ -187,6 +196,10 @@ def _style(name: str, t: dict, source: str, folder: Path) -> Style:
     if not isinstance(engine, str) or engine not in ENGINES:
         raise ParameterError(f"{where}: engine must be one of {', '.join(sorted(ENGINES))}, not {engine!r}", source=source)
     params = {k: t[k] for k in PARAM_KEYS if k in t}
+    if isinstance(params.get("label"), str) and engine in ENGINES and is_cellular(engine):
+        params["label"] = styles_labels(params["label"], folder, where, source)
+    if isinstance(params.get("tree"), str) and params["tree"]:  # a description beside the styles file
+        params["tree"] = str(folder / params["tree"])
     boundary = t.get("boundary", "clip")
     if not isinstance(boundary, str):
         raise ParameterError(f"{where}: boundary has the wrong type ({boundary!r}; it takes a text)", source=source)
@@ -226,15 +239,19 @@ def fill_region(
     max_motifs : refuse a region (a tile) whose estimated motif count is larger
     tile : the tile to fill, in the exemplar's units (:func:`plan_region`); the whole region by
         default
+
+    A cellular class's cells are left out (:func:`fill_working` gives them).
     """
-    return to_map_units(fill_working(shape, avoid, style, seed, max_motifs, tile), style)
+    arr = fill_working(shape, avoid, style, seed, max_motifs, tile)
+    return to_map_units(arr[0] if isinstance(arr, tuple) else arr, style)
 
 
 def fill_working(
     shape: shapely.Geometry, avoid: shapely.Geometry | None, style: Style, seed: int, max_motifs: float = math.inf,
     tile: Tile = WHOLE,
-) -> Arrangement:  # fmt: skip
-    """:func:`fill_region` in the exemplar's units (the frame tiles are merged in)."""
+) -> Arrangement | tuple[Arrangement, Cellwork]:  # fmt: skip
+    """:func:`fill_region` in the exemplar's units (the frame tiles are merged in); a cellular
+    class's region (always whole: :mod:`svgtile.apps.mapcells`) gives ``(motifs, cells)``."""
     ex, stats = load_exemplar(str(style.exemplar))
     region = working_region(shape, avoid, style)
     part = tile_region(region, tile)
@@ -244,9 +261,9 @@ def fill_working(
     check_motif_count(ex, stats, part, where, limit=max_motifs,
                       hint=f"raise unit of class {style.cls!r} or fill a smaller region")  # fmt: skip
     seed = style.seed if style.seed is not None else seed
-    if hasattr(get_engine(style.engine), "place_cells"):  # not silently dropped: the map writer draws <use> only
-        raise ParameterError(f"class {style.cls!r}: svgtile map cannot draw the {style.engine} engine's cells yet; "
-                             "fill the unit with svgtile synth --region instead")  # fmt: skip
+    if is_cellular(style.engine):
+        return fill_cells(ex, stats, part, style.engine, seed=seed, boundary=style.boundary, params=style.params,
+                          refine=style.refine or 0)  # fmt: skip
     return synthesize_tile(ex, region, style.engine, tile, seed=seed, stats=stats, boundary=style.boundary,
                            params=style.params, refine=style.refine or 0)  # fmt: skip
 
@@ -291,6 +308,9 @@ class MapFill:
     styles : the styles used
     filled : (len(regions),) bool, the regions written (all their motifs or, where a tile
         failed, the others); with a ``sink`` the motifs went there and ``results`` holds None
+    cells : (len(regions),) the cells and lines of each cellular region
+        (:class:`~svgtile.core.cells.Cellwork`, the exemplar's user units: times its class's
+        ``unit`` in map units), None elsewhere, or where they went to a ``cell_sink``
     """
 
     regions: list[MapRegion]
@@ -300,6 +320,7 @@ class MapFill:
     warnings: list[str]
     styles: Styles
     filled: list[bool] = field(default_factory=list)
+    cells: list[Cellwork | None] = field(default_factory=list)
 
 
 def read_map(path: str | Path, styles: Styles) -> tuple[list[MapRegion], SvgShapes | None]:
@@ -354,7 +375,7 @@ def default_jobs() -> int:
 def fill_map(
     path: str | Path, styles: Styles, *, seed: int, avoid: tuple[str, ...] = (), jobs: int | None = None,
     progress: Progress | None = None, max_motifs: float = math.inf, scheduler: str = "local",
-    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False,
+    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False, cell_sink: CellSink | None = None,
 ) -> MapFill:  # fmt: skip
     """Fill every classed region of a map with its class's style.
 
@@ -376,6 +397,9 @@ def fill_map(
         soon as it is complete, instead of keeping the motifs in the result; a region run whole
         is one band
     bar : show Dask's progress bar
+    cell_sink : called as ``cell_sink(index, region, cells)`` for each cellular region, before
+        its motifs' band reaches ``sink`` (:data:`CellSink`), instead of keeping its cells in the
+        result
 
     Returns
     -------
@@ -386,23 +410,43 @@ def fill_map(
     zone = avoid_zone(path, doc, styles.avoid + tuple(avoid), styles.avoid_margin)
     used = {r.cls for r in regions}
     warnings = [f"{styles.source}: class {c!r} matches no region of {path}" for c in sorted(set(styles.classes) - used)]
-    results, errors, filled = fill_regions(regions, zone, styles, seed=seed, jobs=jobs, progress=progress,
-                                           max_motifs=max_motifs, scheduler=scheduler, tile_size=tile_size,
-                                           sink=sink, bar=bar)  # fmt: skip
-    return MapFill(regions, results, errors, doc, warnings, styles, filled)
+    cells: list[Cellwork | None] = [None] * len(regions)
+    results, errors, filled = fill_regions(regions, zone, with_map_labels(styles, path), seed=seed, jobs=jobs,
+                                           progress=progress, max_motifs=max_motifs, scheduler=scheduler,
+                                           tile_size=tile_size, sink=sink, bar=bar,
+                                           cell_sink=cell_sink or (lambda n, r, c: cells.__setitem__(n, c)))  # fmt: skip
+    return MapFill(regions, results, errors, doc, warnings, styles, filled, cells)
+
+
+def cellular_classes(styles: Styles) -> list[str]:
+    """The classes (sorted) whose engine draws cells (:mod:`svgtile.apps.mapcells`)."""
+    return sorted(name for name, style in styles.classes.items() if is_cellular(style.engine))
+
+
+def with_map_labels(styles: Styles, path: str | Path) -> Styles:
+    """``styles`` with its cellular classes' labels naming the map's own lines in full, and
+    read in each class's working units (:func:`svgtile.apps.mapcells.map_labels`)."""
+    classes = {}
+    for name, style in styles.classes.items():
+        if style.params.get("label") and is_cellular(style.engine):
+            label = map_labels(style.params["label"], path, is_gis(path), f"classes.{name}")
+            style = replace(style, params={**style.params, "label": label, "label_unit": style.unit})
+        classes[name] = style
+    return replace(styles, classes=classes)
 
 
 def fill_regions(
     regions: list[MapRegion], zone: shapely.Geometry | None, styles: Styles, *, seed: int, jobs: int | None = None,
     progress: Progress | None = None, max_motifs: float = math.inf, scheduler: str = "local",
-    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False,
+    tile_size: float | None = None, sink: Sink | None = None, bar: bool = False, cell_sink: CellSink | None = None,
 ) -> tuple[list[Arrangement | None], dict[str, str], list[bool]]:  # fmt: skip
     """Fill each region with its class's style, on Dask (:func:`fill_map`'s work).
 
     Parameters
     ----------
     regions : the regions, map units; ``zone`` the avoid zones (map units) or None
-    seed, jobs, progress, max_motifs, scheduler, tile_size, sink, bar : as for :func:`fill_map`
+    seed, jobs, progress, max_motifs, scheduler, tile_size, sink, bar, cell_sink : as for
+        :func:`fill_map` (cells are dropped without a ``cell_sink``)
 
     Returns
     -------
@@ -448,9 +492,13 @@ def fill_regions(
             units.append(Unit(f"svgtile-{name}", fill_working, (r.shape, zone, style, seed, max_motifs, tile)))
             owner.append((n, t))
 
-    def done(k: int, arr: Arrangement | None, error: str | None) -> None:
+    def done(k: int, arr: Arrangement | tuple[Arrangement, Cellwork] | None, error: str | None) -> None:
         n, t = owner[k]
         tiles = collect[n]
+        if isinstance(arr, tuple):  # a cellular region (whole): its cells go before its motifs
+            arr, cells = arr
+            if cell_sink is not None:
+                cell_sink(n, regions[n], cells)
         if error is not None:
             failed_tiles[n] += 1
             tile = units[k].args[-1]

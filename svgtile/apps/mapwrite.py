@@ -20,12 +20,15 @@ import numpy as np
 from svgtile.apps.load import load_exemplar
 from svgtile.apps.mapfill import MapFill, Styles
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.cells import Cellwork
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.files import atomic_output
 from svgtile.gis import geojson
 from svgtile.runners.spool import Spool
+from svgtile.svg.numbers import fmt
 from svgtile.svg.writer import (
     MapLayer,
+    cell_elements,
     map_document_parts,
     prefixed_defs,
     svg_document_parts,
@@ -34,6 +37,8 @@ from svgtile.svg.writer import (
 
 GEOJSON_HEAD = '{"type": "FeatureCollection", "features": [\n'
 GEOJSON_TAIL = "]}\n"
+#: The band a cellular unit's cells are spooled as: before its motifs (band 0, a unit run whole).
+CELL_BAND = -1
 
 
 def class_prefix(cls: str) -> str:
@@ -69,6 +74,24 @@ class BandWriter:
                 f["properties"] = {**props, **f["properties"]}
         self._put(unit, band, ",\n".join(json.dumps(f, separators=(", ", ": "), allow_nan=False) for f in feats))
 
+    def cells_svg(self, unit: int, cells: Cellwork, scale: float = 1.0) -> None:
+        """Spool a cellular unit's cells and lines as ``<path>`` lines (in the exemplar's user
+        units, in a ``scale(SCALE)`` group when its class's unit is not 1, so that strokes scale
+        with the cells), drawn before its motifs."""
+        lines = cell_elements(cells)
+        if lines and scale != 1.0:
+            lines = [f'    <g transform="scale({fmt(scale)})">', *(f"  {line}" for line in lines), "    </g>"]
+        self._put(unit, CELL_BAND, "\n".join(lines))
+
+    def cell_features(self, unit: int, cells: Cellwork, props: dict | None = None, *, scale: float = 1.0) -> None:
+        """Spool a cellular unit's cells (Polygons) and lines (LineStrings) as GeoJSON features in
+        map units (``scale`` map units per user unit), ``props`` first, before its motifs."""
+        feats = geojson.cellwork_features(cells, unit=scale)
+        if props:
+            for f in feats:
+                f["properties"] = {**props, **f["properties"]}
+        self._put(unit, CELL_BAND, ",\n".join(json.dumps(f, separators=(", ", ": "), allow_nan=False) for f in feats))
+
     def _put(self, unit: int, band: int, text: str) -> None:
         self.spool.put((unit, band), text)
         self.bands.setdefault(unit, []).append(band)
@@ -90,16 +113,17 @@ def write_map_svg(out: str | Path, result: MapFill, bands: BandWriter, params: d
     """The filled map, as :func:`svgtile.svg.writer.map_document` would write it."""
     styles: Styles = result.styles
     written = [n for n, ok in enumerate(result.filled) if ok]
-    defs, kinds = [], {}
+    defs, kinds, grounds = [], {}, {}
     for cls in sorted({result.regions[n].cls for n in written}):
         ex, _ = load_exemplar(str(styles.classes[cls].exemplar))
         style_defs, kinds[cls] = prefixed_defs(ex, class_prefix(cls))
         defs.extend(style_defs)
+        grounds[cls] = ex.ground
     layers = []
     for n in written:
         r = result.regions[n]
         layers.append(MapLayer(r.ident, r.cls, r.shape, kinds[r.cls], Arrangement.empty(),
-                               styles.classes[r.cls].boundary, r.element, r.matrix))  # fmt: skip
+                               styles.classes[r.cls].boundary, r.element, r.matrix, grounds[r.cls]))  # fmt: skip
     doc = result.doc
     parts = map_document_parts(None if doc is None else doc.root, defs, layers, params=params,
                                namespaces=() if doc is None else doc.namespaces)  # fmt: skip

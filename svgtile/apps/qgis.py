@@ -23,7 +23,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from svgtile.apps.load import load_exemplar
-from svgtile.apps.mapfill import MapFill, Style, Styles, fill_regions, read_styles
+from svgtile.apps.mapfill import MapFill, Style, Styles, cellular_classes, fill_regions, read_styles
 from svgtile.apps.mapread import AVOID_MARGIN, MapRegion, read_avoid_shape
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import ENGINES, engines_with, public_params
@@ -199,6 +199,10 @@ def fill(
         style = Style("", Path(exemplar), engine, dict(params), None, unit, boundary)
         regions = [MapRegion(f.ident, f.cls or "", f.shape) for f in feats]
         styles = Styles({r.cls: replace(style, cls=r.cls) for r in regions}, source=str(exemplar))
+    cellular = cellular_classes(styles)
+    if cellular:  # (fill_regions would drop the cells without a word)
+        raise ParameterError(f"class {cellular[0]!r} is cellular, and its cells are polygons, which a point layer "
+                             "cannot hold: fill its units with svgtile map -o FILE.geojson")  # fmt: skip
     for path in sorted({str(st.exemplar) for st in styles.classes.values()}):
         load_exemplar(path)  # a bad exemplar is one error before any work, not one per polygon
     zone = None

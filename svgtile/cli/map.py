@@ -18,7 +18,7 @@ from svgtile.apps.gisout import (
     write_style,
 )
 from svgtile.apps.load import MAX_MOTIFS, load_exemplar
-from svgtile.apps.mapfill import default_jobs, fill_map, read_styles
+from svgtile.apps.mapfill import cellular_classes, default_jobs, fill_map, read_styles
 from svgtile.apps.mapwrite import BandWriter, class_prefix, write_geojson, write_map_svg
 from svgtile.cli.common import (
     POINT_FORMATS,
@@ -76,12 +76,15 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
     \b
     The styles file (TOML), a table [classes.NAME] per class:
       exemplar = "FILE.svg"   the class's exemplar, relative to the styles file
-      engine = "patch"        one of the engines (svgtile synth --help)
+      engine = "patch"        one of the engines (svgtile synth --help); unnamed, "cellular" for an
+                              exemplar svgtile import made cellular (a bedded tile), else "patch"
       seed = 7                this class's seed (else the run's)
       unit = 1.0              map units per exemplar user unit
       boundary = "clip"       inside, centroid, clip or none (default: clip; inside for GIS points)
       refine = 0              optimisation iterations after the engine (any engine)
-    and any parameter of its engine, as in svgtile synth with _ for -.
+    and any parameter of its engine, as in svgtile synth with _ for -; a cellular class's
+    label = "fault=#faults" names a line of MAP itself (its cells are drawn in the unit's group,
+    and written as polygons to .geojson; a point layer such as .gpkg refuses them).
     Keys at the top level are defaults for every class (an engine parameter only for the
     classes whose engine has it; a seed there is every class's), plus:
       avoid = ["labels"]      ids in the map (or MAP.svg#ID specs) every texture keeps clear of
@@ -120,6 +123,10 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
     check_scheduler(scheduler)
     bar = sys.stderr.isatty() and output != "-"
     if kind in POINT_FORMATS and (kind != "geojson" or crs is not None):  # GDAL writes the layer at the end
+        cellular = cellular_classes(styles)
+        if cellular:
+            raise ParameterError(f"{output}: class {cellular[0]!r} is cellular, and its cells are polygons, which a "
+                                 "point layer cannot hold: write the map to .svg, or to .geojson without a CRS")  # fmt: skip
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
@@ -135,7 +142,8 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
             placed: collections.Counter[int] = collections.Counter()
             result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(),
                               max_motifs=MAX_MOTIFS, scheduler=scheduler, tile_size=tile_size,
-                              sink=_sink(bands, kind, styles, placed), bar=bar)  # fmt: skip
+                              sink=_sink(bands, kind, styles, placed), bar=bar,
+                              cell_sink=_cell_sink(bands, kind, styles, placed))  # fmt: skip
             Stderr.clear()
             _warn_about(result, output, [placed[n] for n in range(len(result.regions))])
             if kind == "geojson":
@@ -168,6 +176,21 @@ def _sink(bands: BandWriter, kind: str, styles, placed: collections.Counter):
             bands.svg(n, b, arr, kinds[r.cls])
 
     return sink
+
+
+def _cell_sink(bands: BandWriter, kind: str, styles, placed: collections.Counter):
+    """``cell_sink(region, cells)`` for :func:`fill_map`: a cellular unit's cells and lines
+    spooled before its motifs, counted in ``placed``."""
+
+    def cell_sink(n: int, r, cells) -> None:
+        placed[n] += len(cells)
+        unit = styles.classes[r.cls].unit
+        if kind == "geojson":
+            bands.cell_features(n, cells, {"region": r.ident, "class": r.cls}, scale=unit)
+        else:
+            bands.cells_svg(n, cells, unit)
+
+    return cell_sink
 
 
 def _warn_about(result, output: str, placed: list[int]) -> None:

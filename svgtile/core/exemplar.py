@@ -78,6 +78,10 @@ class Exemplar:
         The description of a cellular pattern (``svgtile:cellular`` on the region element, JSON,
         as ``svgtile import`` writes it for bedded and brick tiles; see
         :mod:`svgtile.engines.cellular.tree`): such an exemplar may have no motifs.
+    ground : str or None
+        The colour the pattern is drawn on (``svgtile:ground`` on the region element, as
+        ``svgtile import`` writes a tile's painted background: FGDC 659's black); the writers
+        paint the region with it under the texture.  None: the page.
     """
 
     source: str
@@ -88,6 +92,7 @@ class Exemplar:
     warnings: tuple[str, ...] = ()
     period: tuple[float, float] | None = None
     cellular: dict | None = None
+    ground: str | None = None
 
     @property
     def prototypes(self) -> list[Prototype]:

@@ -85,6 +85,11 @@ OWN_LOOK = ("opacity", "clip-path", "mask", "filter")
 PERIOD_ATTR = f"{{{META_NS}}}period"
 #: A cellular pattern's description on the region element (JSON; svgtile.engines.cellular.tree).
 CELLULAR_ATTR = "{urn:svgtile:run:1}cellular"
+#: The ground a pattern is drawn on (a colour; FGDC 659's black), on the region element: a tile's
+#: painted background, which the import drops as a frame, kept for the textures to paint.
+GROUND_ATTR = f"{{{META_NS}}}ground"
+#: What a ground may be: a colour name, #hex or rgb(), nothing that could leave a style value.
+GROUND_VALUE = re.compile(r"#[0-9A-Fa-f]{3,8}|[A-Za-z]{3,30}|rgba?\([0-9.,%\s]+\)")
 
 
 

@@ -43,6 +43,8 @@ from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import (
     CELLULAR_ATTR,
     CONTAINERS,
+    GROUND_ATTR,
+    GROUND_VALUE,
     INHERITED,
     INITIAL,
     MAX_COORDINATE,
@@ -182,7 +184,7 @@ class DocumentReader:
             if cellular is not None:  # a cellular pattern of cells and lines only
                 region = self._region(Arrangement.empty(), [])
                 return Exemplar(self.source, (), Arrangement.empty(), region, (), tuple(self.warnings), self._period(),
-                                cellular)  # fmt: skip
+                                cellular, self._ground())  # fmt: skip
             raise self.error("no motifs found (expected <use> elements or top-level shapes)")
         kinds, arrangement, defs = self._kinds(instances)
         region = self._region(arrangement, kinds)
@@ -195,7 +197,7 @@ class DocumentReader:
             arrangement = arrangement.take(centroid_in)
         period = self._period()
         return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings), period,
-                        cellular)  # fmt: skip
+                        cellular, self._ground())  # fmt: skip
 
     def _cellular(self) -> dict | None:
         """The ``svgtile:cellular`` description of the region element, if any (see
@@ -211,6 +213,16 @@ class DocumentReader:
         if not isinstance(data, dict):
             raise self.error("svgtile:cellular must be a JSON object")
         return data
+
+    def _ground(self) -> str | None:
+        """The ``svgtile:ground`` colour of the region element, if any (see :attr:`Exemplar.ground`)."""
+        el = self.ids.get("region")
+        text = None if el is None else el.attrib.get(GROUND_ATTR)
+        if text is None:
+            return None
+        if not GROUND_VALUE.fullmatch(text.strip()):
+            raise self.error(f"svgtile:ground {text[:40]!r} is not a colour (a name, #hex or rgb())")
+        return text.strip()
 
     def _period(self) -> tuple[float, float] | None:
         """The ``svgtile:period`` of the region element, if any (see :attr:`Exemplar.period`)."""

@@ -15,6 +15,7 @@ from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import (
     CAPS,
     CONTAINERS,
+    GROUND_VALUE,
     INITIAL,
     JOINS,
     MAX_COORDINATE,
@@ -82,6 +83,9 @@ class TilePieces:
         The drawn groups each piece lies in, outermost first: one id per ``<g>`` (``<a>``,
         ``<switch>``) and per ``<use>`` expansion walked, so that the subpaths of an icon drawn as
         a group (or ``<use>``d once per place) can be kept together.
+    ground : str
+        The colour of the painted frame drawn last (the ground the pattern is drawn on, FGDC
+        659's black), or "" (none, or a paint that is no plain colour)
     """
 
     source: str
@@ -95,6 +99,7 @@ class TilePieces:
     filled_frame: bool
     warnings: list[str]
     groups: list[tuple[int, ...]] = field(default_factory=list)
+    ground: str = ""
 
 
 def read_tile(path: str | Path) -> TilePieces:
@@ -142,7 +147,7 @@ def parse_tile(data: bytes | str, *, source: str = "<tile>") -> TilePieces:
     return TilePieces(
         source, box, footprint, walk.points, np.array(walk.closed, dtype=bool),
         np.array(walk.element, dtype=np.int64), walk.paint, walk.frames, walk.filled_frame,
-        reader.warnings, walk.groups,
+        reader.warnings, walk.groups, walk.ground,
     )  # fmt: skip
 
 
@@ -189,6 +194,7 @@ class _TileWalk:
         self.paint: list[tuple[tuple[str, str], ...]] = []
         self.frames: list[str] = []
         self.filled_frame = False
+        self.ground = ""
         self.elements = 0
         self.visited = 0  # elements walked, each <use> expansion counted again
         self.local: dict[tuple, list] = {}  # (element, paint) -> [(points, closed, footprint)], own frame
@@ -271,6 +277,9 @@ class _TileWalk:
         if self.is_frame(shapely.union_all(geoms), width * math.sqrt(abs(det)) if stroked else 0.0):
             self.frames.append(describe(el))
             self.filled_frame |= filled
+            if filled:  # the ground the pattern is drawn on, where it is a plain colour
+                fill = style.get("fill", INITIAL["fill"]).strip()
+                self.ground = fill if GROUND_VALUE.fullmatch(fill) else ""
             return
         paint = {k: style[k] for k in PIECE_PAINT if k in style}
         paint["fill"] = style.get("fill", INITIAL["fill"])

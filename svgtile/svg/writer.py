@@ -119,6 +119,7 @@ def svg_document_parts(
         clip = ET.SubElement(defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
         ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(region.shape), "clip-rule": "evenodd"})
         group.set("clip-path", f"url(#{clip_id})")
+    _ground(group, exemplar.ground, region.shape)
     group.append(ET.Comment(USES_MARK))
     ET.indent(root, space="  ")
     text = ET.tostring(root, encoding="unicode")
@@ -130,6 +131,14 @@ def svg_document_parts(
     before, _, after = text.rpartition(f"<!--{USES_MARK}-->")
     indent = len(before) - len(before.rstrip(" "))
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + before[: len(before) - indent], after + "\n"
+
+
+def _ground(group: ET.Element, colour: str | None, shape: shapely.Geometry) -> None:
+    """The region painted with the exemplar's ground (:attr:`Exemplar.ground`), first in its
+    texture group, under the cells and motifs."""
+    if colour:
+        ET.SubElement(group, f"{{{SVG_NS}}}path", {"class": "svgtile-ground", "style": f"fill:{colour};stroke:none",
+                                                   "fill-rule": "evenodd", "d": path_data(shape)})  # fmt: skip
 
 
 def cell_elements(cells: Cellwork | None, indent: str = "    ") -> list[str]:
@@ -211,6 +220,7 @@ class MapLayer:
     boundary : ``clip`` adds the region's clip path
     anchor : the map element the texture is drawn just above, or None (then at the end)
     matrix : (3, 3) from the anchor's parent's user space to the root's, or None
+    ground : the colour the class's texture is drawn on (:attr:`Exemplar.ground`), or None
     """
 
     ident: str
@@ -221,6 +231,7 @@ class MapLayer:
     boundary: str
     anchor: ET.Element | None = None
     matrix: np.ndarray | None = None
+    ground: str | None = None
 
 
 def prefixed_defs(exemplar: Exemplar, prefix: str) -> tuple[list[ET.Element], tuple[Kind, ...]]:
@@ -314,6 +325,7 @@ def map_document_parts(
             clip = ET.SubElement(new_defs, f"{{{SVG_NS}}}clipPath", {"id": clip_id})
             ET.SubElement(clip, f"{{{SVG_NS}}}path", {"d": path_data(layer.shape), "clip-rule": "evenodd"})
             group.set("clip-path", f"url(#{clip_id})")
+        _ground(group, layer.ground, layer.shape)
         group.append(ET.Comment(f"{USES_MARK}-{n}"))
         anchor = layer.anchor if layer.anchor is not None else outlines[n]
         parent = parents.get(anchor) if anchor is not None else None

@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from svgtile.errors import ExemplarError
-from svgtile.svg.dialect import CELLULAR_ATTR, PERIOD_ATTR, SVG_NS
+from svgtile.svg.dialect import CELLULAR_ATTR, GROUND_ATTR, PERIOD_ATTR, SVG_NS
 from svgtile.svg.numbers import fmt, fmt_array
 from svgtile.svg.tilepieces import TilePieces
 
@@ -145,6 +145,7 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
                             {"feature": "face", "generator": face}]  # fmt: skip
             desc["cell_style"] = _style(tile, int(np.flatnonzero(joint)[0]))
             used |= joint
+            used |= _joint_fragments(feats, joint, ~used & feats["straight"], w, h, course)
             cells_drawn = True
             if all(r["dash"] is None for r in rows):  # the cells' outlines draw the solid rows
                 desc.pop("lines")
@@ -162,6 +163,15 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
             # the linework is more than what a cellular pattern draws
             if not cells_drawn and _ink(tile, rest) > 0.5 * _ink(tile, np.arange(len(tile.points))):
                 raise refused from None
+            # the filled fragments among that linework are still motifs (FGDC 733's ore lenses)
+            filled = rest[_filled(tile, rest)]
+            if 0 < len(filled) < len(rest):
+                try:
+                    motifs = import_pieces(_subset(tile, filled))
+                    rest = filled
+                    notes[-1] = f"{notes[-1]}; its {len(filled)} filled fragment(s) kept as motifs"
+                except ExemplarError:
+                    pass
     if motifs is not None and len(motifs):
         cells = len(rows) * (w / desc["length"] if "length" in desc else 1.0)
         if "length" not in desc:  # invisible cells, one motif each
@@ -170,6 +180,8 @@ def _bedded(tile: TilePieces, feats: dict[str, np.ndarray], bearing: float, refu
                             {"feature": "face", "generator": "bricks"}]  # fmt: skip
             cells = len(rows) * w / desc["length"]
         desc["motifs"] = {"share": round(min(1.0, len(motifs) / max(cells, 1.0)), 4)}
+        if _over(tile, rest, used, bearing, course):
+            desc["motifs"]["over"] = True
     if not cells_drawn and "tree" not in desc:
         desc["length"] = round(w, 4)
         desc["tree"] = [{"feature": "face", "generator": "none"}]
@@ -448,6 +460,59 @@ def _wave(tile: TilePieces, members: np.ndarray, u: np.ndarray, nrm: np.ndarray,
     return [round(float(v), 4) for v in profile]
 
 
+def _filled(tile: TilePieces, idx: np.ndarray) -> np.ndarray:
+    """(len(idx),) bool: the pieces that are closed, filled shapes."""
+    return np.array([bool(tile.closed[i]) and dict(tile.paint[i]).get("fill", "none") not in ("none", "transparent")
+                     for i in idx.tolist()], dtype=bool)  # fmt: skip
+
+
+def _over(tile: TilePieces, motif: np.ndarray, lines: np.ndarray, bearing: float, course: float) -> bool:
+    """Whether the tile draws its motifs (pieces ``motif``) over its linework (pieces ``lines``,
+    (n,) bool) rather than inside cells: most of them cross a line or are taller than a course
+    (FGDC 657's peat fragments on the hatching, 733's ore lenses)."""
+    import shapely
+    import shapely.affinity
+
+    if len(motif) == 0:
+        return False
+    fp = tile.footprint[motif]
+    crosses = np.zeros(len(motif), dtype=bool)
+    if lines.any():
+        hit, _ = shapely.STRtree(tile.footprint[lines]).query(fp, predicate="intersects")
+        crosses[np.unique(hit)] = True
+    turned = [shapely.affinity.rotate(g, -bearing, origin=(0, 0)) for g in fp]
+    bounds = shapely.bounds(np.array(turned, dtype=object))
+    tall = (bounds[:, 3] - bounds[:, 1]) > course
+    return bool((crosses | tall).mean() > 0.5)
+
+
+def _joint_fragments(f: dict[str, np.ndarray], joint: np.ndarray, candidate: np.ndarray, w: float, h: float,
+                     course: float) -> np.ndarray:  # fmt: skip
+    """(n,) bool: the ``candidate`` pieces that are the short ends of joints the tile's edge cuts
+    (FGDC 627: a joint crossing the tile's bottom edge is drawn as a stroke of 3 at the top and a
+    stub of 0.85 at the bottom).  Such a stub, moved by one period, meets a joint end to end and
+    runs along it; it belongs to that joint (the engine draws whole joints), not to the motifs."""
+    out = np.zeros(len(candidate), dtype=bool)
+    if not (candidate.any() and joint.any()):
+        return out
+    from scipy.spatial import cKDTree
+
+    tol = 0.02 * course
+    ends = np.concatenate([f["first"][joint], f["last"][joint]])
+    angle = np.concatenate([f["angle"][joint], f["angle"][joint]])
+    tree = cKDTree(ends)
+    shifts = np.array([(i * w, j * h) for i in (-1, 0, 1) for j in (-1, 0, 1) if i or j])
+    idx = np.flatnonzero(candidate)
+    for end in ("first", "last"):
+        pts = f[end][idx][:, None, :] + shifts[None, :, :]  # (c, 8, 2) the stub's end in the next tiles
+        dist, near = tree.query(pts.reshape(-1, 2), distance_upper_bound=tol)
+        hit = (dist <= tol).reshape(len(idx), -1)
+        near = np.where(np.isfinite(dist), near, 0).reshape(len(idx), -1)
+        turn = np.abs((f["angle"][idx][:, None] - angle[near] + 90.0) % 180.0 - 90.0)
+        out[idx] |= (hit & (turn <= 5.0)).any(axis=1)
+    return out
+
+
 def _joints(f: dict[str, np.ndarray], joint: np.ndarray, bearing: float, course: float, period: float, w: float
             ) -> tuple[float, float, float] | None:  # fmt: skip
     """(cell length, course offset as a share of it, slant in degrees from the course normal) of the
@@ -496,8 +561,11 @@ def _empty(tile: TilePieces) -> str:
     x0, y0, w, h = tile.box
     box = " ".join(fmt_array(np.array([x0, y0, w, h])))
     root = ET.Element(f"{{{SVG_NS}}}svg", {"viewBox": box, "width": fmt(w), "height": fmt(h)})
-    ET.SubElement(root, f"{{{SVG_NS}}}rect", {"id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
-                                               "height": fmt(h), "fill": "none", PERIOD_ATTR: f"{fmt(w)} {fmt(h)}"})  # fmt: skip
+    region = ET.SubElement(root, f"{{{SVG_NS}}}rect", {"id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w),
+                                                        "height": fmt(h), "fill": "none",
+                                                        PERIOD_ATTR: f"{fmt(w)} {fmt(h)}"})  # fmt: skip
+    if tile.ground:
+        region.set(GROUND_ATTR, tile.ground)
     return ET.tostring(root, encoding="unicode")
 
 

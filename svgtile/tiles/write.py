@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from svgtile.svg.dialect import PERIOD_ATTR, SVG_NS, XLINK_NS
+from svgtile.svg.dialect import GROUND_ATTR, PERIOD_ATTR, SVG_NS, XLINK_NS
 from svgtile.svg.numbers import fmt, fmt_array
 from svgtile.svg.tilepieces import TilePieces
 
@@ -52,10 +52,12 @@ def exemplar_text(
             attrs = {name: _paint_value(name, value) for name, value in tile.paint[p0]}
             attrs["d"] = d
             ET.SubElement(symbol, f"{{{SVG_NS}}}path", dict(sorted(attrs.items())))
-    ET.SubElement(root, f"{{{SVG_NS}}}rect", {
+    region = ET.SubElement(root, f"{{{SVG_NS}}}rect", {
         "id": "region", "x": fmt(x0), "y": fmt(y0), "width": fmt(w), "height": fmt(h),
         "fill": "none", PERIOD_ATTR: f"{fmt(w)} {fmt(h)}",
     })  # fmt: skip
+    if tile.ground:  # the tile's painted background, for the textures to paint (FGDC 659)
+        region.set(GROUND_ATTR, tile.ground)
     group = ET.SubElement(root, f"{{{SVG_NS}}}g", {"id": "motifs"})
     xs, ys, angles = fmt_array(xy[:, 0]), fmt_array(xy[:, 1]), fmt_array(angle)
     for k, x, y, a in zip(kind.tolist(), xs, ys, angles, strict=True):

@@ -37,6 +37,8 @@ class CellularParams(EngineParams):
     label : ``NAME=MAP.svg#ID`` pairs, comma-separated: edges running along that map element are
         labelled NAME (for the tree's ``label`` tests)
     corner_angle : degrees; the boundary turning by more than this makes a corner (library only)
+    label_unit : units of the ``label`` files per user unit (library only: ``svgtile map`` sets a
+        class's ``unit``, its map lines then label edges of the unit in the exemplar's units)
     """
 
     tree: str = param("", "Cellular pattern description, a TOML or JSON file (default: the exemplar's own, or running-bond bricks).", metavar="FILE")
@@ -48,6 +50,7 @@ class CellularParams(EngineParams):
     label: str = param("", "Label the unit's edges that run along map lines, NAME=MAP.svg#ID[,NAME=MAP.svg#ID…] (cellular trees route labelled edges).", metavar="NAME=MAP.svg#ID")
     halves: str = param("fewest", "Cellular bricks: the bond with the fewest cut bricks in each unit (legakis2001 §5.2), or anchored to the world (an edit then changes only the cells near it).", choices=("fewest", "anchored"))
     corner_angle: float = 30.0
+    label_unit: float = 1.0
 
     def __post_init__(self) -> None:
         for name in ("course_height", "cell_length", "mortar"):
@@ -56,6 +59,8 @@ class CellularParams(EngineParams):
                 raise ParameterError(f"{name} must be a finite number ≥ 0, not {value:g}")
         if not (math.isfinite(self.strike) and -360.0 <= self.strike <= 360.0):
             raise ParameterError(f"strike must be in [-360, 360], not {self.strike:g}")
+        if not (self.label_unit > 0 and math.isfinite(self.label_unit)):
+            raise ParameterError(f"label_unit must be a positive number, not {self.label_unit:g}")
         if not 0.0 < self.corner_angle < 180.0:
             raise ParameterError(f"corner_angle must be in (0, 180), not {self.corner_angle:g}")
 
@@ -80,7 +85,7 @@ class CellularEngine:
         from .engine import description, read_labels, texture
 
         d = description(ctx.exemplar, p)
-        labels = read_labels(p.label, d.course)
+        labels = read_labels(p.label, d.course, unit=p.label_unit)
         return texture(ctx, d, p, labels)
 
     def reach(self, exemplar: Exemplar, params: CellularParams) -> float:

@@ -93,8 +93,9 @@ def _check_cells(face: shapely.Geometry, d: Description) -> None:
                              f"{samples:,.0f} points (limit {MAX_SAMPLES:,})")  # fmt: skip
 
 
-def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
-    """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course."""
+def read_labels(spec: str, course: float, *, unit: float = 1.0) -> dict[str, shapely.Geometry]:
+    """``NAME=MAP.svg#ID,…`` -> name -> the element's geometry grown by a tenth of a course, in
+    user units (the file's units divided by ``unit``)."""
     from svgtile.svg.mapdoc import SvgShapes
 
     out: dict[str, shapely.Geometry] = {}
@@ -104,7 +105,8 @@ def read_labels(spec: str, course: float) -> dict[str, shapely.Geometry]:
         if not (eq and sep and name.strip() and path and ident):
             raise ParameterError(f"--label {item!r}: expected NAME=MAP.svg#ID")
         doc = SvgShapes.read(path)
-        out[name.strip()] = doc.keep_clear(doc.element(ident), 0.1 * course)
+        zone = doc.keep_clear(doc.element(ident), 0.1 * course * unit)
+        out[name.strip()] = zone if unit == 1.0 else shapely.transform(zone, lambda c, u=unit: c / u)
     return out
 
 
@@ -157,7 +159,8 @@ def texture(ctx: Context, d: Description, p: CellularParams, labels: dict[str, s
     motifs = Arrangement.empty()
     if d.motifs is not None and len(ctx.exemplar.motifs):
         ctx.progress("motifs in cells", 0.85)
-        motifs = motifs_in_cells(ctx, work.shapes[work.feature != LINE], frame, float(d.motifs.get("share", 1.0)))
+        motifs = motifs_in_cells(ctx, work.shapes[work.feature != LINE], frame, float(d.motifs.get("share", 1.0)),
+                                 over=bool(d.motifs.get("over", False)), bearing=d.angle)  # fmt: skip
     # cells with no style were only claimed (to hold motifs, to keep the order): not drawn
     blank = np.array([not css for css in work.styles], dtype=bool)
     if len(work) and blank.any():
@@ -305,8 +308,9 @@ def _laid(frame, free: shapely.Geometry, generator: str, d: Description, phase: 
     bounds = gen.st_bounds(frame, free, step)
     quads, _ = gen.face_rectangles(generator, bounds, d.course, d.length, d.offset, key=key, ashlar=d.ashlar,
                                    rhomb_angle=d.rhomb_angle, bands=d.bands, phase=phase)  # fmt: skip
-    subdivide = 1 if isinstance(frame, RotatedFrame) else max(2, math.ceil(d.length / step))
-    cells = gen.map_quads(frame, quads, subdivide)
+    straight = isinstance(frame, RotatedFrame)
+    subdivide = 1 if straight else max(2, math.ceil(d.length / step))
+    cells = gen.map_quads(frame, quads, subdivide, None if straight else step)
     cells = cells[cells != None]  # noqa: E711 - an object array of geometries
     shapely.prepare(free)
     cells = cells[shapely.intersects(free, cells)]
@@ -390,11 +394,16 @@ def _line_points(spec: dict, d: Description, step: float, extent: float) -> floa
     return lines * (extent / (dash[0] + dash[1]) + 4) * (max(1, math.ceil(dash[0] / step)) + 1)
 
 
-def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arrangement:
+def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float, *, over: bool = False, bearing: float = 0.0
+                    ) -> Arrangement:  # fmt: skip
     """Exemplar motifs set in cells (chert nodules in limestone, fossils): one in a ``share`` of
     the cells, at the cell's inner point, turned with the courses; the kind by the exemplar's
     frequencies, the angle in its arc (almeraj2013 §3.5), the scale of a random instance.  A motif
-    must lie in its cell, and conflicts between motifs (overlap, distance rule) are culled.
+    must lie in its cell — unless ``over``: motifs larger than a cell, drawn over the linework as
+    the tile draws them (FGDC 657's peat fragments, 733's ore lenses), need only keep in the
+    region (the boundary mode) — and conflicts between motifs (overlap, distance rule) are culled.
+    The exemplar's angles are measured in a tile whose courses run along ``bearing`` (the
+    description's ``angle``): a motif turns by how far the courses turn from that bearing.
     Randomness is keyed by the cell's position (world-anchored)."""
     ex, stats = ctx.exemplar, ctx.stats
     if len(cells) == 0:
@@ -405,7 +414,7 @@ def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arr
     take = u[3] < share
     cdf = np.cumsum(stats.frequency)
     kind = np.minimum(np.searchsorted(cdf, u[0] * cdf[-1], side="right"), len(cdf) - 1)
-    angle = stats.arc_start[kind] + u[1] * stats.arc_width[kind] + frame.course_angle(pts)
+    angle = stats.arc_start[kind] + u[1] * stats.arc_width[kind] + frame.course_angle(pts) - bearing
     scale = np.ones(len(pts))
     motifs = ex.motifs
     for k in np.unique(kind).tolist():
@@ -414,7 +423,7 @@ def motifs_in_cells(ctx: Context, cells: np.ndarray, frame, share: float) -> Arr
         if len(inst):
             scale[sel] = motifs.scale[inst[np.minimum((u[2][sel] * len(inst)).astype(np.int64), len(inst) - 1)]]
     arr = Arrangement(kind, pts, (angle + 180.0) % 360.0 - 180.0, scale).quantized(DECIMALS)
-    fits = take & shapely.covered_by(world_footprints(arr, ex.prototypes), cells)
+    fits = take if over else take & shapely.covered_by(world_footprints(arr, ex.prototypes), cells)
     arr, pri = arr.take(fits), u[4][fits]
     if len(arr) == 0:
         return arr

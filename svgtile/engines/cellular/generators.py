@@ -225,20 +225,73 @@ def _ashlar(j: np.ndarray, s0: float, s1: float, course: float, length: float, *
     return quads, np.concatenate(ids)
 
 
-def map_quads(frame, quads: np.ndarray, subdivide: int) -> np.ndarray:
+def map_quads(frame, quads: np.ndarray, subdivide: int, step: float | None = None) -> np.ndarray:
     """(n,) world Polygons of parameter-space quads (each side cut in ``subdivide`` pieces, so
-    a curved frame bends them); quads the frame cannot map (outside a flow grid) are None."""
+    a curved frame bends them); quads the frame cannot map (outside a flow grid) are None.
+
+    With ``step`` (a curved frame), a side along a course boundary is cut instead at the world
+    grid ``s = k·step`` and at every quad corner on that boundary: a brick's top then has the very
+    vertices of the two bricks above it, which share it in part, so curved neighbours meet
+    without overlapping (straight chords between different points would cross by a sliver)."""
     n = len(quads)
-    u = np.arange(subdivide) / subdivide
-    sides = [quads[:, k, None, :] + u[None, :, None] * (quads[:, (k + 1) % 4, None, :] - quads[:, k, None, :])
-             for k in range(4)]  # fmt: skip
-    pts = np.concatenate(sides, axis=1)  # (n, 4·subdivide, 2)
-    world = frame.map(pts.reshape(-1, 2)).reshape(n, -1, 2)
-    ok = np.isfinite(world).all(axis=(1, 2))
+    if step is None or n == 0:
+        u = np.arange(subdivide) / subdivide
+        sides = [quads[:, k, None, :] + u[None, :, None] * (quads[:, (k + 1) % 4, None, :] - quads[:, k, None, :])
+                 for k in range(4)]  # fmt: skip
+        pts = np.concatenate(sides, axis=1)  # (n, 4·subdivide, 2)
+        world = frame.map(pts.reshape(-1, 2)).reshape(n, -1, 2)
+        ok = np.isfinite(world).all(axis=(1, 2))
+        out = np.full(n, None, dtype=object)
+        if ok.any():
+            out[ok] = shapely.make_valid(shapely.polygons(np.concatenate([world[ok], world[ok, :1]], axis=1)))
+        return out
+    a, b = quads, np.roll(quads, -1, axis=1)  # (n, 4, 2) each side's start and end
+    flat = np.abs(a[..., 1] - b[..., 1]) <= 1e-9 * max(step, 1.0)  # (n, 4) sides along a course boundary
+    # the interior points of every side, as (quad, side, order, s, t) rows
+    rows = [_uniform_points(a[~flat], b[~flat], np.argwhere(~flat), subdivide)]
+    level = np.round(a[..., 1], 9)
+    for t in np.unique(level[flat]).tolist():  # one course boundary at a time
+        at = flat & (level == t)
+        corners = np.round(np.concatenate([quads[..., 0][np.round(quads[..., 1], 9) == t]]), 9)
+        lo, hi = np.minimum(a[at][:, 0], b[at][:, 0]), np.maximum(a[at][:, 0], b[at][:, 0])
+        grid = np.arange(math.floor(lo.min() / step), math.ceil(hi.max() / step) + 1) * step
+        knots = np.unique(np.concatenate([corners, np.round(grid, 9)]))
+        i0 = np.searchsorted(knots, np.round(lo, 9), side="right")
+        i1 = np.searchsorted(knots, np.round(hi, 9), side="left")
+        count = np.maximum(i1 - i0, 0)
+        which = np.repeat(np.arange(len(count)), count)
+        pos = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)  # 0.. along each side
+        forward = (b[at][:, 0] >= a[at][:, 0])[which]
+        idx = np.where(forward, i0[which] + pos, i1[which] - 1 - pos)
+        qs = np.argwhere(at)[which]
+        rows.append(np.column_stack([qs, pos, knots[idx], np.full(len(idx), t)]))
+    inner = np.concatenate(rows)
+    corner_rows = np.column_stack([np.repeat(np.arange(n), 4), np.tile(np.arange(4), n), np.full(4 * n, -1.0),
+                                   quads.reshape(-1, 2)])  # fmt: skip
+    table = np.concatenate([corner_rows, inner])
+    order = np.lexsort((table[:, 2], table[:, 1], table[:, 0]))  # quad, side, corner first then along
+    table = table[order]
+    quad = table[:, 0].astype(np.int64)
+    world = frame.map(table[:, 3:5])
+    ok = np.bincount(quad, weights=~np.isfinite(world).all(axis=1), minlength=n) == 0
     out = np.full(n, None, dtype=object)
     if ok.any():
-        out[ok] = shapely.make_valid(shapely.polygons(np.concatenate([world[ok], world[ok, :1]], axis=1)))
+        keep = ok[quad]
+        _, index = np.unique(quad[keep], return_inverse=True)
+        rings = shapely.linearrings(world[keep], indices=index)
+        out[ok] = shapely.make_valid(shapely.polygons(rings))
     return out
+
+
+def _uniform_points(a: np.ndarray, b: np.ndarray, where: np.ndarray, subdivide: int) -> np.ndarray:
+    """(m, 5) rows (quad, side, order, s, t): the points cutting sides ``a`` -> ``b`` (each (k, 2),
+    ``where`` their (quad, side)) into ``subdivide`` equal pieces, their ends left out."""
+    u = np.arange(1, subdivide) / subdivide
+    if len(a) == 0 or len(u) == 0:
+        return np.zeros((0, 5))
+    pts = a[:, None, :] + u[None, :, None] * (b - a)[:, None, :]  # (k, subdivide − 1, 2)
+    k = len(a)
+    return np.column_stack([np.repeat(where, len(u), axis=0), np.tile(np.arange(len(u)), k), pts.reshape(-1, 2)])
 
 
 def course_lines(frame, bounds: tuple[float, float, float, float], course: float, *, every: int = 1, start: int = 0,

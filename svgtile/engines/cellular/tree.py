@@ -41,6 +41,8 @@ A description, in TOML (JSON has the same keys)::
 
     [motifs]                # exemplar motifs set in cells (optional)
     share = 0.25            # share of cells holding one
+    over = false            # true: drawn over the cells' lines, not inside a cell (peat's
+                            # fragments, FGDC 657); only kept clear of each other
 
     [bands]                 # interbedded courses of unequal heights (optional; FGDC 672, 677)
     period = 15.0           # the repeat across the courses, user units
@@ -208,6 +210,8 @@ def parse_description(data: dict[str, Any], source: str = "the description") -> 
         if not isinstance(data["motifs"], dict):
             raise bad("motifs must be a table")
         out["motifs"] = dict(data["motifs"])
+        if not isinstance(out["motifs"].get("over", False), bool):
+            raise bad("motifs.over must be true or false")
     if "lines" in data:
         specs = data["lines"] if isinstance(data["lines"], list) else [data["lines"]]
         if not all(isinstance(spec, dict) for spec in specs):
