@@ -49,6 +49,29 @@ def test_synth_paints_the_ground_under_the_motifs(tmp_path, capsys, boundary):
     assert grounds(out.read_text()) == []
 
 
+@pytest.mark.parametrize("boundary", ["clip", "inside"])
+def test_a_texture_with_a_ground_is_read_back_as_its_motifs(tmp_path, boundary):
+    """score (and propagate) read a grounded texture: the ground is paint, not a motif."""
+    from svgtile.svg.texture import read_texture
+
+    tile = tmp_path / "tile.svg"
+    tile.write_text(GROUNDED)
+    (tmp_path / "ex.svg").write_text(import_tile(tile).text)
+    ex = read_exemplar(tmp_path / "ex.svg")
+    out = tmp_path / "out.svg"
+    assert main(["synth", str(tmp_path / "ex.svg"), "--size", "120x90", "--seed", "1", "--boundary", boundary,
+                 "-o", str(out)]) == 0  # fmt: skip
+    text = out.read_text()
+    assert grounds(text) == ["black"]
+    arr, _ = read_texture(out, ex)
+    assert len(arr) == text.count("<use ") > 0
+    assert main(["score", str(tmp_path / "ex.svg"), str(out)]) == 0
+    # the general reader (a comment before the motifs: not svgtile's own form) skips the ground too
+    out.write_text(text.replace("<metadata>", "<!-- edited --><metadata>", 1))
+    arr2, _ = read_texture(out, ex)
+    assert len(arr2) == len(arr)
+
+
 def test_a_map_unit_is_painted_with_its_class_ground(tmp_path, capsys):
     (tmp_path / "tile.svg").write_text(GROUNDED)
     assert main(["import", str(tmp_path / "tile.svg"), "-o", str(tmp_path / "coal.svg")]) == 0

@@ -75,6 +75,8 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
     if data is not None and _CELL_PATH.search(data):
         raise ExemplarError("a cellular texture (cells and lines, svgtile's cellular engine): only textures of "
                             "motifs are measured", source=str(path))  # fmt: skip
+    if data is not None:
+        data = _without_ground(data)
     cut = _own_use_block(data) if data is not None else None
     if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines
         skeleton, lines = cut
@@ -191,6 +193,17 @@ class OwnLines:
     group: np.ndarray
     first: np.ndarray
     suffix: np.ndarray
+
+
+#: The ground svgtile paints first in its motif group (:func:`svgtile.svg.writer._ground`), as written.
+_OWN_GROUND = re.compile(rb'(<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>)\n[ \t]*<path class="svgtile-ground" '
+                         rb'style="fill:[^";<>]*;stroke:none" fill-rule="evenodd" d="[^"<>]*" />')
+
+
+def _without_ground(data: bytes) -> bytes:
+    """The texture without the ground path svgtile wrote under its motifs (the exemplar's
+    ``svgtile:ground``): paint, not a motif, so neither reader must count it."""
+    return _OWN_GROUND.sub(rb"\1", data, count=1)
 
 
 def _own_use_block(data: bytes) -> tuple[bytes, OwnLines] | None:
