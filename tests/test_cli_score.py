@@ -522,3 +522,21 @@ def test_texture_read_equals_the_exemplar_reader_around_a_hole(tmp_path, name, e
     assert len(got_region.shape.interiors) == 1
     if engine != "tile":  # the texture's own turns and scales were read, not the identity
         assert np.ptp(got.angle) > 1 or np.ptp(got.scale) > 0
+
+
+def test_the_use_scan_without_possessive_quantifiers_matches_the_same_lines(tmp_path):
+    """Python 3.10 has no possessive quantifiers: the scan's greedy form (what ``_possessive``
+    gives there) must compile and find the same columns in a texture svgtile wrote."""
+    import re
+
+    from svgtile.svg import texture
+
+    out = tmp_path / "t.svg"
+    assert main(["synth", str(EXEMPLARS / "gravel.svg"), "-o", str(out), "--size", "120x90", "--seed", "2",
+                 "--engine", "patch", "--vary-orientation"]) == 0  # fmt: skip
+    body = out.read_text()
+    greedy = re.compile(re.sub(r"([+*?])\+", r"\1", texture._OWN_USE.pattern), re.M)
+    assert "++" not in greedy.pattern and "*+" not in greedy.pattern and "?+" not in greedy.pattern
+    found = texture._OWN_USE.findall(body)
+    assert len(found) == body.count("<use ") > 0
+    assert greedy.findall(body) == found
