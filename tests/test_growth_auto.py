@@ -103,3 +103,34 @@ def test_auto_passes_over_growth_when_its_work_is_over_the_limit(tmp_path, capsy
     assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1", "--force"]) == 0
     assert "svgtile: auto: engine growth: drawn rows" in capsys.readouterr().err
     assert 'engine="growth"' in out.read_text()
+
+
+@pytest.mark.parametrize(("option", "engine"), [(["--strike", "30"], "cellular"), (["--passes", "2"], "optimize")])
+def test_auto_with_an_option_of_an_engine_no_rule_picks_runs_that_engine(tmp_path, capsys, option, engine):
+    """An option only optimize or cellular takes, given with auto, picks that engine (it ended in
+    an internal AssertionError: no rule held among the engines that take it)."""
+    out = tmp_path / "m.svg"
+    rc = main(["synth", str(REPO / "exemplars" / "marsh.svg"), "-o", str(out), "--size", "60x40", "--seed", "1",
+               *option])  # fmt: skip
+    err = capsys.readouterr().err
+    assert rc == 0, err
+    assert f"svgtile: auto: engine {engine}: the options given are the {engine} engine's" in err
+    assert f'engine="{engine}"' in out.read_text()
+
+
+def test_auto_never_falls_back_to_a_baseline_and_a_narrowed_choice_says_why(tmp_path, capsys, monkeypatch):
+    """Over the work limit for every engine a rule picks, auto keeps its choice and the work check
+    refuses it in one line (it fell back to the tile baseline, then an AssertionError); narrowed to
+    patch on an exemplar with rows, the reason names the rows."""
+    import svgtile.cli.synth as synth_cli
+
+    marsh = str(REPO / "exemplars" / "marsh.svg")
+    out = tmp_path / "m.svg"
+    monkeypatch.setattr(synth_cli, "MAX_WORK_SECONDS", 1e-4)
+    rc = main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1"])
+    err = capsys.readouterr().err
+    assert rc != 0 and "would hold about" in err and "engine 'growth'" in err and "Traceback" not in err
+    assert not out.exists()
+    monkeypatch.undo()
+    assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1", "--max-rotation", "0"]) == 0
+    assert "svgtile: auto: engine patch: rows (steps 5.18 units at 180°), but the options given" in capsys.readouterr().err

@@ -17,7 +17,7 @@ from svgtile.apps.load import load_exemplar
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines import ENGINES, engines_with, get_engine, make_params, public_params
 from svgtile.engines.base import EngineParams, honoured
-from svgtile.engines.choose import AUTO, choose, steerable, with_choice
+from svgtile.engines.choose import AUTO, RULE_ENGINES, choose, steerable, with_choice
 from svgtile.errors import ParameterError
 from svgtile.gis.layers import is_gis
 
@@ -281,7 +281,7 @@ def auto_params(ex, stats, given: dict, controls: frozenset[str] = frozenset(), 
     names = steerable(ENGINES, controls, given)
     picked = choose(ex, stats, available=names)
     if affordable is not None and not affordable(picked.engine):
-        cheaper = [n for n in names if affordable(n)]
+        cheaper = [n for n in names if n in RULE_ENGINES and affordable(n)]  # not a baseline
         if cheaper:
             passed = picked
             picked = choose(ex, stats, available=cheaper)

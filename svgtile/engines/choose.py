@@ -90,7 +90,9 @@ RULES: tuple[Rule, ...] = (
          lambda o: f"drawn {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): grown motif by "
                    "motif from the exemplar's neighbourhoods, so rows and lattices continue"),
     Rule("scatter", lambda o, s, e: True, "patch", {},
-         lambda o: "no repeating rows or lattice to keep: the patch engine's defaults"),
+         lambda o: "no repeating rows or lattice to keep: the patch engine's defaults" if o.kind == "scatter" else
+                   f"{'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}), but the options given or "
+                   "the region's size leave the engines that keep them: the patch engine's defaults"),
     # reached only when the map controls or options given leave patch out (see :func:`steerable`)
     Rule("steered", lambda o, s, e: True, "growth", {},
          lambda o: "the map controls or options given (a flow field, barrier, growth area, a growth parameter) "
@@ -130,7 +132,15 @@ def choose(exemplar: Exemplar, stats: Stats, *, order: Order | None = None,
     for rule in RULES:
         if (available is None or rule.engine in available) and rule.test(order, stats, exemplar):
             return Choice(rule.engine, dict(rule.params), rule.why(order), rule.name)
-    raise AssertionError("the last rule always holds")  # pragma: no cover
+    # the options given belong to an engine no rule picks (optimize's --passes, cellular's --strike)
+    name = next(iter(available or ()), None)
+    if name is None:
+        raise ValueError("choose: no engine available")
+    return Choice(name, {}, f"the options given are the {name} engine's", "options")
+
+
+#: The engines a rule of :data:`RULES` picks (auto passes over the others unless options name them).
+RULE_ENGINES = frozenset(rule.engine for rule in RULES)
 
 
 def with_choice(choice: Choice, given: Mapping[str, object] | None) -> dict[str, object]:
