@@ -19,7 +19,8 @@ from svgtile.tiles.importer import import_tile
 def import_cmd(tile, output):
     """Turn a seamless pattern TILE (FGDC, OSM, well-log fills …) into an exemplar.
 
-    Frame and background rectangles are dropped, zero-length round-capped lines become dots,
+    Frame and background rectangles are dropped (a background painted in a plain colour is kept as
+    the ground the texture is painted on), zero-length round-capped lines become dots,
     motifs cut at the tile's edge are reassembled, touching strokes and parallel pairs of strokes
     are grouped into motifs, and motifs identical up to rotation share a <symbol>.  Hatching,
     continuous lines and solid fills are refused with the reason, unless they are bedded (rows of

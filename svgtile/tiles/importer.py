@@ -177,7 +177,8 @@ def import_pieces(tile: TilePieces) -> ImportedTile:
     """Group, classify and write the pieces of a tile (stages 2–6 of the module docstring)."""
     notes = list(tile.warnings)
     if tile.frames:
-        notes.append(f"dropped {len(tile.frames)} frame/background element(s) equal to the tile")
+        ground = f" (its colour {tile.ground} kept as the ground)" if tile.ground else ""
+        notes.append(f"dropped {len(tile.frames)} frame/background element(s) equal to the tile{ground}")
     if len(tile.footprint) == 0:
         if tile.filled_frame:
             raise TileRefused("a solid fill: the tile is one filled rectangle, with no motifs", source=tile.source)
