@@ -254,6 +254,8 @@ class Growth:
                 ok = self.settle(arr, fixed)
                 kept.append(arr.take(ok))
                 ksub.append(sub[ok])
+                if rnd == REFILLS:  # no round left to regrow the holes in
+                    break
                 # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
                 more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
                                                   Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
