@@ -56,7 +56,7 @@ from svgtile.engines.base import Context
 from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
-from svgtile.engines.growth.grow import grow
+from svgtile.engines.growth.grow import grow, rings_of
 from svgtile.engines.growth.relax import relax
 from svgtile.errors import ParameterError
 
@@ -217,6 +217,7 @@ class Growth:
         gsub: list[np.ndarray] = []
         for part, piece in enumerate(self.pieces(a, b)):
             shapely.prepare(piece)
+            outline = rings_of(piece)  # made once for the up to 1 + REFILLS growths of this piece
             start, ring0 = self.start(a, b, part, piece)
             # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
             draws = np.random.default_rng(int(cellrng.hash64(key, _NOISE, a, b, part)))
@@ -233,7 +234,7 @@ class Growth:
                 g = grow(rings, piece, start, ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
                          fixed_sub=fsub, more=more, more_kind=more_kind, rotation=self.rotation, flow=flow,
                          priority=self.priority, weights=p.weights, centre_gap=self.gap,
-                         draws=draws,
+                         draws=draws, outline=outline,
                          relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
                 if not len(g.xy):
                     break
@@ -253,6 +254,8 @@ class Growth:
                 ok = self.settle(arr, fixed)
                 kept.append(arr.take(ok))
                 ksub.append(sub[ok])
+                if rnd == REFILLS:  # no round left to regrow the holes in
+                    break
                 # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
                 more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
                                                   Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip

@@ -69,7 +69,7 @@ def _grid(bounds: tuple[float, float, float, float], size: float) -> np.ndarray:
     return np.array([size, a0, b0, int(x1 // size) + 3 - a0, int(y1 // size) + 3 - b0], float)
 
 
-def _rings_of(piece: shapely.Geometry) -> tuple[np.ndarray, np.ndarray]:
+def rings_of(piece: shapely.Geometry) -> tuple[np.ndarray, np.ndarray]:
     """``piece``'s ring coordinates ((p, 2) float, each ring closed) and where each ring starts."""
     parts = shapely.get_rings(piece)
     coords = [shapely.get_coordinates(g) for g in parts]
@@ -82,7 +82,8 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
          flow: tuple[np.ndarray, float, float, float] | None,
          priority: np.ndarray, weights: Weights, centre_gap: np.ndarray, draws: np.random.Generator,
          relax: Callable[[np.ndarray, np.ndarray, np.ndarray, int], np.ndarray] | None = None,
-         relax_every: int = 0, limit: int = 1_000_000) -> Grown:  # fmt: skip
+         relax_every: int = 0, limit: int = 1_000_000,
+         outline: tuple[np.ndarray, np.ndarray] | None = None) -> Grown:  # fmt: skip
     """Grow motifs over ``piece`` from one seed at ``start`` (§5.1, §5.4).
 
     Parameters
@@ -107,6 +108,8 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     relax, relax_every : ``relax(xy, ring, theta, first)`` → relaxed xy of the grown motifs, run
         every ``relax_every`` placements (0: never here)
     limit : at most this many motifs
+    outline : ``piece``'s rings as :func:`rings_of` gives them, if at hand (a piece grown in
+        several rounds: made once)
 
     Returns
     -------
@@ -151,7 +154,7 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
                       levels, int(priority.max()) if len(priority) else 0, M], np.int64)  # fmt: skip
     fvars = np.array([r_short, reach, wait, rings.mean_length, weights.distance, weights.kind, weights.subid,
                       float(start[0]), float(start[1])])  # fmt: skip
-    coords, starts = _rings_of(piece)
+    coords, starts = outline if outline is not None else rings_of(piece)
     flow_arg = flow if flow is not None and mode == kernel.FLOW else (np.zeros((1, 1)), 0.0, 0.0, 1.0)
     while True:
         code = kernel.run(tuple(state), ivars, fvars, rings.rel, rings.size, rings.kind, rings.element, rings.nkind,
