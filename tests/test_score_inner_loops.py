@@ -1,0 +1,90 @@
+"""The inner loops that ``svgtile score`` spends its time in give what their plain forms give, bit for bit.
+
+Each plain form here is the computation as it stood before it was made faster (issue 11's last
+criterion; timings in benchmarks/README.md), written out so that a change of the fast one
+that changes an answer fails here.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import shapely
+from scipy.ndimage import distance_transform_edt
+
+from svgtile.core.arrangement import Arrangement
+from svgtile.metrics import coverage
+from svgtile.svg.reader import read_exemplar
+
+EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
+
+
+def _texture(name: str, n: int, side: float, seed: int) -> tuple[Arrangement, list]:
+    """n motifs of the bundled exemplar ``name``'s kinds, anywhere in a square of ``side``, any turn."""
+    ex = read_exemplar(EXEMPLARS / f"{name}.svg")
+    rng = np.random.default_rng(seed)
+    kinds = len(ex.prototypes)
+    arr = Arrangement(
+        rng.integers(0, kinds, n), rng.uniform(-0.1 * side, 1.1 * side, (n, 2)),
+        rng.uniform(-180, 180, n), rng.choice([1.0, 0.75, 1.5], n),
+    )  # fmt: skip
+    return arr, ex.prototypes
+
+
+def _plain_outline_raster(arr, protos, ox, oy, nx, ny, step, feature):
+    """The outline pixels of :func:`svgtile.metrics.coverage._raster_clearance`, as first written:
+    every outline point of a kind at once, then its pixel by ``np.floor`` of a fresh array."""
+    for k, proto in enumerate(protos):
+        idx = np.flatnonzero(arr.kind == k)
+        scale = float(arr.scale.max())
+        rings = [shapely.segmentize(shapely.linearrings(r), step / max(scale, 1e-12)) for r in proto.rings]
+        local = np.concatenate([shapely.get_coordinates(r) for r in rings])
+        turn = np.radians(arr.angle[idx])
+        cos, sin = np.cos(turn) * arr.scale[idx], np.sin(turn) * arr.scale[idx]
+        wx = cos[:, None] * local[:, 0] - sin[:, None] * local[:, 1] + arr.xy[idx, 0, None]
+        wy = sin[:, None] * local[:, 0] + cos[:, None] * local[:, 1] + arr.xy[idx, 1, None]
+        ix = np.floor((wx.ravel() - ox) / step).astype(np.int64)
+        iy = np.floor((wy.ravel() - oy) / step).astype(np.int64)
+        ok = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+        feature[iy[ok], ix[ok]] = True
+    return feature
+
+
+def test_raster_clearance_marks_the_outline_pixels_of_the_plain_loop(monkeypatch):
+    arr, protos = _texture("gravel", 3000, 400.0, 11)
+    window = shapely.box(20.0, 30.0, 380.0, 370.0)
+    region = shapely.box(0.0, 0.0, 400.0, 400.0)
+    step = 1.37
+    # chunks of a few motifs each, and a chunk that holds them all: the same raster
+    for chunk in (1 << 9, 1 << 30):
+        monkeypatch.setattr(coverage, "_OUTLINE_CHUNK", chunk)
+        xy, estimate = coverage._raster_clearance(arr, protos, window, region, step)
+        pad = 2 * step
+        x0, y0, x1, y1 = window.bounds
+        ox, oy = x0 - pad, y0 - pad
+        nx, ny = math.ceil((x1 - x0 + 2 * pad) / step), math.ceil((y1 - y0 + 2 * pad) / step)
+        xs, ys = ox + (np.arange(nx) + 0.5) * step, oy + (np.arange(ny) + 0.5) * step
+        gx, gy = np.meshgrid(xs, ys)
+        plain = _plain_outline_raster(arr, protos, ox, oy, nx, ny, step, ~shapely.contains_xy(region, gx, gy))
+        keep = shapely.contains_xy(window, gx, gy)
+        iy, ix = np.nonzero(keep)
+        want = distance_transform_edt(~plain)[iy, ix] * step
+        assert plain.sum() > 10_000 and (~plain).sum() > 1000  # outlines drawn, and space between
+        assert np.array_equal(xy, np.stack([xs[ix], ys[iy]], axis=1))
+        assert np.array_equal(estimate, want)
+
+
+def test_pixel_rounds_as_the_plain_expression():
+    # points on and next to pixel edges, where the order of the operations decides the pixel
+    rng = np.random.default_rng(3)
+    step, origin = 0.1, -2.3
+    centre = rng.uniform(-50, 50, (400, 1)).round(1)
+    edge = np.arange(-200, 200)[None, :] * step + origin - centre
+    turned = edge + rng.choice([0.0, 1e-15, -1e-15, 1e-13, -1e-13], edge.shape)
+    want = np.floor((turned + centre - origin) / step).astype(np.int64).ravel()
+    got = coverage._pixel(turned.copy(), centre, origin, step)
+    assert np.array_equal(got, want)
+    # the test sees the order: the other association of the same sum lands elsewhere
+    assert not np.array_equal(np.floor((turned + (centre - origin)) / step).astype(np.int64).ravel(), want)
