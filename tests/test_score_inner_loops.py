@@ -15,8 +15,11 @@ import shapely
 from scipy.ndimage import distance_transform_edt
 
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.region import Region
 from svgtile.metrics import coverage
 from svgtile.svg.reader import read_exemplar
+from svgtile.svg.texture import _own_use_block, read_texture
+from svgtile.svg.writer import svg_document
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 
@@ -88,3 +91,23 @@ def test_pixel_rounds_as_the_plain_expression():
     assert np.array_equal(got, want)
     # the test sees the order: the other association of the same sum lands elsewhere
     assert not np.array_equal(np.floor((turned + (centre - origin)) / step).astype(np.int64).ravel(), want)
+
+
+def test_a_kind_first_met_on_the_last_line_is_kept(tmp_path):
+    # the text scan splits the lines only up to the last group's first line: here the very last
+    ex = read_exemplar(EXEMPLARS / "gravel.svg")
+    rng = np.random.default_rng(8)
+    n = 400
+    kind = np.zeros(n, np.int64)
+    kind[-1] = 1
+    arr = Arrangement(kind, rng.uniform(5, 195, (n, 2)), rng.uniform(-180, 180, n), np.ones(n))
+    path = tmp_path / "t.svg"
+    path.write_text(svg_document(ex, arr, Region.rectangle(200, 200), boundary="none", params={}))
+    skeleton, lines = _own_use_block(path.read_bytes())
+    assert lines.first.tolist() == [0, n - 1]
+    assert skeleton.count(b"<use ") == 2 and skeleton.rstrip().endswith(b"</svg>")
+    back, _ = read_texture(path, ex)
+    want = read_exemplar(path).motifs
+    for field in ("kind", "xy", "angle", "scale"):
+        assert np.array_equal(getattr(back, field), getattr(want, field)), field
+    assert back.kind[-1] == 1 and len(back) == n
