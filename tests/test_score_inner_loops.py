@@ -16,7 +16,7 @@ from scipy.ndimage import distance_transform_edt
 
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
-from svgtile.metrics import coverage
+from svgtile.metrics import coverage, pattern
 from svgtile.svg.reader import read_exemplar
 from svgtile.svg.texture import _own_use_block, read_texture
 from svgtile.svg.writer import svg_document
@@ -111,3 +111,21 @@ def test_a_kind_first_met_on_the_last_line_is_kept(tmp_path):
     for field in ("kind", "xy", "angle", "scale"):
         assert np.array_equal(getattr(back, field), getattr(want, field)), field
     assert back.kind[-1] == 1 and len(back) == n
+
+
+def test_set_covariance_of_apart_rectangles_is_the_plain_sum(monkeypatch):
+    # nine sample windows far apart; displacements shorter than that
+    boxes = shapely.MultiPolygon([shapely.box(x, y, x + 37.5 + x / 7, y + 41.25 - y / 11)
+                                  for x in (0.0, 120.0, 240.0) for y in (0.0, 130.0, 260.0)])  # fmt: skip
+    rng = np.random.default_rng(12)
+    d = rng.uniform(-45.0, 45.0, (20_001, 2))
+    d[::7] = d[::7].round(1)  # some on the windows' widths exactly
+    parts = shapely.bounds(shapely.get_parts(boxes))
+    w, h = parts[:, 2] - parts[:, 0], parts[:, 3] - parts[:, 1]
+    plain = (np.maximum(w[None, :] - np.abs(d[:, 0:1]), 0.0) * np.maximum(h[None, :] - np.abs(d[:, 1:2]), 0.0)).sum(axis=1)
+    want = np.maximum(plain, 1e-12 * (boxes.bounds[2] - boxes.bounds[0]) * (boxes.bounds[3] - boxes.bounds[1]))
+    for chunk in (1, 1000, 1 << 13, 1 << 30):
+        monkeypatch.setattr(pattern, "_PAIR_CHUNK", chunk)
+        got = pattern._set_covariance(boxes, d, reach=50.0)
+        assert np.array_equal(got, want), chunk
+    assert (want > 1e-6).sum() > 10_000  # most displacements overlap some window
