@@ -92,3 +92,10 @@ def test_a_ground_that_is_no_colour_is_refused(tmp_path, value):
                     '<circle cx="5" cy="5" r="1"/></svg>')  # fmt: skip
     with pytest.raises(ExemplarError, match="svgtile:ground"):
         read_exemplar(path)
+
+
+@pytest.mark.parametrize("paint", ['fill="#000" fill-opacity="0.2"', 'style="fill:#000;opacity:30%"',
+                                   'fill="currentColor"'])  # fmt: skip
+def test_a_translucent_or_inherited_background_is_no_ground(tmp_path, paint):
+    (tmp_path / "tile.svg").write_text(HEAD + f'<rect x="0" y="0" width="40" height="40" {paint}/>' + LENSES + "</svg>")
+    assert parse_exemplar(import_tile(tmp_path / "tile.svg").text, source="tile.svg").ground is None

@@ -102,6 +102,17 @@ class TilePieces:
     ground: str = ""
 
 
+def _alpha(text: str | None) -> float:
+    """An opacity value (a number, or a percentage); 1 if missing, 0 if unreadable."""
+    if text is None:
+        return 1.0
+    t = text.strip()
+    try:
+        return float(t[:-1]) / 100.0 if t.endswith("%") else float(t)
+    except ValueError:
+        return 0.0
+
+
 def read_tile(path: str | Path) -> TilePieces:
     """Read a pattern tile SVG file into pieces (see :func:`parse_tile`)."""
     return parse_tile(read_svg_bytes(path), source=str(path))
@@ -279,7 +290,10 @@ class _TileWalk:
             self.filled_frame |= filled
             if filled:  # the ground the pattern is drawn on, where it is a plain colour
                 fill = style.get("fill", INITIAL["fill"]).strip()
-                self.ground = fill if GROUND_VALUE.fullmatch(fill) else ""
+                # a translucent or inherited paint is no plain colour to paint a map unit with
+                opaque = all(_alpha(style.get(k)) >= 1.0 for k in ("opacity", "fill-opacity"))
+                plain = fill.lower() not in ("none", "currentcolor", "inherit", "transparent")
+                self.ground = fill if opaque and plain and GROUND_VALUE.fullmatch(fill) else ""
             return
         paint = {k: style[k] for k in PIECE_PAINT if k in style}
         paint["fill"] = style.get("fill", INITIAL["fill"])
