@@ -202,7 +202,7 @@ def fill(
     cellular = cellular_classes(styles)
     if cellular:  # (fill_regions would drop the cells without a word)
         raise ParameterError(f"class {cellular[0]!r} is cellular, and its cells are polygons, which a point layer "
-                             "cannot hold: fill its units with svgtile map -o FILE.geojson")  # fmt: skip
+                             "cannot hold: fill the units with svgtile map -o FILE.svg")  # fmt: skip
     for path in sorted({str(st.exemplar) for st in styles.classes.values()}):
         load_exemplar(path)  # a bad exemplar is one error before any work, not one per polygon
     zone = None

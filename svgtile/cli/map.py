@@ -125,8 +125,10 @@ def map_cmd(map_file, styles_file, output, avoid, seed, jobs, with_style, schedu
     if kind in POINT_FORMATS and (kind != "geojson" or crs is not None):  # GDAL writes the layer at the end
         cellular = cellular_classes(styles)
         if cellular:
-            raise ParameterError(f"{output}: class {cellular[0]!r} is cellular, and its cells are polygons, which a "
-                                 "point layer cannot hold: write the map to .svg, or to .geojson without a CRS")  # fmt: skip
+            where = "a map with a CRS" if kind == "geojson" else "a point layer"
+            raise ParameterError(f"{output}: class {cellular[0]!r} is cellular, and its cells are polygons, which "
+                                 f"{where} written here cannot hold yet: write the map to .svg, or a map without a "
+                                 "CRS to .geojson")  # fmt: skip
         result = fill_map(map_file, styles, seed=seed, avoid=avoid, jobs=jobs or default_jobs(), max_motifs=MAX_MOTIFS,
                           scheduler=scheduler, tile_size=tile_size, bar=bar)  # fmt: skip
         Stderr.clear()
