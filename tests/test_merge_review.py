@@ -115,7 +115,7 @@ def test_a_motif_engine_refuses_a_pattern_of_cells_only_in_one_line(tmp_path, ca
     capsys.readouterr()
     rc = main(["synth", str(ex), "--size", "60x60", "--seed", "1", "-o", str(out), *extra])
     err = capsys.readouterr().err
-    assert rc == 1 and not out.exists() and err.count("\n") == 1 and "use --engine cellular" in err
+    assert rc == 1 and not out.exists() and err.count("\n") == 1 and "--engine cellular or auto" in err
 
 
 def test_analyze_rings_of_a_pattern_of_cells_only_is_one_line(tmp_path, capsys):

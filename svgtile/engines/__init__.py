@@ -248,7 +248,8 @@ def check_motifs(exemplar: Exemplar, engine: Engine) -> None:
     """
     if len(exemplar.motifs) == 0 and not hasattr(engine, "place_cells"):
         raise ExemplarError(f"engine {engine.name!r} places motifs, and this pattern of cells has none: "
-                            "use --engine cellular (or auto)", source=exemplar.source)  # fmt: skip
+                            "use the cellular engine (--engine cellular or auto; in a styles file engine = \"cellular\" "
+                            "or no engine key)", source=exemplar.source)  # fmt: skip
 
 
 def _steered(region: Region, controls: Controls) -> Region:
