@@ -20,8 +20,9 @@ follows :class:`~svgtile.engines.base.Engine`.  A plug-in cannot replace a built
 The registry holds declarations only — each engine's parameter class and protocol object, in a
 module that imports none of its implementation (``growth`` and ``cellular``: their packages'
 ``__init__``; ``optimize``: :mod:`.optimize.engine`).  An engine's implementation, with what it
-alone needs (numba, scipy's interpolators and sparse solvers), is imported when it runs, so
-``svgtile score``, ``analyze`` and every command's start-up do without them
+alone needs (numba, scipy's interpolators; the engines' solver modules), is imported when it
+runs, so ``svgtile score``, ``analyze`` and every command's start-up do without them (scipy's
+sparse linear algebra is loaded anyway, by :mod:`scipy.spatial`)
 (``tests/test_layout.py`` checks it).
 """
 
