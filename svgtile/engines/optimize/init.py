@@ -3,12 +3,18 @@
 The plane is cut into world-anchored square cells of side ``c`` (a few exemplar spacings, the
 neighbourhood's extent).  Cell ``(a, b)`` receives the exemplar's motifs from a window of side
 ``c(1 + σ)`` centred at a point of the exemplar drawn by a hash of the run's key and ``(a, b)``,
-translated onto the cell's centre; on a repeating tile the window may straddle its edges.
-Where neighbouring patches meet, overlapping or rule-breaking pairs are culled
+translated onto the cell's centre.  Where neighbouring patches meet, overlapping or rule-breaking pairs are culled
 (:func:`svgtile.core.conflicts.cull`), the motif farther from its own cell's centre leaving
 first.  Every choice depends on the cell and its neighbours only, so the start at a place does
 not depend on how far the region extends — and neither, after a few local iterations, does the
 optimised texture (the engine contract's edit stability).
+
+A repeating tile of rows or a lattice is the exception (:func:`period_start`, the rule
+``tile-order`` of :mod:`svgtile.engines.choose`): its copies on its own period meet without seams — the tile's pairs across its edges are its own — so the start is the tile
+repeated, nothing is culled and the solver, which keeps the element count (§4), keeps the
+tile's density.  Patches drawn from random places of the tile met at seams that lost about a
+fifth of the motifs to culling (Equinor: density / ρ 0.74–0.84 on every tile).  An irregular
+(scatter) tile keeps the patches: repeated whole it would repeat at its period (repetition ≈ 1).
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ import math
 import numpy as np
 import shapely
 
+from svgtile.analysis.order import read_order
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
@@ -52,6 +59,8 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     """
     motifs, protos = exemplar.motifs, exemplar.prototypes
     period = getattr(exemplar, "period", None)
+    if period is not None and flow is None and read_order(exemplar).kind != "scatter":
+        return period_start(exemplar, stats, region, boundary)
     x0, y0, x1, y1 = exemplar.region.bounds
     win = cell * (1.0 + overlap)
     pts, src = motifs.xy, np.arange(len(motifs))
@@ -91,6 +100,40 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), off + 1e-3 * tie)
     arr = arr.take(keep)
     return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
+
+
+def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str) -> Arrangement:
+    """The repeating tile on its own period over ``region`` (§4.1's patches, seamless).
+
+    Copy ``(a, b)`` of the exemplar's motifs is translated by ``(a·W, b·H)``, ``(W, H)`` the
+    tile's period, user units, so the texture at a place is the tile's at that place modulo the
+    period, whatever the region (world-anchored, as the cells of :func:`patch_start` are).  The
+    tile's own pairs across its edges are the only pairs across the copies' seams; a pair there
+    that breaks a rule (a tile drawn with a motif too close to its own copy) is culled, the
+    motif of the later copy leaving.
+
+    Returns
+    -------
+    Arrangement with no conflicts, kept by the boundary mode.
+    """
+    motifs, protos = exemplar.motifs, exemplar.prototypes
+    w, h = exemplar.period
+    r = float(motif_radius(motifs, protos).max())
+    X0, Y0, X1, Y1 = region.bounds
+    ex, ey = motifs.xy[:, 0], motifs.xy[:, 1]
+    i = np.arange(math.floor((X0 - r - ex.max()) / w), math.ceil((X1 + r - ex.min()) / w) + 1)
+    j = np.arange(math.floor((Y0 - r - ey.max()) / h), math.ceil((Y1 + r - ey.min()) / h) + 1)
+    A, B = (v.ravel() for v in np.meshgrid(i, j))
+    m = len(motifs)
+    xy = (motifs.xy[None] + (np.stack([A * w, B * h], -1))[:, None]).reshape(-1, 2)
+    arr = Arrangement(np.tile(motifs.kind, len(A)), xy, np.tile(motifs.angle, len(A)),
+                      np.tile(motifs.scale, len(A))).quantized(DECIMALS)  # fmt: skip
+    near = region.keep(arr, protos, boundary)
+    arr = arr.take(near)
+    # the later copy's motif leaves: (row of copies, copy in the row, motif), all world-anchored
+    order = (np.repeat(B * (i.max() - i.min() + 1) + A, m) * m + np.tile(np.arange(m), len(A)))[near]
+    keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), order.astype(np.float64))
+    return arr.take(keep)
 
 
 def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, key: int,
