@@ -59,7 +59,7 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     """
     motifs, protos = exemplar.motifs, exemplar.prototypes
     period = getattr(exemplar, "period", None)
-    if period is not None and flow is None and read_order(exemplar).kind != "scatter":
+    if seamless(exemplar, flow):
         return period_start(exemplar, stats, region, boundary)
     x0, y0, x1, y1 = exemplar.region.bounds
     win = cell * (1.0 + overlap)
@@ -100,6 +100,12 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), off + 1e-3 * tie)
     arr = arr.take(keep)
     return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
+
+
+def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
+    """Whether the start is the tile itself (:func:`period_start`): a repeating tile of rows or
+    a lattice (not scatter), not turned by a flow field."""
+    return getattr(exemplar, "period", None) is not None and flow is None and read_order(exemplar).kind != "scatter"
 
 
 def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str) -> Arrangement:
