@@ -92,3 +92,30 @@ def test_an_irregular_tile_keeps_the_patch_start():
     assert read_order(ex).kind == "scatter"
     arr = patch_start(ex, analyze(ex), Region.rectangle(5 * W, 4 * H), "clip", key=7, cell=10.0, overlap=0.25)
     assert (modulo_tile(ex, arr.xy) > 0.1).mean() > 0.5
+
+
+def test_insertion_fills_the_holes_a_lattice_predicts_and_breaks_no_rule():
+    """Known answer (``Settings(insert=True)``): a lattice with 6 sites emptied gets them back,
+    on their sites, with no overlap and no violation; without insertion the count is kept."""
+    from test_baselines import brute_force_conflicts
+
+    from svgtile.core.arrangement import DECIMALS, Arrangement
+    from svgtile.engines.optimize.solver import Settings, refine
+
+    step, n = 6.0, 12
+    sites = (np.stack(np.meshgrid(np.arange(4), np.arange(3)), -1).reshape(-1, 2) + 0.5) * step
+    ex = parse_exemplar(tile(sites * [W / 24, H / 18], np.zeros(12, int)).replace("#dash", "#dot"))
+    stats = analyze(ex)
+    g = (np.arange(n) + 0.5) * step
+    full = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+    holes = np.array([3 * n + 3, 3 * n + 8, 6 * n + 5, 8 * n + 2, 8 * n + 9, 9 * n + 6])
+    xy = np.delete(full, holes, axis=0)
+    start = Arrangement(np.zeros(len(xy), int), xy, np.zeros(len(xy)), np.ones(len(xy))).quantized(DECIMALS)
+    region = Region.rectangle(n * step, n * step)
+    kept, _ = refine(start, ex, stats, region, "centroid", iterations=4, key=1)
+    assert len(kept) == len(start)
+    arr, _ = refine(start, ex, stats, region, "centroid", iterations=4, key=1, settings=Settings(insert=True))
+    assert brute_force_conflicts(arr, ex, stats) == (0, 0)
+    assert len(arr) == n * n
+    d = np.hypot(*(full[holes][:, None] - arr.xy[None]).transpose(2, 0, 1)).min(axis=1)
+    assert d.max() < 0.1 * step, d

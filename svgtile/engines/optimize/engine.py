@@ -57,7 +57,7 @@ class OptimizeParams(EngineParams):
     alpha: float = 1.0
     domain: float = 1.0
     elongated: float = 0.0
-    insert: bool = True
+    insert: bool = False
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -96,8 +96,9 @@ class OptimizeEngine:
         from svgtile.engines.optimize.solver import refine
 
         ex = ctx.exemplar
-        # insertion refills the seams of patches cut from a repeating tile; elsewhere the start's
-        # density holds (patches of a drawn exemplar thinned to ρ, or the tile itself)
+        # insertion (opt-in: it overfills tiles of dense rows) refills the seams of patches cut
+        # from a repeating tile; elsewhere the start's density holds (patches of a drawn exemplar
+        # thinned to ρ, or the tile itself)
         settings = replace(p.settings(), insert=p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow))
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)

@@ -9,12 +9,14 @@ first.  Every choice depends on the cell and its neighbours only, so the start a
 not depend on how far the region extends — and neither, after a few local iterations, does the
 optimised texture (the engine contract's edit stability).
 
-A repeating tile of rows or a lattice is the exception (:func:`period_start`, the rule
-``tile-order`` of :mod:`svgtile.engines.choose`): its copies on its own period meet without seams — the tile's pairs across its edges are its own — so the start is the tile
+A repeating tile of an exact lattice is the exception (:func:`seamless`, :func:`period_start`;
+as patch's copies on the period, :mod:`svgtile.engines.choose`'s ``tile-order``): its copies on
+its own period meet without seams — the tile's pairs across its edges are its own — so the start is the tile
 repeated, nothing is culled and the solver, which keeps the element count (§4), keeps the
 tile's density.  Patches drawn from random places of the tile met at seams that lost about a
-fifth of the motifs to culling (Equinor: density / ρ 0.74–0.84 on every tile).  An irregular
-(scatter) tile keeps the patches: repeated whole it would repeat at its period (repetition ≈ 1).
+fifth of the motifs to culling (Equinor: density / ρ 0.74–0.84 on every tile).  Any other
+tile keeps the patches: repeated whole it would repeat at its period, and the solver inserts
+what the seams lost (:mod:`.insert`).
 """
 
 from __future__ import annotations
@@ -23,8 +25,9 @@ import math
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 
-from svgtile.analysis.order import read_order
+from svgtile.analysis.order import SUPPORT, read_order
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
@@ -33,6 +36,10 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
+
+#: A lattice step is exact when same-kind partners lie within this many mean spacings of it
+#: (:data:`svgtile.metrics.order.EXACT`, the repetition figure's half bin).
+EXACT = 0.05
 
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
 _TIE = 73
@@ -103,9 +110,40 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
 
 
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
-    """Whether the start is the tile itself (:func:`period_start`): a repeating tile of rows or
-    a lattice (not scatter), not turned by a flow field."""
-    return getattr(exemplar, "period", None) is not None and flow is None and read_order(exemplar).kind != "scatter"
+    """Whether the start is the tile itself (:func:`period_start`): a repeating tile whose motifs
+    stand on an exact lattice (two steps, neither the tile's period, each met by a same-kind
+    motif within :data:`EXACT` spacings for :data:`~svgtile.analysis.order.SUPPORT` of them),
+    not turned by a flow field.
+
+    Only there is the tile's period a step of the pattern's own order; the tile of irregular
+    content, or of rows at a free phase, repeated whole repeats at its period (FGDC 610, 611,
+    616, 617, Equinor 11030: repetition 0.5–0.6), so it starts from patches.  The rule is
+    :func:`svgtile.metrics.order.order_steps`'s, which the repetition figure leaves out.
+    """
+    period = getattr(exemplar, "period", None)
+    if period is None or flow is not None:
+        return False
+    order = read_order(exemplar)
+    if order.kind != "lattice" or len(order.steps) < 2:
+        return False
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    tol = EXACT * math.sqrt(exemplar.region.area / len(xy))
+    w, h = period
+    copies = (xy[None] + np.array([(i * w, j * h) for i in (-1, 0, 1) for j in (-1, 0, 1)])[:, None]).reshape(-1, 2)
+    tree, ckind = cKDTree(copies), np.tile(kind, 9)
+    for step in order.steps[:2]:
+        g = np.asarray(step.vector, dtype=np.float64)
+        a, b = round(g[0] / w), round(g[1] / h)
+        if (a, b) != (0, 0) and abs(g[0] - a * w) <= tol and abs(g[1] - b * h) <= tol:
+            return False  # the period itself: every tile "repeats" at it
+        met = np.zeros(len(xy), dtype=bool)
+        for sign in (1.0, -1.0):
+            pairs = tree.sparse_distance_matrix(cKDTree(xy + sign * g), tol, output_type="ndarray")
+            same = ckind[pairs["i"]] == kind[pairs["j"]]
+            met[pairs["j"][same]] = True
+        if met.mean() < SUPPORT:
+            return False
+    return True
 
 
 def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str) -> Arrangement:
