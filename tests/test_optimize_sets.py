@@ -38,11 +38,12 @@ MISSES: dict[str, str] = {
     "scrub": "L = 0.84 measured",
 }
 #: The first tile of each set that misses a bound, with its figures (2 x 2 tiles, seed 1; re-measured
-#: with issue 12's repetition, which leaves out the lattice of an exact tile: allotments passes now).
+#: with issue 12's repetition, which leaves out the lattice of an exact tile: allotments passes now;
+#: since an exact lattice tile starts as the tile itself, osm-carto passes whole and Equinor 10000
+#: passes: its first miss is 11026, whose density / rho the tile engine measures 0.75 as well).
 SET_MISSES: dict[str, str] = {
     "fgdc": "601.svg: L = 0.79, density / rho 0.82 measured",
-    "osm-carto": "dog_park.svg: L = 0.42, density / rho 0.75 measured",
-    "equinor": "10000.svg: repetition 0.23, density / rho 0.79 measured",
+    "equinor": "11026.svg: density / rho 0.75 measured (the tile engine: 0.75)",
 }
 
 
@@ -90,6 +91,8 @@ def test_every_accepted_tile_meets_the_bounds(name):
         except TileRefused:
             continue
         ex = parse_exemplar(t.text, source=str(path))
+        if ex.cellular is not None:  # a pattern of cells has no motifs to place: the cellular engine's
+            continue
         x0, y0, w, h = t.box
         m = measure(ex, analyze(ex), Region.rectangle(2 * w, 2 * h, x0, y0))
         assert not misses(m), f"{path.name}: {', '.join(misses(m))}"

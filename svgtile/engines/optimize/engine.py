@@ -14,7 +14,7 @@ only near the edit.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -42,7 +42,7 @@ class OptimizeParams(EngineParams):
         Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
-    anchor, sweeps, similar, alpha, domain, elongated : solver settings (:class:`.solver.Settings`)
+    anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
     """
 
     passes: int = param(10, "Optimisation iterations (search, then assignment) after the patch-copy start.",
@@ -57,6 +57,7 @@ class OptimizeParams(EngineParams):
     alpha: float = 1.0
     domain: float = 1.0
     elongated: float = 0.0
+    insert: bool = False
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -73,7 +74,7 @@ class OptimizeParams(EngineParams):
         from svgtile.engines.optimize.solver import Settings
 
         return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps, self.domain,
-                        self.elongated)
+                        self.elongated, self.insert)
 
 
 class OptimizeEngine:
@@ -91,16 +92,20 @@ class OptimizeEngine:
 
     def place(self, ctx: Context, p: OptimizeParams) -> Arrangement:
         """Exemplar patches (§4.1), refined by ``p.passes`` iterations (§4)."""
-        from svgtile.engines.optimize.init import patch_start
+        from svgtile.engines.optimize.init import patch_start, seamless
         from svgtile.engines.optimize.solver import refine
 
         ex = ctx.exemplar
+        # insertion (opt-in: it overfills tiles of dense rows) refills the seams of patches cut
+        # from a repeating tile; elsewhere the start's density holds (patches of a drawn exemplar
+        # thinned to ρ, or the tile itself)
+        settings = replace(p.settings(), insert=p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow))
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
         arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
                           overlap=p.start_overlap, flow=ctx.controls.flow)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
-                        flow=ctx.controls.flow, settings=p.settings(), progress=ctx.progress)  # fmt: skip
+                        flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip
         return arr
 
     def reach(self, exemplar: Exemplar, params: OptimizeParams) -> float:

@@ -9,8 +9,9 @@
 
 The energy ``E = Σ_o min_i |n(s_o) − n(s_i)|²`` (§3.2–§4), reported per iteration as its mean
 per element (squared exemplar spacings), is that of the search of each iteration, i.e. of the
-positions the previous iteration left.  The element count is kept (as in the paper): density is
-that of the start.
+positions the previous iteration left.  The element count is kept (as in the paper), unless
+``Settings.insert``: then elements the neighbourhoods predict where none stands are added
+(:mod:`.insert`).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
 from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
 from svgtile.engines.optimize.elements import Layout, layout
+from svgtile.engines.optimize.insert import insert
 from svgtile.engines.optimize.match import candidate_costs, pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
@@ -54,6 +56,9 @@ class Settings:
         none on a repeating tile, whose samples all have whole neighbourhoods)
     elongated : length over width from which a motif is two samples (§3.1, :mod:`.elements`;
         0, the default: one sample per motif; :data:`.elements.ELONGATED` is the value measured)
+    insert : whether elements are added where the neighbourhoods predict one and none stands
+        (:mod:`.insert`; iterations 2 to N − 1, one sample per motif only).  The paper keeps the
+        count of its start; the engine inserts, ``--refine`` keeps the count.
     """
 
     neighbours: int = 6
@@ -63,6 +68,7 @@ class Settings:
     sweeps: int = 3
     domain: float = 1.0
     elongated: float = 0.0
+    insert: bool = False
 
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
@@ -122,6 +128,15 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         else:
             cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
         match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
+        if s.insert and lay is None and 0 < it < iterations - 1:
+            grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
+            if len(chosen):  # the grown output searched again, the new elements from their predicted samples
+                arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
+                sarr = arr
+                turn = local_turn(flow, sarr.xy)
+                hoods = output_neighbourhoods(sarr.xy, sarr.kind, s.neighbours, samples.spacing, turn)
+                cand = coherent_candidates(samples, hoods, grown_match, lambda q: wrap(q, exemplar))
+                match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
         extra = np.zeros(len(sarr))
         if domain is not None:
             match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
@@ -144,6 +159,19 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             new = _motifs(lay, arr, new, owner)
         arr, known = settle(arr, new.quantized(DECIMALS), exemplar, stats, region, boundary, known, lax)
     return arr, energies
+
+
+def _reading_order(grown: Arrangement, n: int, known: np.ndarray, lax: np.ndarray, match: np.ndarray):
+    """``grown`` (``n`` elements, then the inserted ones) in reading order, as :func:`refine`
+    keeps its elements (ties go by position, so by index only in reading order), with the
+    conflict codes ``known`` of the first ``n``, ``lax`` (n,) and ``match`` (all) carried along."""
+    order = np.lexsort((grown.xy[:, 0], grown.xy[:, 1]))
+    where = np.empty(len(grown), dtype=np.int64)
+    where[order] = np.arange(len(grown))
+    i, j = where[known // n], where[known % n]
+    codes = np.sort(np.minimum(i, j) * len(grown) + np.maximum(i, j))
+    lax = np.r_[lax, np.zeros(len(grown) - n, dtype=bool)][order]
+    return grown.take(order), codes, lax, match[order]
 
 
 def _domain_search(domain: DomainTerm, s: Settings, samples: Samples, hoods, arr: Arrangement, cand: np.ndarray,
