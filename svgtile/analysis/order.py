@@ -43,6 +43,10 @@ STEP_TOLERANCE = 0.2
 SUPPORT = 0.6
 #: A second lattice step differs from the first by at least this many degrees.
 NOT_PARALLEL = 20.0
+#: Beyond the nearest neighbours only exact steps are trusted (:func:`symmetry_steps`): the
+#: matches lie within this many mean spacings (as :data:`svgtile.metrics.order.EXACT`), so a
+#: hand-jittered tile's far displacements and chance matches make no step.
+EXACT_STEP = 0.05
 #: Strips across the row direction are this many mean spacings wide (banding).
 STRIP = 1.0
 #: Fewest motifs for an order to be read; below this the figures are empty (NaN, no steps).
@@ -171,7 +175,7 @@ def read_order(exemplar: Exemplar) -> Order:
     tol = STEP_TOLERANCE * spacing
     steps = translation_steps(xy, kind, period, tol) if period is not None or n >= MIN_ORDERED else ()
     if period is not None and len(steps) < 2:
-        wider = symmetry_steps(xy, kind, period, tol)
+        wider = symmetry_steps(xy, kind, period, EXACT_STEP * spacing)
         steps = wider if len(wider) > len(steps) else steps
     kind_name = "lattice" if len(steps) == 2 else "rows" if len(steps) == 1 else "scatter"
     aniso, aniso_angle = _anisotropy(vectors[:, 0, :])
@@ -233,9 +237,12 @@ def translation_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, flo
 
 
 def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float], tol: float) -> tuple[Step, ...]:
-    """The steps of a repeating tile whose kinds interleave: translations that map at least
+    """The exact steps of a repeating tile whose kinds interleave: translations that map at least
     :data:`SUPPORT` of the motifs onto a motif of their own kind, found among all same-kind
     displacements shorter than half the tile rather than the :data:`NEIGHBOURS` nearest.
+    :func:`read_order` asks for them (with ``tol`` = :data:`EXACT_STEP` spacings) only for a
+    tile in which the nearest neighbours give fewer than two steps, and takes them only when they
+    are more.
 
     In a tile of "=" signs between rows of dots (Equinor 30100), each kind's nearest neighbours
     of its own kind are the dots' short diagonals, which no other dot shares; the step by which
@@ -248,7 +255,7 @@ def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float]
     xy : (n, 2) float array, user units
     kind : (n,) int array
     period : (w, h) of the repeating tile, user units
-    tol : user units, :data:`STEP_TOLERANCE` times the spacing
+    tol : user units, how far a match may lie from ``x ± v``
 
     Returns
     -------
@@ -270,7 +277,9 @@ def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float]
     cand = np.where(flip[:, None], -cand, cand)
     if not len(cand):
         return ()
-    cand = cand[np.sort(np.unique(np.round(cand / tol), axis=0, return_index=True)[1])]  # one of each
+    # one candidate per cell of STEP_TOLERANCE / EXACT_STEP = 4 tolerances: an exact step's
+    # displacements all fall in one cell, and the candidates stay few
+    cand = cand[np.sort(np.unique(np.round(cand / (4.0 * tol)), axis=0, return_index=True)[1])]
     # exact support: the motif has a motif of its kind at +v or at −v (within tol)
     m = len(cand)
     hits = np.zeros((m, n), dtype=bool)
