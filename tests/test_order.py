@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -258,3 +259,54 @@ def test_cli_analyze_prints_the_order_and_auto(tmp_path, capsys):
     assert r["order"]["kind"] == "lattice" and r["order"]["period"] == [40, 40]
     assert r["auto"] == {"engine": "patch", "params": {"grid": "lattice", "max_rotation": 0.0}, "rule": "tile-order",
                          "why": r["auto"]["why"]}  # fmt: skip
+
+
+# ------------------------------------------------------------- a tile whose kinds interleave (issue 12)
+
+
+def interleaved_tile():
+    """A 32 × 32 tile like Equinor 30100: dashes on the lattice (16, 0), (8, 8), dots on the rest of
+    the lattice (8, 0), (4, 4), so each dot's nearest dots lie along short diagonals no other dot
+    shares and the step by which the whole pattern repeats is further out than six neighbours."""
+    pts, kinds = [], []
+    for y in range(0, 32, 4):
+        for x in range((y // 4) % 2 * 4, 32, 8):
+            pts.append((x + 1.0, y + 1.0))
+            kinds.append(1 if y % 8 == 0 and (x - y) % 16 == 0 else 0)
+    return pts, kinds
+
+
+def test_a_tile_whose_kinds_interleave_is_a_lattice_of_the_steps_it_repeats_by():
+    pts, kinds = interleaved_tile()
+    assert sum(kinds) == 8 and len(pts) == 32
+    ex = exemplar(pts, kinds, size=(32.0, 32.0), period=True)
+    o = read_order(ex)
+    assert o.kind == "lattice"
+    xy, k = np.array(pts), np.array(kinds)
+    for s in o.steps:  # each step maps every motif onto one of its own kind, across the tile's edges
+        moved = (xy + s.vector) % 32.0
+        hit = [np.any(np.all(np.isclose(xy, m), axis=1) & (k == km)) for m, km in zip(moved, k, strict=True)]
+        assert all(hit) and s.support == 1.0 and s.spread < 1e-9
+    assert {round(s.length, 6) for s in o.steps} <= {round(math.hypot(8, 8), 6), 16.0}
+    assert choose(ex, analyze(ex)).rule == "tile-order"
+
+
+def test_a_tile_of_scattered_kinds_gains_no_steps_from_the_wider_search():
+    pts = random_points(40, size=(32.0, 32.0), seed=3)
+    kinds = [i % 2 for i in range(len(pts))]
+    assert read_order(exemplar(pts, kinds, size=(32.0, 32.0), period=True)).kind == "scatter"
+
+
+EQUINOR_30100 = Path(__file__).resolve().parents[2] / "shared" / "data" / "equinor-lithology" / "svg" / "30100.svg"
+
+
+@pytest.mark.skipif(not EQUINOR_30100.is_file(), reason="../shared/data (real symbol sets) is not beside the checkout")
+def test_equinor_30100_is_read_as_its_exact_lattice_and_auto_stamps_it_unturned():
+    from svgtile.tiles.importer import import_tile
+
+    ex = parse_exemplar(import_tile(EQUINOR_30100).text, source="30100")
+    o = read_order(ex)
+    assert o.kind == "lattice" and all(s.spread < 1e-6 and s.support > 0.95 for s in o.steps)
+    assert sorted(round(s.length, 6) for s in o.steps) == [round(math.hypot(8, 8), 6), 16.0]
+    c = choose(ex, analyze(ex), order=o)
+    assert (c.engine, c.params.get("max_rotation")) == ("patch", 0.0)
