@@ -402,4 +402,28 @@ def _banding(xy: np.ndarray, kind: np.ndarray, exemplar: Exemplar, angle: float,
     return banding, max(0.0, tv(kind) - tv(shuffled))
 
 
-__all__ = ["Order", "Step", "dominant_steps", "neighbour_vectors", "read_order", "symmetry_steps", "translation_steps"]
+def exact_support(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] | None, g: np.ndarray,
+                   tol: float) -> float:  # fmt: skip
+    """Share of the motifs with a same-kind motif within ``tol`` of ``x + g`` or ``x − g``
+    (across a tile's edges: its motifs and their 8 neighbouring copies).
+
+    The test of an *exact* step, which the repetition figure (:mod:`svgtile.metrics.order`) and
+    the optimize engine's seamless start (:func:`svgtile.engines.optimize.init.seamless`) share.
+    ``xy`` (n, 2) and ``g`` (2,) and ``tol`` in user units, ``kind`` (n,) ints, ``period`` (w, h)
+    or None.
+    """
+    if period is None:
+        shifts = np.zeros((1, 2))
+    else:
+        shifts = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64) * np.asarray(period)
+    has = np.zeros(len(xy), dtype=bool)
+    for c in np.unique(kind):
+        mine = np.flatnonzero(kind == c)
+        tree = cKDTree((xy[mine][None, :, :] + shifts[:, None, :]).reshape(-1, 2))
+        for sign in (1.0, -1.0):
+            d, _ = tree.query(xy[mine] + sign * g, k=1, distance_upper_bound=tol)
+            has[mine] |= np.isfinite(d)
+    return float(has.mean()) if len(xy) else 0.0
+
+
+__all__ = ["Order", "Step", "dominant_steps", "exact_support", "neighbour_vectors", "read_order", "symmetry_steps", "translation_steps"]

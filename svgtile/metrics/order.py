@@ -44,9 +44,8 @@ for (≈ 0.3 for rows of 0.1-spacing bins), so a faithful texture of such rows i
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import cKDTree
 
-from svgtile.analysis.order import SUPPORT, read_order
+from svgtile.analysis.order import SUPPORT, exact_support, read_order
 from svgtile.core.exemplar import Exemplar
 
 #: A step is exact when its partners lie within this many mean spacings of it (half a bin of
@@ -82,7 +81,7 @@ def order_steps(exemplar: Exemplar, spacing: float, shortest_period: float) -> n
         g = np.asarray(step.vector, dtype=np.float64)
         if period is not None and _is_period(g, period, tol) and not np.hypot(*g) < shortest_period:
             continue
-        if _exact_support(xy, kind, period, g, tol) >= SUPPORT:
+        if exact_support(xy, kind, period, g, tol) >= SUPPORT:
             kept.append(g)
     return np.array(kept, dtype=np.float64).reshape(-1, 2)
 
@@ -126,24 +125,6 @@ def _is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
     w, h = period
     i, j = round(g[0] / w), round(g[1] / h)
     return (i, j) != (0, 0) and abs(g[0] - i * w) <= tol and abs(g[1] - j * h) <= tol
-
-
-def _exact_support(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] | None, g: np.ndarray,
-                   tol: float) -> float:  # fmt: skip
-    """Share of the motifs with a same-kind motif within ``tol`` of ``x + g`` or ``x − g``
-    (across a tile's edges: its motifs and their 8 neighbouring copies)."""
-    if period is None:
-        shifts = np.zeros((1, 2))
-    else:
-        shifts = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64) * np.asarray(period)
-    has = np.zeros(len(xy), dtype=bool)
-    for c in np.unique(kind):
-        mine = np.flatnonzero(kind == c)
-        tree = cKDTree((xy[mine][None, :, :] + shifts[:, None, :]).reshape(-1, 2))
-        for sign in (1.0, -1.0):
-            d, _ = tree.query(xy[mine] + sign * g, k=1, distance_upper_bound=tol)
-            has[mine] |= np.isfinite(d)
-    return float(has.mean()) if len(xy) else 0.0
 
 
 __all__ = ["BOX", "EXACT", "explained", "order_steps"]

@@ -25,9 +25,8 @@ import math
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
-from svgtile.analysis.order import SUPPORT, read_order
+from svgtile.analysis.order import SUPPORT, exact_support, read_order
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
@@ -129,19 +128,12 @@ def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     tol = EXACT * math.sqrt(exemplar.region.area / len(xy))
     w, h = period
-    copies = (xy[None] + np.array([(i * w, j * h) for i in (-1, 0, 1) for j in (-1, 0, 1)])[:, None]).reshape(-1, 2)
-    tree, ckind = cKDTree(copies), np.tile(kind, 9)
     for step in order.steps[:2]:
         g = np.asarray(step.vector, dtype=np.float64)
         a, b = round(g[0] / w), round(g[1] / h)
         if (a, b) != (0, 0) and abs(g[0] - a * w) <= tol and abs(g[1] - b * h) <= tol:
             return False  # the period itself: every tile "repeats" at it
-        met = np.zeros(len(xy), dtype=bool)
-        for sign in (1.0, -1.0):
-            pairs = tree.sparse_distance_matrix(cKDTree(xy + sign * g), tol, output_type="ndarray")
-            same = ckind[pairs["i"]] == kind[pairs["j"]]
-            met[pairs["j"][same]] = True
-        if met.mean() < SUPPORT:
+        if exact_support(xy, kind, period, g, tol) < SUPPORT:
             return False
     return True
 
