@@ -139,32 +139,41 @@ def best_candidates(rel_o, kind_o, centre_o, cand, rel_e, kind_e, centre_e, alph
 
     A sequential loop (the greedy pairing is), so numba; the elements are independent, but a
     ``prange`` over them measured no faster on the shared 2-core machine."""
-    n, c = cand.shape
+    n = cand.shape[0]
     best = np.empty(n, dtype=np.int64)
     cost = np.empty(n)
     k, ke = rel_o.shape[1], rel_e.shape[1]
     slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
     rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
     for i in range(n):
-        bi = 0
-        bc = np.inf
-        for j in range(c):
-            e = cand[i, j]
-            seen = False
-            for t in range(j):
-                if cand[i, t] == e:
-                    seen = True
-                    break
-            if seen:
-                continue
-            start = alpha if centre_o[i] != centre_e[e] else 0.0
-            v = _pair(rel_o[i], kind_o[i], rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg, start, bc)
-            if v < bc:
-                bc = v
-                bi = j
-        best[i] = bi
-        cost[i] = bc
+        best[i], cost[i] = _best_in_row(cand[i], rel_o[i], kind_o[i], centre_o[i], rel_e, kind_e, centre_e, alpha,
+                                        slots, d, used, rowmin, rowarg)  # fmt: skip
     return best, cost
+
+
+@numba.njit(cache=True)
+def _best_in_row(row, po, ko, centre, rel_e, kind_e, centre_e, alpha, slots, d, used, rowmin, rowarg):  # pragma: no cover
+    """The best of one element's candidates ``row`` (c,) by eq. (1), the element's neighbours
+    ``po`` (k, 2) of kinds ``ko`` (k,) and its own attribute ``centre``: (index into ``row``, the
+    first of equal costs; cost).  A candidate met again in the row is skipped; one whose partial
+    cost reaches the best so far is abandoned (:func:`_pair`)."""
+    bi = 0
+    bc = np.inf
+    for j in range(row.shape[0]):
+        e = row[j]
+        seen = False
+        for t in range(j):
+            if row[t] == e:
+                seen = True
+                break
+        if seen:
+            continue
+        start = alpha if centre != centre_e[e] else 0.0
+        v = _pair(po, ko, rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg, start, bc)
+        if v < bc:
+            bc = v
+            bi = j
+    return bi, bc
 
 
 @numba.njit(cache=True)
@@ -174,24 +183,7 @@ def _row_best(r, index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, s
     k = index.shape[1]
     for a in range(k):
         ko[a] = kind[index[r, a]] if index[r, a] >= 0 else -1
-    bi = 0
-    bc = np.inf
-    c = cand.shape[1]
-    for j in range(c):
-        e = cand[r, j]
-        seen = False
-        for t in range(j):
-            if cand[r, t] == e:
-                seen = True
-                break
-        if seen:
-            continue
-        start = alpha if kind[r] != centre_e[e] else 0.0
-        v = _pair(rel_o[r], ko, rel_e[e], kind_e[e], alpha, slots, d, used, rowmin, rowarg, start, bc)
-        if v < bc:
-            bc = v
-            bi = j
-    return bi, bc
+    return _best_in_row(cand[r], rel_o[r], ko, kind[r], rel_e, kind_e, centre_e, alpha, slots, d, used, rowmin, rowarg)
 
 
 @numba.njit(cache=True)
