@@ -426,4 +426,11 @@ def exact_support(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] 
     return float(has.mean()) if len(xy) else 0.0
 
 
-__all__ = ["Order", "Step", "dominant_steps", "exact_support", "neighbour_vectors", "read_order", "symmetry_steps", "translation_steps"]
+def is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
+    """Whether ``g`` is within ``tol`` of a non-zero integer combination ``(i w, j h)``."""
+    w, h = period
+    i, j = round(g[0] / w), round(g[1] / h)
+    return (i, j) != (0, 0) and abs(g[0] - i * w) <= tol and abs(g[1] - j * h) <= tol
+
+
+__all__ = ["Order", "Step", "dominant_steps", "exact_support", "is_period", "neighbour_vectors", "read_order", "symmetry_steps", "translation_steps"]

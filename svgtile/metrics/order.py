@@ -45,7 +45,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from svgtile.analysis.order import SUPPORT, exact_support, read_order
+from svgtile.analysis.order import SUPPORT, exact_support, is_period, read_order
 from svgtile.core.exemplar import Exemplar
 
 #: A step is exact when its partners lie within this many mean spacings of it (half a bin of
@@ -79,7 +79,7 @@ def order_steps(exemplar: Exemplar, spacing: float, shortest_period: float) -> n
     kept = []
     for step in order.steps:
         g = np.asarray(step.vector, dtype=np.float64)
-        if period is not None and _is_period(g, period, tol) and not np.hypot(*g) < shortest_period:
+        if period is not None and is_period(g, period, tol) and not np.hypot(*g) < shortest_period:
             continue
         if exact_support(xy, kind, period, g, tol) >= SUPPORT:
             kept.append(g)
@@ -118,13 +118,6 @@ def explained(disp: np.ndarray, steps: np.ndarray, half: float) -> np.ndarray:
             ry = dy - (c1 + i) * ay - (c2 + j) * by
             hit |= (np.abs(rx) <= half) & (np.abs(ry) <= half)
     return hit
-
-
-def _is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
-    """Whether ``g`` is within ``tol`` of a non-zero integer combination ``(i w, j h)``."""
-    w, h = period
-    i, j = round(g[0] / w), round(g[1] / h)
-    return (i, j) != (0, 0) and abs(g[0] - i * w) <= tol and abs(g[1] - j * h) <= tol
 
 
 __all__ = ["BOX", "EXACT", "explained", "order_steps"]

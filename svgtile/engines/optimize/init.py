@@ -26,7 +26,7 @@ import math
 import numpy as np
 import shapely
 
-from svgtile.analysis.order import SUPPORT, exact_support, read_order
+from svgtile.analysis.order import SUPPORT, exact_support, is_period, read_order
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
@@ -127,11 +127,9 @@ def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
         return False
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     tol = EXACT * math.sqrt(exemplar.region.area / len(xy))
-    w, h = period
     for step in order.steps[:2]:
         g = np.asarray(step.vector, dtype=np.float64)
-        a, b = round(g[0] / w), round(g[1] / h)
-        if (a, b) != (0, 0) and abs(g[0] - a * w) <= tol and abs(g[1] - b * h) <= tol:
+        if is_period(g, period, tol):
             return False  # the period itself: every tile "repeats" at it
         if exact_support(xy, kind, period, g, tol) < SUPPORT:
             return False
