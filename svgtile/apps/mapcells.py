@@ -23,12 +23,13 @@ from svgtile.core.cells import Cellwork
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.region import Region
 from svgtile.engines import get_engine, synthesize
+from svgtile.engines.base import draws_cells
 from svgtile.errors import ParameterError, SvgtileError
 
 
 def is_cellular(engine: str) -> bool:
-    """Whether the engine named ``engine`` draws cells (it has ``place_cells``)."""
-    return hasattr(get_engine(engine), "place_cells")
+    """Whether the engine named ``engine`` draws cells (:func:`~svgtile.engines.base.draws_cells`)."""
+    return draws_cells(get_engine(engine))
 
 
 def implied_engine(exemplar: Path) -> str:

@@ -27,6 +27,7 @@ from svgtile.apps.mapfill import MapFill, Style, Styles, cellular_classes, fill_
 from svgtile.apps.mapread import AVOID_MARGIN, MapRegion, read_avoid_shape
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import ENGINES, engines_with, public_params
+from svgtile.engines.base import draws_cells
 from svgtile.errors import ParameterError, RegionError, SvgtileError
 from svgtile.files import write_file
 from svgtile.gis import layers
@@ -75,7 +76,7 @@ def plugin_config(python: str | None = None) -> dict:
 
     type_names = {float: "float", int: "int", bool: "bool", str: "str"}
     # the plugin writes motif points: an engine of cells (cellular) is not offered, nor its parameters
-    offered = [e.name for e in ENGINES.values() if not hasattr(e, "place_cells")]
+    offered = [e.name for e in ENGINES.values() if not draws_cells(e)]
     params = [
         {"name": p.name, "type": type_names[p.type], "default": p.default, "help": p.help, "option": p.option,
          "choices": list(p.choices) if p.choices else None, "interval": list(p.interval) if p.interval else None,

@@ -33,6 +33,7 @@ from svgtile.cli.common import (
 )
 from svgtile.core.region import BOUNDARY_MODES
 from svgtile.engines import get_engine, synthesize
+from svgtile.engines.base import draws_cells
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.gis.geojson import exemplar_placements
@@ -115,7 +116,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
             return True
 
         engine, params = auto_params(ex, stats, params, controls.given(), affordable=affordable)
-    cellular = hasattr(get_engine(engine), "place_cells")
+    cellular = draws_cells(get_engine(engine))
     # the work is shared among workers only when the region is really cut into tiles
     split = is_tiled(ex, engine, tile_size, params=params, refine=refine)
     check_work(estimate, engine, where, refine=refine, workers=(jobs or default_jobs()) if split else 1,

@@ -47,6 +47,7 @@ from svgtile.engines.base import (
     Progress,
     PublicParam,
     Result,
+    draws_cells,
     honoured,
     reading_order,
 )
@@ -223,7 +224,7 @@ def synthesize(
     if not (isinstance(refine, int) and not isinstance(refine, bool) and refine >= 0):
         raise ParameterError(f"--refine must be a whole number of iterations, at least 0, not {refine!r}")
     cells = None
-    if hasattr(engine, "place_cells"):  # a cellular engine: cells and lines besides its motifs
+    if draws_cells(engine):  # a cellular engine: cells and lines besides its motifs
         arr, cells = engine.place_cells(ctx, p)
     else:
         arr = engine.place(ctx, p)
@@ -247,7 +248,7 @@ def check_motifs(exemplar: Exemplar, engine: Engine) -> None:
     ------
     ExemplarError
     """
-    if len(exemplar.motifs) == 0 and not hasattr(engine, "place_cells"):
+    if len(exemplar.motifs) == 0 and not draws_cells(engine):
         raise ExemplarError(f"engine {engine.name!r} places motifs, and this pattern of cells has none: "
                             "use the cellular engine (--engine cellular or auto; in a styles file engine = \"cellular\" "
                             "or no engine key)", source=exemplar.source)  # fmt: skip

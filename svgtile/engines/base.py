@@ -211,6 +211,12 @@ def seconds_per_motif(engine: Engine) -> float:
     return float(getattr(engine, "seconds_per_motif", DEFAULT_SECONDS_PER_MOTIF))
 
 
+def draws_cells(engine: Engine) -> bool:
+    """Whether ``engine`` draws cells and lines besides its motifs (it has ``place_cells``, as
+    the cellular engine does: :class:`svgtile.engines.cellular.CellularEngine`)."""
+    return hasattr(engine, "place_cells")
+
+
 def honoured(engine: Engine) -> frozenset[str]:
     """The :class:`Controls` an engine honours (none unless it declares ``controls``)."""
     return frozenset(getattr(engine, "controls", frozenset()))
