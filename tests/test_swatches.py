@@ -54,6 +54,37 @@ def test_sheet_shows_texture_or_reason(tiles):
     assert len(uses) == good.texture
 
 
+def test_engines_side_by_side_each_captioned_with_its_engine_and_likeness(tiles, tmp_path):
+    """--engine given several times (issue 13: growth beside patch on the sheet): one texture panel per
+    engine after the tile, in the order given, each captioned; a tile every engine refuses stays refused."""
+    sheet = swatch_sheet(collect([str(tiles)]), columns=2, engines=("patch", "growth", "auto"))
+    assert sheet.engines == ("patch", "growth", "auto") and (sheet.accepted, sheet.refused) == (1, 1)
+    hatch, good = sheet.patterns
+    assert [s.engine for s in good] == ["patch", "growth", "auto"] and all(s.refused is None for s in good)
+    assert [s.chosen for s in good[:2]] == ["patch", "growth"] and all("hatching" in s.refused for s in hatch)
+    root = ET.fromstring(sheet.text)
+    cell = root.find(f"{{{SVG_NS}}}g[@id='swatch-2']")
+    captions = [t.text for t in cell.iter(f"{{{SVG_NS}}}text")][1:]
+    assert captions[0] == "tile"
+    assert captions[1:3] == [f"{s.engine}  L {s.likeness:.2f}" for s in good[:2]]
+    assert captions[3].startswith(f"auto ({good[2].chosen})")
+    nested = [el for el in cell if el.tag == f"{{{SVG_NS}}}svg"]
+    assert len(nested) == 4 and len({el.get("x") for el in nested}) == 4  # tile + 3 textures, apart
+    uses = [len(list(el.iter(f"{{{SVG_NS}}}use"))) for el in nested[1:]]
+    assert uses == [s.texture for s in good]
+    ids = [el.get("id") for el in root.iter() if el.get("id")]
+    assert len(ids) == len(set(ids))
+    # one engine: no captions, L in the label — the sheet it always was
+    one = ET.fromstring(swatch_sheet(collect([str(tiles)]), columns=2).text)
+    assert "tile" not in [t.text for t in one.iter(f"{{{SVG_NS}}}text")]
+    # through the CLI, an engine named twice is drawn once; an unknown engine is a one-line error
+    out = tmp_path / "s.svg"
+    assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(out), "--engine", "patch", "--engine", "patch"]) == 0
+    assert len([el for el in ET.parse(out).getroot().iter(f"{{{SVG_NS}}}svg")]) == 3  # sheet, tile, one texture
+    assert main(["swatches", str(tiles / "b-good.svg"), "-o", str(tmp_path / "t.svg"), "--engine", "nope"]) != 0
+    assert not (tmp_path / "t.svg").exists()
+
+
 def test_read_names(tmp_path):
     table = tmp_path / "names.csv"
     table.write_text("file,code,name\nlithology/601.svg,601,Gravel\n")

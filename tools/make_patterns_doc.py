@@ -87,7 +87,7 @@ def table(rows: list[dict]) -> list[str]:
         else:
             lines.append(
                 f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted | "
-                f"{r['texture']} | {r['overlaps']} | {r['violators']} | {fmt(r['density'])} | "
+                f"{r['engine']} | {r['texture']} | {r['overlaps']} | {r['violators']} | {fmt(r['density'])} | "
                 f"{fmt(r['kind_mix'])} | {fmt(r['coverage'])} | {fmt(r['likeness'])} |"
             )
     return lines

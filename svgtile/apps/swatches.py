@@ -1,8 +1,10 @@
-"""A legend sheet of a pattern set: per pattern, the tile repeated beside a synthesized texture.
+"""A legend sheet of a pattern set: per pattern, the tile repeated beside synthesized textures.
 
 This is how a map maker reviews a whole symbol set (``svgtile swatches``): every tile is imported
-(:mod:`svgtile.tiles.importer`), synthesized with the default engine (``auto``) on the same area as the repeated
-tile, and drawn side by side at the same scale; a refused tile shows the reason instead.
+(:mod:`svgtile.tiles.importer`), synthesized with the default engine (``auto``) — or with each of
+several engines, side by side (``--engine patch --engine growth``) — on the same area as the
+repeated tile, and drawn at the same scale; a refused tile (or an engine that refuses it) shows
+the reason instead.
 
 The sheet is one SVG: the original tile is a ``<pattern>`` of its own elements (ids prefixed so
 that the files cannot clash), the texture a nested ``<svg>`` of the synthesized document.
@@ -23,7 +25,7 @@ from pathlib import Path
 from svgtile.analysis.stats import analyze
 from svgtile.apps.load import check_motif_count
 from svgtile.core.region import Region
-from svgtile.engines import synthesize
+from svgtile.engines import AUTO, synthesize
 from svgtile.errors import ExemplarError, SvgtileError
 from svgtile.files import read_input
 from svgtile.metrics.likeness import measure as measure_likeness
@@ -47,9 +49,10 @@ SKIP = {"metadata", "title", "desc", "namedview", "script", "style"}
 
 @dataclass(frozen=True)
 class Swatch:
-    """One pattern on the sheet: ``motifs``/``kinds`` of the import, the texture's motif count and
-    its likeness L (:mod:`svgtile.metrics.likeness`; None when undefined), or ``refused`` with
-    the reason."""
+    """One pattern and engine on the sheet: ``motifs``/``kinds`` of the import, the texture's
+    motif count and its likeness L (:mod:`svgtile.metrics.likeness`; None when undefined), or
+    ``refused`` with the reason; ``engine`` is the engine asked for, ``chosen`` the one that drew
+    (``auto``'s choice)."""
 
     path: Path
     label: str
@@ -58,20 +61,32 @@ class Swatch:
     texture: int = 0
     refused: str | None = None
     likeness: float | None = None
+    engine: str = AUTO
+    chosen: str | None = None
 
 
 @dataclass(frozen=True)
 class Sheet:
+    """The sheet's SVG text and its swatches: one per pattern and engine, pattern by pattern."""
+
     text: str
     swatches: tuple[Swatch, ...]
+    engines: tuple[str, ...] = (AUTO,)
+
+    @property
+    def patterns(self) -> tuple[tuple[Swatch, ...], ...]:
+        """The swatches grouped by pattern, each group in the order of :attr:`engines`."""
+        k = len(self.engines)
+        return tuple(self.swatches[i : i + k] for i in range(0, len(self.swatches), k))
 
     @property
     def accepted(self) -> int:
-        return sum(s.refused is None for s in self.swatches)
+        """Patterns that gave at least one texture."""
+        return sum(any(s.refused is None for s in group) for group in self.patterns)
 
     @property
     def refused(self) -> int:
-        return len(self.swatches) - self.accepted
+        return len(self.patterns) - self.accepted
 
 
 def collect(inputs: list[str] | tuple[str, ...]) -> list[Path]:
@@ -114,6 +129,7 @@ def swatch_sheet(
     seed: int = 1,
     names: dict[str, str] | None = None,
     max_motifs: float = math.inf,
+    engines: tuple[str, ...] = (AUTO,),
 ) -> Sheet:
     """The sheet as SVG text.
 
@@ -126,10 +142,18 @@ def swatch_sheet(
     seed : seed of every synthesis (the same for each pattern)
     names : file stem -> pattern name, shown after the stem
     max_motifs : a pattern whose swatch would hold more motifs (estimated) is refused
+    engines : the engines whose textures stand beside the tile, in this order (``auto``: the
+        default engine's choice); with more than one, each panel is captioned with its engine
+        and L
     """
     names = names or {}
+    engines = tuple(engines)
+    if not engines:
+        raise ValueError("swatch_sheet needs at least one engine")
+    captions = len(engines) > 1  # one engine: the label says L, as it always has
     rows = -(-len(files) // columns)
-    cell_w, cell_h = 2 * PANEL + 3 * GAP, PANEL + LABEL + 2 * GAP
+    cell_w = (1 + len(engines)) * PANEL + (2 + len(engines)) * GAP
+    cell_h = PANEL + LABEL + 2 * GAP + (LABEL if captions else 0)
     width, height = columns * cell_w + GAP, rows * cell_h + GAP
     root = ET.Element(f"{{{SVG_NS}}}svg", {
         "viewBox": f"0 0 {fmt(width)} {fmt(height)}", "width": fmt(width), "height": fmt(height),
@@ -145,41 +169,52 @@ def swatch_sheet(
         text = ET.SubElement(cell, f"{{{SVG_NS}}}text", {"x": fmt(x), "y": fmt(y + 11), "font-size": "11"})
         text.text = _short(label, 60)
         top = y + LABEL
-        result = _swatch(path, label, swatch, tiles, seed, max_motifs)
-        done.append(result[0])
-        if result[0].likeness is not None:  # the label keeps room for it
-            text.text = f"{_short(label, 50)}  L {result[0].likeness:.2f}"
-        original, texture = result[1], result[2]
+        results = [_swatch(path, label, swatch, tiles, seed, max_motifs, engine=e) for e in engines]
+        done.extend(r[0] for r in results)
+        if not captions and results[0][0].likeness is not None:  # the label keeps room for it
+            text.text = f"{_short(label, 50)}  L {results[0][0].likeness:.2f}"
+        original = next((r[1] for r in results if r[1] is not None), None)
         if original is not None:
             cell.append(_nest(original, f"s{n + 1}o", x, top))
         _frame(cell, x, top)
-        if texture is not None:
-            cell.append(_nest(texture, f"s{n + 1}t", x + PANEL + GAP, top))
-        else:
-            _reason(cell, result[0].refused or "", x + PANEL + GAP, top)
-        _frame(cell, x + PANEL + GAP, top)
+        if captions:
+            _caption(cell, "tile", x, top + PANEL)
+        for i, (found, _, texture) in enumerate(results):
+            px = x + (1 + i) * (PANEL + GAP)
+            if texture is not None:
+                # the first engine's ids are those of a one-engine sheet; the others' get their number
+                cell.append(_nest(texture, f"s{n + 1}t" + (f"{i + 1}" if i else ""), px, top))
+            else:
+                _reason(cell, found.refused or "", px, top)
+            _frame(cell, px, top)
+            if captions:
+                shown = f"  L {found.likeness:.2f}" if found.likeness is not None else ""
+                name = engines[i] if found.chosen in (None, engines[i]) else f"{engines[i]} ({found.chosen})"
+                _caption(cell, f"{name}{shown}", px, top + PANEL)
     ET.indent(root, space=" ")
-    return Sheet(ET.tostring(root, encoding="unicode") + "\n", tuple(done))
+    return Sheet(ET.tostring(root, encoding="unicode") + "\n", tuple(done), engines)
 
 
 # ----------------------------------------------------------------------------- one pattern
 
 
-def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf):
-    """(Swatch, original panel, texture panel); panels are (content root, viewBox) or None."""
+def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf, *,
+            engine: str = AUTO):
+    """(Swatch, original panel, texture panel) of ``engine``; panels are (content root, viewBox)
+    or None."""
     try:
         data = read_input(path, error=ExemplarError)
         original_root = ET.fromstring(data)
         box = _box(original_root)
     except (OSError, ET.ParseError, ValueError) as exc:
         reason = _oneline(exc if not isinstance(exc, ET.ParseError) else f"not a well-formed XML file ({exc})")
-        return Swatch(path, label, refused=reason), None, None
+        return Swatch(path, label, refused=reason, engine=engine), None, None
     try:
         imported = import_tile(path)
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         original = _repeated(original_root, box, swatch, tiles) if box else None
-        return Swatch(path, label, refused=reason), original, None
+        return Swatch(path, label, refused=reason, engine=engine), original, None
     x0, y0, w, h = imported.box
     sw, sh = swatch if swatch is not None else (tiles * w, tiles * h)
     try:
@@ -187,16 +222,18 @@ def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs:
         stats = analyze(exemplar)
         region = Region.rectangle(sw, sh, x0, y0)
         check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
-        made = synthesize(exemplar, region, "auto", seed=seed, stats=stats)
+        made = synthesize(exemplar, region, engine, seed=seed, stats=stats)
         arr = made.arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
-        return Swatch(path, label, refused=reason), _repeated(original_root, imported.box, (sw, sh), tiles), None
+        refused = Swatch(path, label, refused=reason, engine=engine)
+        return refused, _repeated(original_root, imported.box, (sw, sh), tiles), None
     texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}, cells=made.cells))
     # L on the swatch's interior (one tile in from each edge): few motifs, a rough figure
     inside = in_window(arr, interior(exemplar, region))
     found = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() and made.cells is None else None
-    result = Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=found)
+    result = Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=found, engine=engine,
+                    chosen=made.engine)  # fmt: skip
     return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
 
 
@@ -268,6 +305,12 @@ def _frame(parent: ET.Element, x: float, y: float) -> None:
         "x": fmt(x), "y": fmt(y), "width": fmt(PANEL), "height": fmt(PANEL),
         "fill": "none", "stroke": "#888888", "stroke-width": "0.5",
     })  # fmt: skip
+
+
+def _caption(parent: ET.Element, text: str, x: float, y: float) -> None:
+    """A panel's caption (its engine and L) under the panel at (x, y)."""
+    caption = ET.SubElement(parent, f"{{{SVG_NS}}}text", {"x": fmt(x), "y": fmt(y + 12), "font-size": "10"})
+    caption.text = _short(text, 30)
 
 
 def _reason(parent: ET.Element, reason: str, x: float, y: float) -> None:

@@ -8,6 +8,7 @@ import click
 
 from svgtile.apps.load import MAX_MOTIFS
 from svgtile.cli.common import parse_size, warn
+from svgtile.engines import AUTO, ENGINES
 from svgtile.errors import ParameterError, SvgtileError
 from svgtile.files import check_output, same_file, write_file
 from svgtile.tiles.importer import import_tile
@@ -55,7 +56,10 @@ def import_cmd(tile, output):
 @click.option("--png", "png", is_flag=True, help="Also write OUTPUT with .png (needs the 'png' extra: resvg-py).")
 @click.option("--png-width", type=click.IntRange(min=100, max=20000), default=1600, show_default=True,
               help="Width of the PNG, pixels.")
-def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
+@click.option("--engine", "engines", multiple=True, type=click.Choice([AUTO, *ENGINES]),
+              help=f"Engine of the textures; give it several times for textures side by side, each captioned "
+                   f"with its engine and likeness L (e.g. --engine patch --engine growth). Default: {AUTO}.")
+def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width, engines):
     """A legend sheet of pattern tiles: per pattern its name, the tile repeated, and a texture
     synthesized from it, side by side at one scale (or why the tile was refused).
 
@@ -77,9 +81,11 @@ def swatches_cmd(inputs, output, size, columns, names, seed, png, png_width):
         check_output(str(png_path), protect=tuple(files))
     swatch = parse_size(size) if size is not None else None
     table = read_names(names) if names else None
-    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS)
+    engines = tuple(dict.fromkeys(engines)) or (AUTO,)  # an engine named twice is drawn once
+    sheet = swatch_sheet(files, swatch=swatch, columns=columns, seed=seed, names=table, max_motifs=MAX_MOTIFS,
+                         engines=engines)  # fmt: skip
     if sheet.accepted == 0:  # a sheet of refusals is no legend; the exit code says nothing was made
-        reasons = "; ".join(f"{s.path.name}: {s.refused}" for s in sheet.swatches[:3])
+        reasons = "; ".join(f"{g[0].path.name}: {g[0].refused}" for g in sheet.patterns[:3])
         raise SvgtileError(f"none of the {len(files)} pattern(s) could be synthesized ({reasons}"
                            f"{' …' if len(files) > 3 else ''}); nothing written", source=str(output))  # fmt: skip
     if png_path is not None:
