@@ -58,6 +58,8 @@ class GrowthParams(EngineParams):
         predict (library only, see :mod:`.gapfill`)
     snap : on a repeating tile grown with rotation ``none``, move each grown motif to the
         nearest site of its kind in the tile's pattern (library only, see :meth:`.engine.Growth.on_sites`)
+    rows : on a drawn exemplar of rows grown with rotation ``none``, grow on world row lines and
+        hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
@@ -72,6 +74,7 @@ class GrowthParams(EngineParams):
     relaxation: bool = True
     gap_fill: bool = True
     snap: bool = True
+    rows: bool = True
     cell_widths: float = 1.0
     weights: Weights = dataclasses.field(default_factory=Weights)
 
