@@ -40,8 +40,12 @@ from svgtile.core.footprint import Prototype, motif_radius, world_footprints
 #: Fewest rows an exemplar must show for its lines to be trusted (a pitch from two rows is one gap).
 MIN_ROWS = 3
 #: Rounds of :func:`slide_apart`; each moves the motifs of the conflicting pairs found in it (a motif
-#: pressed from both sides gives way by halves, so a crowded run needs several).
+#: pressed from both sides is pushed both ways, so a crowded run needs several).
 SLIDE_ROUNDS = 8
+#: Share of a pair's lack each of two new motifs gives way by: more than half, so that a crowded
+#: run opens in fewer rounds (marsh at 300 × 300: 0.5 took 5.7 rounds a cell and 2.2 s, 0.75
+#: 4.9 and 1.7 s, L alike within the seeds' spread; benchmarks/README.md, "Row lines").
+SLIDE_SHARE = 0.75
 #: :func:`slide_apart` opens a gap this much wider than the distance rule asks (user units), so
 #: that rounding to the written digits does not close it again.
 SLIDE_MARGIN = 0.02
@@ -141,11 +145,11 @@ def slide_apart(new: Arrangement, before: Arrangement, protos: list[Prototype], 
     keep 0.8 units between footprints 4 units wide), so a position a few tenths off its ring's
     makes an overlap or breaks the distance rule, and the exact check of :mod:`.engine` removes
     one of the pair — a hole, whose regrowth seldom fits (at 300 × 300, 17 % of marsh's grown
-    motifs were removed so).  A row has room to give: each such pair (both on one row, at least
+    motifs were removed so; 1.6 % after sliding).  A row has room to give: each such pair (both on one row, at least
     one of ``new``) is pushed apart along the row by what its footprints lack of the distance
-    rule, half each or all of it for a motif of ``new`` against one of ``before`` (which stay),
-    for :data:`SLIDE_ROUNDS` rounds.  A motif pressed from both sides gives way by halves, so a
-    crowded run opens slowly; what is still in conflict is left to the exact check.
+    rule — :data:`SLIDE_SHARE` of it each for two motifs of ``new``, all of it for one of ``new``
+    against one of ``before`` (which stay) — for :data:`SLIDE_ROUNDS` rounds.  What is still in
+    conflict is left to the exact check.
 
     Parameters
     ----------
@@ -161,12 +165,14 @@ def slide_apart(new: Arrangement, before: Arrangement, protos: list[Prototype], 
     """
     if not len(new):
         return new
-    lo, hi = new.xy.min(0) - 4 * rows.pitch, new.xy.max(0) + 4 * rows.pitch
-    near = before.take(np.flatnonzero(((before.xy >= lo) & (before.xy <= hi)).all(1)))
+    # two motifs farther apart than ``reach`` cannot conflict; a motif slides less than a reach
+    reach = 2 * float(motif_radius(Arrangement.concat([before, new]), protos).max()) + float(distance.max())
+    near = before
+    if len(before):
+        near = before.take(np.flatnonzero(np.isfinite(cKDTree(new.xy).query(before.xy, distance_upper_bound=2 * reach)[0])))
     f, n = len(near), len(new)
     xy = new.xy.copy()
     look = np.arange(f + n)  # the motifs checked: all at first, then those near the last moves
-    reach = 2 * float(motif_radius(Arrangement.concat([near, new]), protos).max()) + float(distance.max())
     for _ in range(SLIDE_ROUNDS):
         both = Arrangement.concat([near, Arrangement(new.kind, xy, new.angle, new.scale)])
         found = find_conflicts(both.take(look), protos, distance)
@@ -180,15 +186,16 @@ def slide_apart(new: Arrangement, before: Arrangement, protos: list[Prototype], 
         gap = shapely.distance(geoms[: len(i)], geoms[len(i) :])
         lack = distance[both.kind[i], both.kind[j]] - gap + SLIDE_MARGIN
         sign = np.where(d @ rows.along >= 0, 1.0, -1.0)
-        share = np.where((i >= f) & (j >= f), 0.5, 1.0) * lack * sign
+        share = np.where((i >= f) & (j >= f), SLIDE_SHARE, 1.0) * lack * sign
         move = np.zeros(f + n)
         np.add.at(move, i, -share)
         np.add.at(move, j, share)
         xy += move[f:, None] * rows.along
         moved = both.xy[move != 0]
-        close = cKDTree(moved).query(np.r_[near.xy, xy], distance_upper_bound=2 * reach)[0]
+        close = cKDTree(moved).query(np.r_[near.xy, xy], distance_upper_bound=1.2 * reach)[0]
         look = np.flatnonzero(np.isfinite(close))
     return Arrangement(new.kind, xy, new.angle, new.scale)
 
 
-__all__ = ["MIN_ROWS", "ROW_WEIGHT", "SLIDE_MARGIN", "SLIDE_ROUNDS", "RowLines", "lines_of", "row_lines", "slide_apart"]
+__all__ = ["MIN_ROWS", "ROW_WEIGHT", "SLIDE_MARGIN", "SLIDE_ROUNDS", "SLIDE_SHARE", "RowLines", "lines_of", "row_lines",
+           "slide_apart"]
