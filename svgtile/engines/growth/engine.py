@@ -27,6 +27,10 @@ growth runs per *world cell*:
   and barriers, growth areas and priorities apply as before;
 * on a repeating tile a last pass fills the gaps that are left with the motifs the placed ones
   predict (:mod:`.gapfill`), the tile's motifs that no whole ring places among them.
+* on a drawn exemplar of rows grown unturned, the rows run along world lines (:mod:`.rows`): each
+  cell's first seed is put on a line, relaxation holds every motif on its line, and motifs too
+  close on one row slide apart along it before the exact check (marsh's rows climbed and met
+  out of step at the seams, and a fifth of its grown motifs were removed in conflicts).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
