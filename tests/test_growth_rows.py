@@ -166,3 +166,27 @@ def test_row_lines_keep_growth_tile_exact_and_seeded():
     assert len(whole) > 300 and tiled == {tuple(r) for r in rows}
     assert np.array_equal(grow(Region.rectangle(160, 120))[1], rows)
     assert not np.array_equal(grow(Region.rectangle(160, 120), seed=3)[1], rows)
+
+
+def test_rows_honour_a_barrier_and_a_growth_area():
+    """Sliding along a row happens before the exact check, which still removes any motif that
+    would cross a barrier or leave the growth area; both sides of the barrier are filled."""
+    import shapely
+    from test_baselines import brute_force_conflicts
+
+    from svgtile.core.footprint import world_footprints
+    from svgtile.engines import Controls
+
+    ex, st = marsh()
+    river = shapely.LineString([(70, -10), (95, 130)])
+    arr = synthesize(ex, Region.rectangle(160, 120), "growth", seed=5, stats=st,
+                     controls=Controls(barriers=river)).arrangement  # fmt: skip
+    assert not shapely.intersects(world_footprints(arr, ex.prototypes), river).any()
+    side = np.sign((95 - 70) * (arr.xy[:, 1] + 10) - (130 + 10) * (arr.xy[:, 0] - 70))
+    assert (side > 0).sum() > 100 and (side < 0).sum() > 100
+    assert brute_force_conflicts(arr, ex, st) == (0, 0)
+    spray = shapely.Point(80, 60).buffer(40)
+    arr = synthesize(ex, Region.rectangle(160, 120), "growth", seed=6, stats=st,
+                     controls=Controls(grow_within=spray)).arrangement  # fmt: skip
+    assert shapely.contains_xy(spray, arr.xy[:, 0], arr.xy[:, 1]).all()
+    assert len(arr) > 0.85 * spray.area * st.count_density  # filled as densely as the exemplar
