@@ -70,9 +70,11 @@ def test_growth_keeps_the_order_better_than_patch(name):
     assert grown.overlaps_total == grown.violators_total == 0
 
 
-#: Issue 13's gates not met on the bundled drawn exemplars (seed 1): marsh's hand-placed rows
-#: wander (its rings are all different), sand's lattice repeats at the rings' few shapes.
-NOT_MET = {("marsh", "likeness"): 0.668, ("sand", "repetition"): 0.224}
+#: Issue 13's gates not met on the bundled drawn exemplars (seed 1): marsh's rows now hold to world
+#: row lines (growth.rows: 0.668 → 0.763), but its neighbourhoods' kinds still differ from the
+#: exemplar's (most of what is left of E is kind mismatches); sand's lattice repeats at the rings'
+#: few shapes.
+NOT_MET = {("marsh", "likeness"): 0.763, ("sand", "repetition"): 0.224}
 GATES = {"likeness": lambda s: s.likeness >= 0.8, "repetition": lambda s: s.repetition <= 0.2,
          "density": lambda s: 0.9 <= s.density_ratio <= 1.1,
          "conflicts": lambda s: s.overlaps_total == s.violators_total == 0}  # fmt: skip

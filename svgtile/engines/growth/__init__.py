@@ -2,7 +2,8 @@
 
 Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
-seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.engine` (world cells, the tools).
+seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.rows` (a drawn exemplar's row lines, held by
+growth and relaxation), :mod:`.engine` (world cells, the tools).
 
 This module is the engine's declaration — its parameters (:class:`GrowthParams`, from which the
 CLI options, styles keys and dialogs are made) and its protocol object (:data:`GROWTH`) — and
@@ -58,6 +59,8 @@ class GrowthParams(EngineParams):
         predict (library only, see :mod:`.gapfill`)
     snap : on a repeating tile grown with rotation ``none``, move each grown motif to the
         nearest site of its kind in the tile's pattern (library only, see :meth:`.engine.Growth.on_sites`)
+    rows : on a drawn exemplar of rows grown with rotation ``none``, grow on world row lines and
+        hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
@@ -72,6 +75,7 @@ class GrowthParams(EngineParams):
     relaxation: bool = True
     gap_fill: bool = True
     snap: bool = True
+    rows: bool = True
     cell_widths: float = 1.0
     weights: Weights = dataclasses.field(default_factory=Weights)
 

@@ -27,6 +27,10 @@ growth runs per *world cell*:
   and barriers, growth areas and priorities apply as before;
 * on a repeating tile a last pass fills the gaps that are left with the motifs the placed ones
   predict (:mod:`.gapfill`), the tile's motifs that no whole ring places among them.
+* on a drawn exemplar of rows grown unturned, the rows run along world lines (:mod:`.rows`): each
+  cell's first seed is put on a line, relaxation holds every motif on its line, and motifs too
+  close on one row slide apart along it before the exact check (marsh's rows climbed and met
+  out of step at the seams, and a fifth of its grown motifs were removed in conflicts).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
@@ -58,6 +62,7 @@ from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import grow, rings_of
 from svgtile.engines.growth.relax import relax
+from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
 
 _START, _RING, _NOISE, _PRIORITY = range(4)
@@ -117,6 +122,8 @@ class Growth:
         self.pred = predictions(ex, self.rings) if p.gap_fill and ex.period is not None else None
         # grown unturned, every motif of a tile belongs on a site of the tile's pattern
         self.snap = p.snap and ex.period is not None and rotation == "none"
+        # grown unturned, a drawn exemplar's rows run along world lines (see .rows)
+        self.rows = row_lines(ex) if p.rows and rotation == "none" else None
         x0, y0, x1, y1 = ex.region.bounds
         width = max(x1 - x0, y1 - y0, 6.0 * self.rings.mean_length) * p.cell_widths
         if ex.period is not None:
@@ -184,6 +191,9 @@ class Growth:
         if not shapely.contains_xy(piece, *centre):
             centre = np.array(shapely.get_coordinates(shapely.point_on_surface(piece))[0])
         if ex.period is None:
+            if self.rows is not None:  # on its row line, so that every cell grows on the same lines
+                on = self.rows.onto(centre, rings.element[r : r + 1])[0]
+                centre = on if shapely.contains_xy(piece, *on) else centre
             return centre, r
         # a lattice position of the chosen motif near the centre, inside the piece
         pw, ph = ex.period
@@ -229,7 +239,7 @@ class Growth:
                 fsub = np.concatenate([bsub, *gsub, *ksub])
 
                 def relaxer(xy, ring, theta, first):
-                    return relax(rings, xy, ring, theta, first)
+                    return relax(rings, xy, ring, theta, first, rows=self.rows)
 
                 g = grow(rings, piece, start, ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
                          fixed_sub=fsub, more=more, more_kind=more_kind, rotation=self.rotation, flow=flow,
@@ -243,13 +253,15 @@ class Growth:
                     held = None
                     if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
                         held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
-                    xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
+                    xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held, rows=self.rows)
                 sub = rings.element[g.ring]
                 angle = rings.angle[g.ring] + np.degrees(g.theta)
                 if self.snap:
                     xy, sub = self.on_sites(xy, rings.kind[g.ring])
                     angle = self.ex.motifs.angle[sub]
                 arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, self.ex.motifs.scale[sub])
+                if self.rows is not None:
+                    arr = slide_apart(arr, fixed, self.ex.prototypes, self.stats.distance, self.rows)
                 arr = arr.quantized(DECIMALS)
                 ok = self.settle(arr, fixed)
                 kept.append(arr.take(ok))

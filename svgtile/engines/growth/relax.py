@@ -16,6 +16,12 @@ matrix; the constraints are eliminated (their columns move to the right-hand sid
 Lagrange system of the paper reduced to its unknowns) and the normal equations ``AᵀA x = Aᵀb``
 are solved with a sparse direct solver.  A small pull λ·‖x − x⁰‖² keeps parts with no
 constrained motif (and the null space of a lone motif) in place.
+
+On a drawn exemplar of rows a third term holds each grown motif on its row line
+(:mod:`.rows`): ``ROW_WEIGHT · (x_i · n − u_i)²`` with ``n`` the unit vector across the rows and
+``u_i`` the line nearest the motif plus its exemplar motif's offset from its line.  The problem
+is then solved in the rows' frame (along, across), where the term touches only the across
+coordinate: the same matrix for along, the matrix plus ``ROW_WEIGHT`` on the diagonal across.
 """
 
 from __future__ import annotations
@@ -26,13 +32,14 @@ from scipy.sparse.linalg import spsolve
 from scipy.spatial import cKDTree
 
 from svgtile.engines.growth.connectivity import Rings
+from svgtile.engines.growth.rows import ROW_WEIGHT, RowLines
 
 #: Weight of the pull towards the current positions (relative to one ring term).
 PULL = 1e-3
 
 
 def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, first: int,
-          held: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+          held: np.ndarray | None = None, *, rows: RowLines | None = None) -> np.ndarray:  # fmt: skip
     """Relaxed positions of the grown motifs (eq. 5–6).
 
     Parameters
@@ -43,6 +50,7 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
         rotation applied to it (radians)
     first : how many leading motifs of ``xy`` are fixed; the first grown one is fixed too
     held : (n − first,) bool array, optional — grown motifs also held (near a barrier)
+    rows : the exemplar's row lines, optional — hold the grown motifs on them (module docstring)
 
     Returns
     -------
@@ -72,6 +80,8 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
         return xy[first:].copy()
     col = np.full(n, -1)
     col[free] = np.arange(len(free))
+    if rows is not None:
+        return _relax_on_rows(rows, rings.element[ring], xy, i, j, want, fixed, free, col, first)
     # row e: x_j − x_i = want_e; fixed ends move to the right-hand side
     b = want.copy()
     b -= np.where(fixed[j, None], xy[j], 0.0)
@@ -81,6 +91,26 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
     out = xy.copy()
     out[free] = spsolve(N, rhs)  # one factorisation for both coordinates
     return out[first:]
+
+
+def _relax_on_rows(rows: RowLines, sub: np.ndarray, xy: np.ndarray, i: np.ndarray, j: np.ndarray,
+                   want: np.ndarray, fixed: np.ndarray, free: np.ndarray, col: np.ndarray, first: int,
+                   ) -> np.ndarray:  # fmt: skip
+    """:func:`relax` with the row term, solved in the rows' frame (arguments as set up there;
+    ``sub``: (n − first,) int, the exemplar motif each grown motif copies)."""
+    frame = np.stack([rows.along, rows.across])  # rows: the frame's axes, so q = xy @ frame.T
+    q = xy @ frame.T
+    b = want @ frame.T
+    b -= np.where(fixed[j, None], q[j], 0.0)
+    b += np.where(fixed[i, None], q[i], 0.0)
+    N, rhs = _normal_equations(col[i], col[j], b, len(free))
+    rhs += PULL * q[free]
+    out = q.copy()
+    out[free, 0] = spsolve(N, rhs[:, 0])
+    target = rows.target(xy[free], sub[free - first])
+    out[free, 1] = spsolve((N + ROW_WEIGHT * sp.identity(len(free), format="csc")).tocsc(),
+                           rhs[:, 1] + ROW_WEIGHT * target)  # fmt: skip
+    return (out @ frame)[first:]
 
 
 def _normal_equations(ci: np.ndarray, cj: np.ndarray, b: np.ndarray, f: int) -> tuple[sp.csc_matrix, np.ndarray]:
