@@ -26,7 +26,7 @@ def main(argv: list[str]) -> None:
             ex, _ = load_exemplar(str(path), as_tile=True, warn=lambda m: None)
         except SvgtileError:
             continue  # not a texture of motifs (hatches, continuous lines)
-        if ex.period is None or regularity(reference_rings(ex)) < REGULAR:
+        if ex.period is None or not len(ex.motifs) or regularity(reference_rings(ex)) < REGULAR:
             continue
         if "--select" in argv:
             print(path.stem, flush=True)

@@ -16,7 +16,9 @@ import numpy as np
 import shapely
 
 from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance
+from svgtile.analysis.stats import analyze
 from svgtile.apps.load import load_exemplar
+from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.engines.growth.connectivity import reference_rings, regularity
@@ -68,3 +70,36 @@ def measure(path: Path, *, periods: int = 4, seed: int = 1, engine: str = "growt
     return Figures(path.stem, regularity(reference_rings(ex)), count, likeness(es[engine], es["tile"], es["random"]),
                    es[engine], es["tile"], es["random"], sc.repetition, sc.overlaps_total, sc.violators_total,
                    sc.density_ratio)  # fmt: skip
+
+
+def tile_rows(exemplar, gap: float) -> np.ndarray:
+    """(m,) int: the row of each of a repeating tile's motifs — motifs whose y lie within ``gap``
+    user units of the next form one row (the FGDC tiles' rows run along x)."""
+    y = exemplar.motifs.xy[:, 1]
+    order = np.argsort(y, kind="stable")
+    row = np.empty(len(y), np.int64)
+    row[order] = np.r_[0, np.cumsum(np.diff(y[order]) > gap)]
+    return row
+
+
+def shuffled_rows(exemplar, region: Region, *, rng: np.random.Generator) -> Arrangement:
+    """The tile's rows over ``region`` with every row copy moved along x by its own uniform shift
+    in [0, w): each row keeps the tile's exact content (its along-row steps), and no two rows keep
+    the relation they have in the tile, so nothing repeats at the tile's period across rows.
+
+    The best a texture keeping the tile's rows can do against the repetition figure: what the
+    figure still finds in it is the rows' own along-row steps (tests/test_growth_regular.py).
+    Motifs are not checked for conflicts (a probe of the figure, not a texture).
+    """
+    ex = exemplar.motifs
+    w, h = exemplar.period
+    row = tile_rows(exemplar, 0.5 * spacing(analyze(exemplar)))
+    x0, y0, x1, y1 = region.shape.bounds
+    ia = np.arange(np.floor((x0 - w) / w), np.ceil(x1 / w) + 1)
+    ib = np.arange(np.floor((y0 - h) / h), np.ceil(y1 / h) + 1)
+    shift = rng.uniform(0, w, (len(ib), row.max() + 1))
+    B, A, S = np.meshgrid(np.arange(len(ib)), ia, np.arange(len(ex)), indexing="ij")
+    xy = np.c_[(ex.xy[S, 0] + A * w + shift[B, row[S]]).ravel(), (ex.xy[S, 1] + ib[B] * h).ravel()]
+    keep = shapely.contains_xy(region.shape, xy[:, 0], xy[:, 1])
+    s = S.ravel()[keep]
+    return Arrangement(ex.kind[s], xy[keep], ex.angle[s], ex.scale[s])
