@@ -25,8 +25,8 @@ def main(argv: list[str]) -> None:
         try:
             ex, _ = load_exemplar(str(path), as_tile=True, warn=lambda m: None)
         except SvgtileError:
-            continue  # not a texture of motifs (hatches, continuous lines)
-        if ex.period is None or regularity(reference_rings(ex)) < REGULAR:
+            continue  # not a texture of motifs (hatches, continuous lines); cells: the cellular engine's
+        if ex.period is None or ex.cellular is not None or regularity(reference_rings(ex)) < REGULAR:
             continue
         if "--select" in argv:
             print(path.stem, flush=True)

@@ -53,18 +53,29 @@ def measure(path: Path, *, periods: int = 4, seed: int = 1, engine: str = "growt
     w, h = ex.period
     n = max(periods, int(np.ceil(200 / min(w, h))))
     region = Region.rectangle(n * w, n * h)
-    inner = shapely.buffer(region.shape, -max(w, h))
-    s = spacing(st)
     es = {}
     sc = None
     for name in (engine, "tile", "random"):
         arr = synthesize(ex, region, name, seed=seed, stats=st, boundary="centroid",
                          params=params if name == engine else None).arrangement  # fmt: skip
-        centres = np.flatnonzero(shapely.contains_xy(inner, arr.xy[:, 0], arr.xy[:, 1]))
-        es[name] = neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=s, period=ex.period,
-                                            centres=centres, sample=1500, rng=np.random.default_rng(0))  # fmt: skip
+        es[name] = distance(arr, ex, st, region)
         if name == engine:
             sc, count = score(ex, st, arr, region), len(arr)
     return Figures(path.stem, regularity(reference_rings(ex)), count, likeness(es[engine], es["tile"], es["random"]),
                    es[engine], es["tile"], es["random"], sc.repetition, sc.overlaps_total, sc.violators_total,
                    sc.density_ratio)  # fmt: skip
+
+
+def distance(arr, ex, st, region: Region) -> float:
+    """E: the neighbourhood distance of ``arr`` to the tile ``ex`` on the motifs one tile width in
+    from ``region``'s edge (1500 of them at most, fixed draws)."""
+    inner = shapely.buffer(region.shape, -max(ex.period))
+    centres = np.flatnonzero(shapely.contains_xy(inner, arr.xy[:, 0], arr.xy[:, 1]))
+    return neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=spacing(st), period=ex.period,
+                                  centres=centres, sample=1500, rng=np.random.default_rng(0))  # fmt: skip
+
+
+def baselines(ex, st, region: Region, seed: int = 1) -> tuple[float, float]:
+    """(E_tile, E_random) of ``ex`` over ``region``: the two ends of the likeness scale."""
+    return tuple(distance(synthesize(ex, region, name, seed=seed, stats=st, boundary="centroid").arrangement, ex, st,
+                          region) for name in ("tile", "random"))  # fmt: skip

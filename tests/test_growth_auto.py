@@ -11,13 +11,17 @@ from __future__ import annotations
 from functools import cache
 from pathlib import Path
 
+import numpy as np
 import pytest
+from scipy.spatial import cKDTree
 
 from svgtile import analyze, read_exemplar
+from svgtile.analysis.order import read_order
 from svgtile.cli.main import main
 from svgtile.core.region import Region
 from svgtile.engines import ENGINES, choose, synthesize
-from svgtile.metrics import score
+from svgtile.metrics import repetition, score
+from svgtile.metrics.window import spacing
 
 REPO = Path(__file__).resolve().parents[1]
 EXEMPLARS = sorted(p.stem for p in (REPO / "exemplars").glob("*.svg"))
@@ -32,11 +36,15 @@ def loaded(name: str):
 
 
 @cache
+def arrangement(name: str, engine: str):
+    ex, st = loaded(name)
+    return synthesize(ex, Region.rectangle(300, 300), engine, seed=1, stats=st, boundary="centroid").arrangement
+
+
+@cache
 def figures(name: str, engine: str):
     ex, st = loaded(name)
-    region = Region.rectangle(300, 300)
-    arr = synthesize(ex, region, engine, seed=1, stats=st, boundary="centroid").arrangement
-    return score(ex, st, arr, region)
+    return score(ex, st, arrangement(name, engine), Region.rectangle(300, 300))
 
 
 @pytest.mark.parametrize("name", EXEMPLARS)
@@ -72,8 +80,8 @@ def test_growth_keeps_the_order_better_than_patch(name):
 
 #: Issue 13's gates not met on the bundled drawn exemplars (seed 1): marsh's rows now hold to world
 #: row lines (growth.rows: 0.668 → 0.763), but its neighbourhoods' kinds still differ from the
-#: exemplar's (most of what is left of E is kind mismatches); sand's lattice repeats at the rings'
-#: few shapes.
+#: exemplar's (most of what is left of E is kind mismatches); sand's rows repeat two steps along,
+#: as the exemplar's own do, more (test_sands_repetition_is_its_exemplars_own_rows).
 NOT_MET = {("marsh", "likeness"): 0.763, ("sand", "repetition"): 0.224}
 GATES = {"likeness": lambda s: s.likeness >= 0.8, "repetition": lambda s: s.repetition <= 0.2,
          "density": lambda s: 0.9 <= s.density_ratio <= 1.1,
@@ -136,3 +144,29 @@ def test_auto_never_falls_back_to_a_baseline_and_a_narrowed_choice_says_why(tmp_
     monkeypatch.undo()
     assert main(["synth", marsh, "-o", str(out), "--size", "60x40", "--seed", "1", "--max-rotation", "0"]) == 0
     assert "svgtile: auto: engine patch: rows (steps 5.18 units at 180°), but the options given" in capsys.readouterr().err
+
+
+def row_steps(xy: np.ndarray, g: np.ndarray, tol: float) -> np.ndarray:
+    """(p, 2): each motif's displacement to the motif nearest ``x + g``, where one lies within ``tol``."""
+    d, j = cKDTree(xy).query(xy + g, distance_upper_bound=tol)
+    ok = np.isfinite(d)
+    return xy[j[ok]] - xy[ok]
+
+
+def test_sands_repetition_is_its_exemplars_own_rows():
+    """Why sand's repetition 0.224 stays an xfail: growth's rows are no more regular than the
+    exemplar's (the spread of one step and of two steps along a row at least 95 % of the
+    exemplar's, per axis), and the figure on the exemplar's own 90 motifs is higher, at the same
+    vector — two steps along the row, which the figure counts because the rows are not exact."""
+    ex, st = loaded("sand")
+    s = spacing(st)
+    g = np.asarray(read_order(ex).steps[0].vector)
+    own = repetition(ex.motifs, ex, st, ex.region)
+    grown = figures("sand", "growth")
+    assert own.repetition > grown.repetition > 0.2, (own.repetition, grown.repetition)
+    for v in (own.repetition_vector, grown.repetition_vector):
+        assert np.hypot(*(np.asarray(v) - 2 * g)) < 0.1 * s, v
+    arr = arrangement("sand", "growth")
+    for k in (1, 2):
+        mine, theirs = row_steps(arr.xy, k * g, 0.4 * s).std(0), row_steps(ex.motifs.xy, k * g, 0.4 * s).std(0)
+        assert np.all(mine >= 0.95 * theirs), (k, mine, theirs)

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from svgtile.analysis.order import Order, read_order
 from svgtile.analysis.stats import Stats
 from svgtile.core.exemplar import Exemplar
+from svgtile.engines.growth import grows_from
 
 #: The name users give to let svgtile choose (``--engine auto``, ``engine = "auto"``).
 AUTO = "auto"
@@ -73,8 +74,12 @@ def _steps(o: Order) -> str:
 #: ``--grid lattice --max-rotation 0``, repeated its hand-placed jitter at the copy step:
 #: repetition 0.30 against 0.08.)
 #:
+#: Drawn rows on one line (``one-line``: FGDC 624, 625 and nine map-pattern symbols, a column of
+#: marks) go to patch: growth grows from rings of neighbours, which centres on one line have not
+#: (:func:`svgtile.engines.growth.grows_from`; it ended in an internal error there).
+#:
 #: Repeating tiles with rows or a lattice stay with patch on the period (``tile-order``): there
-#: the tile's exact period makes patch's copies the tile itself (L 1.000, density 1.000 on the 19
+#: the tile's exact period makes patch's copies the tile itself (L 1.000, density 1.000 on the 20
 #: regular FGDC/osm-carto tiles), and growth, which on a tile keeps to the tile's own sites, gives
 #: the same figures (L 1.000, density 1.000–1.001, repetition equal) 20–100 times slower.
 RULES: tuple[Rule, ...] = (
@@ -86,6 +91,9 @@ RULES: tuple[Rule, ...] = (
          lambda o: f"a repeating tile with {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): "
                    "copies on its period, not turned, so they meet without seams (the tile itself; growth "
                    "gives the same, slower)"),
+    Rule("one-line", lambda o, s, e: o.period is None and o.kind != "scatter" and not grows_from(e), "patch", {},
+         lambda o: f"drawn rows on one line (steps {_steps(o)}): no rings for growth to grow from, so the patch "
+                   "engine's defaults"),
     Rule("drawn-order", lambda o, s, e: o.period is None and o.kind != "scatter", "growth", {},
          lambda o: f"drawn {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): grown motif by "
                    "motif from the exemplar's neighbourhoods, so rows and lattices continue"),

@@ -18,10 +18,12 @@ import dataclasses
 import re
 from dataclasses import dataclass
 
+import numpy as np
+
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.base import Context, EngineParams, param
-from svgtile.errors import ParameterError
+from svgtile.errors import ExemplarError, ParameterError
 
 ROTATIONS = ("auto", "none", "fit", "flow")
 _PRIORITY_ITEM = re.compile(r"^\s*([^=,\s][^=,]*?)\s*=\s*(-?\d+)\s*$")
@@ -111,9 +113,19 @@ class GrowthEngine:
     controls = frozenset({"flow", "barriers", "grow_within"})
 
     def place(self, ctx: Context, p: GrowthParams) -> Arrangement:
-        """Grow the texture over the cells that ``ctx.region`` needs (:mod:`.engine`)."""
+        """Grow the texture over the cells that ``ctx.region`` needs (:mod:`.engine`).
+
+        Raises
+        ------
+        ExemplarError
+            when the exemplar has no rings to grow from (:func:`grows_from`).
+        """
         from svgtile.engines.growth.engine import Growth
 
+        if not grows_from(ctx.exemplar):
+            raise ExemplarError(f"engine 'growth' grows each motif's ring of neighbours (Ijiri et al. 2008, §4), and "
+                                f"this exemplar's {len(ctx.exemplar.motifs)} motif centres lie on one line, which has "
+                                "no rings: use --engine patch (or auto)", source=ctx.exemplar.source)  # fmt: skip
         return Growth(ctx, p).run()
 
     def reach(self, exemplar: Exemplar, params: GrowthParams) -> float:
@@ -124,4 +136,15 @@ class GrowthEngine:
 GROWTH = GrowthEngine()
 
 
-__all__ = ["GROWTH", "ROTATIONS", "GrowthEngine", "GrowthParams", "Weights"]
+def grows_from(exemplar: Exemplar) -> bool:
+    """Whether growth can read rings from ``exemplar`` (§4: the Delaunay triangulation of the
+    motif centres): a repeating tile always can (its copies fill the plane), a drawn exemplar
+    when its centres span the plane — not when they lie on one line (FGDC 624, 625 and nine of
+    the map-pattern symbols drawn as one column of marks), nor when it has fewer than three."""
+    xy = exemplar.motifs.xy
+    if exemplar.period is not None:
+        return len(xy) > 0
+    return len(xy) >= 3 and bool(np.linalg.matrix_rank(xy - xy.mean(0)) == 2)
+
+
+__all__ = ["GROWTH", "ROTATIONS", "GrowthEngine", "GrowthParams", "Weights", "grows_from"]
