@@ -287,7 +287,7 @@ class Growth:
             held = None
             if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
                 held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
-            xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held)
+            xy = relax(rings, np.concatenate([fixed.xy, xy]), g.ring, g.theta, len(fixed), held)
         sub = rings.element[g.ring]
         angle = rings.angle[g.ring] + np.degrees(g.theta)
         if self.snap:
