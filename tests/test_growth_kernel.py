@@ -73,9 +73,9 @@ def test_growth_resumes_after_each_relaxation_and_when_its_arrays_fill():
               rotation="none", flow=None, priority=kind_priority(ex, {}), weights=Weights(),
               centre_gap=centre_gaps(ex, len(ex.kinds)))  # fmt: skip
     g = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), relax=relax, relax_every=10,
-             **kw)  # fmt: skip
+             room=8, **kw)  # fmt: skip
     plain = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), **kw)
-    assert len(g.xy) > 64  # more than the first arrays hold: grown through at least one FULL
+    assert len(g.xy) > 8 * 8  # more than the first arrays hold: grown through FULL three times
     assert calls == list(range(10, len(g.xy) + 1, 10))
     assert np.array_equal(g.xy, plain.xy) and np.array_equal(g.ring, plain.ring)  # relax here moved nothing
     assert shapely.contains_xy(piece, g.xy[:, 0], g.xy[:, 1]).all()
