@@ -197,3 +197,18 @@ def test_match_returns_the_best_of_every_pair_though_it_abandons_pairs_early(exe
                          weights=w, noise=noise, top=top)  # fmt: skip
         expect = _every_match(rings, tar, tkind, tsub, want, mode, fa, w, noise)[:top]
         assert got == [(int(r), int(k), float(th), float(e)) for r, k, th, e in expect]
+
+
+def test_ring_slots_are_numpys_rotated_rings_bit_for_bit():
+    """Relaxation's wanted neighbour offsets (kernel.ring_slots) against the numpy expression it
+    replaced: the same rows, in the same order, to the bit."""
+    rings = reference_rings(read_exemplar(REPO / "exemplars" / "shale.svg"))
+    rng = np.random.default_rng(2)
+    ring, theta, first = rng.integers(0, len(rings.size), 300), rng.uniform(-4, 4, 300), 17
+    i, want = kernel.ring_slots(rings.rel, rings.size, ring, np.cos(theta), np.sin(theta), first)
+    valid = np.arange(rings.rel.shape[1])[None, :] < rings.size[ring][:, None]
+    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    v = rings.rel[ring]
+    expect = np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)[valid]
+    assert np.array_equal(i, np.broadcast_to((first + np.arange(300))[:, None], valid.shape)[valid])
+    assert np.array_equal(want, expect) and len(set(rings.size[ring].tolist())) > 1

@@ -155,6 +155,7 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
     got = 0
     px = np.empty(t)
     py = np.empty(t)
+    slot = np.empty(t, np.int64)
     prune = w1 >= 0 and w2 >= 0 and w3 >= 0
     co0, si0 = np.cos(fa if mode == FLOW else 0.0), np.sin(fa if mode == FLOW else 0.0)
     for i in range(c):
@@ -167,15 +168,16 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
             bad = 0
             same = 0
             for j in range(t):
-                bad += nkind[r, (k + j) % m] != tkind[j]
-                same += nsub[r, (k + j) % m] == tsub[j]
+                slot[j] = k + j - m if k + j >= m else k + j  # (k + j) mod m, without a division
+                bad += nkind[r, slot[j]] != tkind[j]
+                same += nsub[r, slot[j]] == tsub[j]
             base = (w2 * bad if w2 else 0.0) + (w3 * same if w3 else 0.0)
             bound = out_err[got - 1] * (1.0 + 1e-12) + 1e-300 if prune and got == top else np.inf
             if base > bound:
                 continue
             if mode == FIT:
                 for j in range(t):
-                    s = (k + j) % m
+                    s = slot[j]
                     px[j] = rel[r, s, 0] * tar[j, 0] + rel[r, s, 1] * tar[j, 1]
                     py[j] = rel[r, s, 0] * tar[j, 1] - rel[r, s, 1] * tar[j, 0]
                 theta = np.arctan2(_sum(py, t), _sum(px, t))
@@ -189,7 +191,7 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
                 # kept is one that loop abandons too, found at a seventh of the cost
                 low = 0.0
                 for j in range(t):
-                    s = (k + j) % m
+                    s = slot[j]
                     dx = co * rel[r, s, 0] - si * rel[r, s, 1] - tar[j, 0]
                     dy = si * rel[r, s, 0] + co * rel[r, s, 1] - tar[j, 1]
                     low += np.sqrt(dx * dx + dy * dy)
@@ -198,7 +200,7 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
             run = 0.0
             over = False
             for j in range(t):
-                s = (k + j) % m
+                s = slot[j]
                 rx = co * rel[r, s, 0] - si * rel[r, s, 1]
                 ry = si * rel[r, s, 0] + co * rel[r, s, 1]
                 px[j] = np.hypot(rx - tar[j, 0], ry - tar[j, 1])
@@ -508,3 +510,76 @@ def _add_seed(state, ns, x, y, kind, key, levels):  # pragma: no cover
         wnext[ns] = whead[w]
         whead[w] = ns
     return ns + 1
+
+
+@numba.njit(cache=True)
+def normal_equations(ci, cj, b, f, pull):  # pragma: no cover
+    """``AᵀA + λI`` as CSC arrays ``(data, indices, indptr)`` and ``Aᵀb`` ((f, 2) float) of the
+    rows ``x_cj − x_ci = b`` ((e,) int, (e,) int, (e, 2) float; −1 marks a fixed end) over ``f``
+    unknowns, λ = ``pull``: :func:`svgtile.engines.growth.relax._normal_equations`, which says
+    why these are the sparse products bit for bit (off the diagonal sums of −1, exact in any
+    order; ``Aᵀb`` summed row by row, the ``cj`` term of a row before its ``ci`` term)."""
+    e = ci.shape[0]
+    count = np.zeros(f, np.int64)  # rows per unknown: the diagonal of AᵀA
+    rhs = np.zeros((f, 2))
+    both = 0
+    for q in range(e):
+        if cj[q] >= 0:
+            count[cj[q]] += 1
+            rhs[cj[q], 0] += b[q, 0]
+            rhs[cj[q], 1] += b[q, 1]
+        if ci[q] >= 0:
+            count[ci[q]] += 1
+            rhs[ci[q], 0] += -b[q, 0]
+            rhs[ci[q], 1] += -b[q, 1]
+        if ci[q] >= 0 and cj[q] >= 0:
+            both += 1
+    key = np.empty(f + 2 * both, np.int64)  # column · f + row, as the canonical CSC order sorts
+    for p in range(f):
+        key[p] = p * f + p
+    at = f
+    for q in range(e):
+        if ci[q] >= 0 and cj[q] >= 0:
+            key[at] = cj[q] * f + ci[q]
+            key[at + 1] = ci[q] * f + cj[q]
+            at += 2
+    key = np.sort(key)
+    data = np.empty(key.shape[0])
+    indices = np.empty(key.shape[0], np.int32)
+    indptr = np.zeros(f + 1, np.int32)
+    n = 0
+    for p in range(key.shape[0]):
+        if n and key[p] == key[p - 1]:
+            data[n - 1] -= 1.0
+            continue
+        col, row = key[p] // f, key[p] % f
+        data[n] = count[col] + pull if row == col else -1.0
+        indices[n] = row
+        indptr[col + 1] += 1
+        n += 1
+    for p in range(f):
+        indptr[p + 1] += indptr[p]
+    return data[:n].copy(), indices[:n].copy(), indptr, rhs
+
+
+@numba.njit(cache=True)
+def ring_slots(rel, size, ring, co, si, first):  # pragma: no cover
+    """Where each grown motif's ring wants its neighbours (§5.5): for motif ``first + g`` copying
+    reference ring ``ring[g]`` turned by the angle of cosine ``co[g]`` and sine ``si[g]``, one
+    row per slot of that ring, in order — the motif's index ((s,) int) and the slot's offset
+    ((s, 2) float, user units).  ``co``, ``si`` come from numpy (its cos and sin may differ from
+    compiled code's in the last bit)."""
+    total = 0
+    for g in range(ring.shape[0]):
+        total += size[ring[g]]
+    idx = np.empty(total, np.int64)
+    want = np.empty((total, 2))
+    at = 0
+    for g in range(ring.shape[0]):
+        r = ring[g]
+        for slot in range(size[r]):
+            idx[at] = first + g
+            want[at, 0] = co[g] * rel[r, slot, 0] - si[g] * rel[r, slot, 1]
+            want[at, 1] = si[g] * rel[r, slot, 0] + co[g] * rel[r, slot, 1]
+            at += 1
+    return idx, want
