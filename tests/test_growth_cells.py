@@ -22,6 +22,7 @@ from svgtile.core.region import Region
 from svgtile.engines import Controls, make_params, synthesize
 from svgtile.engines.base import Context
 from svgtile.engines.growth.engine import Growth, _phase
+from svgtile.engines.growth.grow import Grown
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -121,3 +122,29 @@ def test_one_check_for_several_pieces_is_each_checked_alone():
     assert 0 < sum(a.sum() for a in alone) < sum(len(x) for x in news)  # some stay, some leave
     # pooled as one check, the clashes between the first two would remove more
     assert g.settle(Arrangement.concat(news[:2]), befores[0]).sum() < together[0].sum() + together[1].sum()
+
+
+def test_a_piece_that_grows_nothing_is_done_while_the_others_go_on(monkeypatch):
+    """A round that grows nothing ends its piece (no refill from the same seeds), in step with
+    pieces that go on growing."""
+    from svgtile.engines.growth import engine
+
+    calls: dict = {}
+    real = engine.grow
+
+    def grow(rings, piece, *a, **k):
+        key = piece.bounds
+        calls[key] = calls.get(key, 0) + 1
+        if key == barren:
+            return Grown(np.zeros((0, 2)), np.zeros(0, np.int64), np.zeros(0))
+        return real(rings, piece, *a, **k)
+
+    monkeypatch.setattr(engine, "grow", grow)
+    g = _growth(Region(shapely.box(0, 0, 100, 100)))
+    g.subs = {}
+    cells = [c for c in g.cells() if _phase(c) == 0]
+    w, h = g.cell
+    barren = (cells[0][0] * w, cells[0][1] * h, (cells[0][0] + 1) * w, (cells[0][1] + 1) * h)
+    out = g.grow_cells(cells, {})
+    assert calls[barren] == 1 and len(out[0][0]) == 0
+    assert max(calls.values()) > 1 and all(len(arr) for arr, _ in out[1:])

@@ -216,8 +216,13 @@ class Growth:
         for part in range(max(len(w.pieces) for w in work)):  # a cell's pieces grow one after another
             jobs = [self._job(w, part) for w in work if part < len(w.pieces)]
             for rnd in range(1 + REFILLS):
-                grown = [(j, self.grow_round(j, rnd)) for j in jobs if j.live]
-                grown = [(j, r) for j, r in grown if r is not None]
+                grown = []
+                for j in (j for j in jobs if j.live):
+                    r = self.grow_round(j, rnd)
+                    if r is None:  # nothing grew: the piece is done
+                        j.live = False
+                    else:
+                        grown.append((j, r))
                 if not grown:
                     break
                 oks = self.settle_all([r[0] for _, r in grown], [r[3] for _, r in grown])
