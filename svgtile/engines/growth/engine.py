@@ -13,7 +13,8 @@ growth runs per *world cell*:
   hashed point and reference near the cell centre;
 * a cell of a later phase grows against the motifs of its earlier-phase neighbours (they are
   its fixed neighbours in matching and in relaxation, eq. 6), so growth fronts join across the
-  seams instead of colliding;
+  seams instead of colliding; the cells of one phase, which do not meet, are grown in step
+  (:meth:`Growth.grow_cells`), each as if alone;
 * each cell is relaxed (§5.5) with its neighbours held, then its motifs are checked exactly
   (footprints: no overlap, the distance rule, no barrier crossed) against each other and the
   earlier motifs, and the conflicting ones leave (:func:`svgtile.core.conflicts.cull`, with

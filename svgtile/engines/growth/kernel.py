@@ -13,11 +13,16 @@ per machine, about 10 s, then loaded from ``__pycache__``):
 * :func:`run` — the loop of :func:`svgtile.engines.growth.grow.grow`: a heap of seeds, bucket
   grids of placed motifs and live seeds as linked lists in arrays, the Fig. 6 heuristics.  It is
   resumable: it returns when its arrays are full or a relaxation is due, and the caller grows the
-  arrays or relaxes and calls it again with the same state.
+  arrays or relaxes and calls it again with the same state;
+* :func:`ring_slots` and :func:`normal_equations` — the assembly of relaxation's least-squares
+  problem (§5.5, :mod:`svgtile.engines.growth.relax`), a few thousand small array operations a
+  run in numpy.
 
 The floating-point operations are those of the numpy version, in the same order (sums in
 numpy's pairwise order, :func:`_sum`), so that a texture grown by either is the same to the last
-written digit.
+written digit.  Where a cheaper test stands in for one of them (:func:`closer` for a ``hypot``
+compared with a threshold, a bound from square roots in :func:`match`), it only ever settles
+cases the exact test would settle the same way, and leaves the others to it.
 """
 
 from __future__ import annotations
