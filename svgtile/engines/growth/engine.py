@@ -410,16 +410,16 @@ class Growth:
             if supports is not None:
                 prio = prio - np.concatenate(supports)[sel]
             found = find_conflicts(sub, protos, d)
-            within = group[sel]
-            found = Conflicts(*(x[within[found.i] == within[found.j]] for x in (found.i, found.j, found.overlap,
+            check = group[sel]  # (s,) the check each motif belongs to
+            found = Conflicts(*(x[check[found.i] == check[found.j]] for x in (found.i, found.j, found.overlap,
                                                                                 found.violation)))  # fmt: skip
             violator = np.zeros(len(sub))
             side = found.violation & ~found.overlap
             violator[found.i[side]] = violator[found.j[side]] = 1.0
             # culled check by check: cull ranks the priorities of all the motifs it is given
-            at = np.searchsorted(within, np.arange(len(news) + 1))
-            order = np.argsort(within[found.i], kind="stable")
-            pair_at = np.searchsorted(within[found.i][order], np.arange(len(news) + 1))
+            at = np.searchsorted(check, np.arange(len(news) + 1))
+            order = np.argsort(check[found.i], kind="stable")
+            pair_at = np.searchsorted(check[found.i][order], np.arange(len(news) + 1))
             for q in range(len(news)):
                 lo, hi = at[q], at[q + 1]
                 mine = order[pair_at[q] : pair_at[q + 1]]
