@@ -411,8 +411,8 @@ class Growth:
                 prio = prio - np.concatenate(supports)[sel]
             found = find_conflicts(sub, protos, d)
             check = group[sel]  # (s,) the check each motif belongs to
-            found = Conflicts(*(x[check[found.i] == check[found.j]] for x in (found.i, found.j, found.overlap,
-                                                                                found.violation)))  # fmt: skip
+            mine = check[found.i] == check[found.j]  # pairs of two checks are not this run's to find
+            found = Conflicts(found.i[mine], found.j[mine], found.overlap[mine], found.violation[mine])
             violator = np.zeros(len(sub))
             side = found.violation & ~found.overlap
             violator[found.i[side]] = violator[found.j[side]] = 1.0
