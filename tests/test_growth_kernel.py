@@ -8,6 +8,7 @@ kernel replaced (commit 1b5ba1c); the kernel must reproduce them byte for byte. 
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +21,7 @@ from svgtile.engines.growth import kernel
 from svgtile.engines.growth.connectivity import reference_rings
 from svgtile.engines.growth.engine import centre_gaps, kind_priority
 from svgtile.engines.growth.grow import grow
-from svgtile.engines.growth.matching import Weights
+from svgtile.engines.growth.matching import Weights, best_match
 
 REPO = Path(__file__).resolve().parents[1]
 GOLDEN = Path(__file__).parent / "golden"
@@ -72,9 +73,9 @@ def test_growth_resumes_after_each_relaxation_and_when_its_arrays_fill():
               rotation="none", flow=None, priority=kind_priority(ex, {}), weights=Weights(),
               centre_gap=centre_gaps(ex, len(ex.kinds)))  # fmt: skip
     g = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), relax=relax, relax_every=10,
-             **kw)  # fmt: skip
+             room=8, **kw)  # fmt: skip
     plain = grow(rings, piece, np.array([30.0, 30.0]), 0, draws=np.random.default_rng(3), **kw)
-    assert len(g.xy) > 64  # more than the first arrays hold: grown through at least one FULL
+    assert len(g.xy) > 8 * 8  # more than the first arrays hold: grown through FULL three times
     assert calls == list(range(10, len(g.xy) + 1, 10))
     assert np.array_equal(g.xy, plain.xy) and np.array_equal(g.ring, plain.ring)  # relax here moved nothing
     assert shapely.contains_xy(piece, g.xy[:, 0], g.xy[:, 1]).all()
@@ -133,3 +134,81 @@ def test_the_normal_equations_are_the_sparse_products_bit_for_bit(seed, held):
     assert np.array_equal(N.indptr, want.indptr) and np.array_equal(N.indices, want.indices)
     assert np.array_equal(N.data, want.data)
     assert rhs.dtype == np.float64 and np.array_equal(rhs, A.T @ b)
+
+
+def test_closer_decides_as_hypot_does_even_at_the_threshold():
+    """kernel.closer answers ``hypot(dx, dy) < t`` from squares when that is safe: it must agree
+    with hypot everywhere, most of all where the two differ by a rounding (t = hypot itself and
+    its neighbouring floats, where the sum of squares alone would err)."""
+    rng = np.random.default_rng(5)
+    d = rng.normal(size=(4000, 2)) * 10.0 ** rng.integers(-3, 4, (4000, 1))
+    h = np.hypot(d[:, 0], d[:, 1])
+    near = np.r_[h, np.nextafter(h, np.inf), np.nextafter(h, 0), np.nextafter(np.nextafter(h, np.inf), np.inf)]
+    t = np.r_[near, h * rng.uniform(0.5, 1.5, len(h)), 0.0, np.inf]
+    dx, dy = np.r_[np.tile(d[:, 0], 5), 0.0, 1.0], np.r_[np.tile(d[:, 1], 5), 0.0, 1.0]
+    got = np.array([kernel.closer(a, b, c) for a, b, c in zip(dx, dy, t, strict=True)])
+    assert np.array_equal(got, np.hypot(dx, dy) < t)
+    squares = np.sqrt(dx * dx + dy * dy) < t  # what the squares alone would say: wrong at the edge
+    assert (squares != got).any() and got.any() and not got.all()
+
+
+def _every_match(rings, tar, tkind, tsub, want, mode, fa, w, noise):
+    """eq. (1)-(3) for every (reference, shift) pair, in numpy, no pair abandoned: (r, k, θ, err)
+    sorted by error, ties in (r, k) order."""
+    t, out = len(tar), []
+    for r in range(len(rings.size)):
+        m = rings.size[r]
+        if m < t or (want >= 0 and rings.kind[r] != want):
+            continue
+        for k in range(m):
+            s = (k + np.arange(t)) % m
+            ref = rings.rel[r, s]
+            theta = fa if mode == kernel.FLOW else 0.0
+            if mode == kernel.FIT:
+                theta = math.atan2((ref[:, 0] * tar[:, 1] - ref[:, 1] * tar[:, 0]).sum(),
+                                   (ref[:, 0] * tar[:, 0] + ref[:, 1] * tar[:, 1]).sum())  # fmt: skip
+            co, si = math.cos(theta), math.sin(theta)  # libm's, as compiled code calls
+            d = np.hypot(co * ref[:, 0] - si * ref[:, 1] - tar[:, 0], si * ref[:, 0] + co * ref[:, 1] - tar[:, 1])
+            err = w.distance * d.sum() / rings.mean_length
+            bad, same = (rings.nkind[r, s] != tkind).sum(), (rings.nsub[r, s] == tsub).sum()
+            err = err + w.kind * bad if w.kind else err
+            err = err + w.subid * same if w.subid else err
+            out.append((r, k, theta, err + 1e-9 * noise[r]))
+    return sorted(out, key=lambda x: x[3])
+
+
+@pytest.mark.parametrize("exemplar", ["gravel", "shale"])
+@pytest.mark.parametrize("mode", [kernel.NONE, kernel.FIT, kernel.FLOW])
+def test_match_returns_the_best_of_every_pair_though_it_abandons_pairs_early(exemplar, mode):
+    """kernel.match abandons a pair as soon as bounds of its error (square roots first, then
+    partial sums) exceed the worst kept; what it returns must be the best of every pair, exactly."""
+    rings = reference_rings(read_exemplar(REPO / "exemplars" / f"{exemplar}.svg"))
+    rng = np.random.default_rng(11)
+    w = Weights(subid=0.5)
+    for trial in range(60):
+        r0 = int(rng.integers(len(rings.size)))
+        t = int(rng.integers(1, rings.size[r0] + 1))
+        tar = rings.rel[r0, :t] + rng.normal(0, 0.05 * rings.mean_length, (t, 2))  # near a real ring: close errors
+        tkind, tsub = rings.nkind[r0, :t].copy(), rings.nsub[r0, :t].copy()
+        tkind[rng.random(t) < 0.2] = 0
+        noise, fa, top = rng.random(len(rings.size)), float(rng.uniform(-3, 3)), [1, 4][trial % 2]
+        want = -1 if trial % 3 else int(rings.kind[r0])
+        got = best_match(rings, tar, tkind, tsub, want=want, rotation=["none", "fit", "flow"][mode], flow_angle=fa,
+                         weights=w, noise=noise, top=top)  # fmt: skip
+        expect = _every_match(rings, tar, tkind, tsub, want, mode, fa, w, noise)[:top]
+        assert got == [(int(r), int(k), float(th), float(e)) for r, k, th, e in expect]
+
+
+def test_ring_slots_are_numpys_rotated_rings_bit_for_bit():
+    """Relaxation's wanted neighbour offsets (kernel.ring_slots) against the numpy expression it
+    replaced: the same rows, in the same order, to the bit."""
+    rings = reference_rings(read_exemplar(REPO / "exemplars" / "shale.svg"))
+    rng = np.random.default_rng(2)
+    ring, theta, first = rng.integers(0, len(rings.size), 300), rng.uniform(-4, 4, 300), 17
+    i, want = kernel.ring_slots(rings.rel, rings.size, ring, np.cos(theta), np.sin(theta), first)
+    valid = np.arange(rings.rel.shape[1])[None, :] < rings.size[ring][:, None]
+    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    v = rings.rel[ring]
+    expect = np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)[valid]
+    assert np.array_equal(i, np.broadcast_to((first + np.arange(300))[:, None], valid.shape)[valid])
+    assert np.array_equal(want, expect) and len(set(rings.size[ring].tolist())) > 1

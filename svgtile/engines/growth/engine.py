@@ -13,7 +13,8 @@ growth runs per *world cell*:
   hashed point and reference near the cell centre;
 * a cell of a later phase grows against the motifs of its earlier-phase neighbours (they are
   its fixed neighbours in matching and in relaxation, eq. 6), so growth fronts join across the
-  seams instead of colliding;
+  seams instead of colliding; the cells of one phase, which do not meet, are grown in step
+  (:meth:`Growth.grow_cells`), each as if alone;
 * each cell is relaxed (§5.5) with its neighbours held, then its motifs are checked exactly
   (footprints: no overlap, the distance rule, no barrier crossed) against each other and the
   earlier motifs, and the conflicting ones leave (:func:`svgtile.core.conflicts.cull`, with
@@ -45,6 +46,7 @@ are filled and growth never crosses one (a seed is made only inside its piece).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
@@ -53,21 +55,24 @@ from scipy.spatial import cKDTree
 from svgtile.analysis.stats import periodic_block
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
+from svgtile.core.conflicts import Conflicts, cross_conflicts, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, world_footprints
 from svgtile.engines.base import Context
 from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
-from svgtile.engines.growth.grow import grow, rings_of
+from svgtile.engines.growth.grow import Grown, grow, rings_of
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
 
 _START, _RING, _NOISE, _PRIORITY = range(4)
-#: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cell`).
+#: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cells`).
 REFILLS = 2
+#: At most this many cells of a phase are grown in step: enough to share the exact check's fixed
+#: cost, few enough that its footprints stay a small part of memory in a run of a million motifs.
+IN_STEP = 64
 
 
 def kind_priority(exemplar: Exemplar, given: dict[str, int]) -> np.ndarray:
@@ -164,9 +169,13 @@ class Growth:
         order = self.cells()
         self.subs: dict[tuple[int, int], np.ndarray] = {}  # the sub-id (exemplar motif) of each motif
         done: dict[tuple[int, int], Arrangement] = {}
-        for t, c in enumerate(order):
-            self.ctx.progress("growth", t / max(len(order), 1))
-            done[c], self.subs[c] = self.grow_cell(c, done)
+        for phase in range(4):
+            cells = [c for c in order if _phase(c) == phase]
+            for at in range(0, len(cells), IN_STEP):
+                self.ctx.progress("growth", len(done) / len(order))
+                step = cells[at : at + IN_STEP]
+                for c, (arr, sub) in zip(step, self.grow_cells(step, done), strict=True):
+                    done[c], self.subs[c] = arr, sub
         return Arrangement.concat([done[c] for c in order])
 
     def pieces(self, a: int, b: int) -> list[shapely.Geometry]:
@@ -207,77 +216,107 @@ class Growth:
             return cand[np.argmin(np.hypot(*(cand - centre).T))], r
         return centre, -1
 
-    def grow_cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> tuple[Arrangement, np.ndarray]:
-        """The motifs of cell ``c``, grown against its earlier-phase neighbours, and their sub-ids."""
+    def grow_cells(self, cells: list[tuple[int, int]],
+                   done: dict[tuple[int, int], Arrangement]) -> list[tuple[Arrangement, np.ndarray]]:  # fmt: skip
+        """The motifs of ``cells`` (all of one phase), each grown against its earlier-phase
+        neighbours in ``done``, and their sub-ids.
+
+        Cells of one phase do not meet and their neighbourhoods are fixed, so each is grown as if
+        alone — the same arithmetic, the same motifs — but in step: every cell's growth round,
+        then one exact check (:meth:`settle_all`) for all of them, round after round.  A cell
+        costs ~50 small numpy/shapely calls a round, most of them in that check; in step, a
+        phase pays for them once a round instead of once a cell (benchmarks/README.md).
+        """
+        work = [self._cell(c, done) for c in cells]
+        for part in range(max(len(w.pieces) for w in work)):  # a cell's pieces grow one after another
+            jobs = [self._job(w, part) for w in work if part < len(w.pieces)]
+            for rnd in range(1 + REFILLS):
+                grown = []
+                for j in (j for j in jobs if j.live):
+                    r = self.grow_round(j, rnd)
+                    if r is None:  # nothing grew: the piece is done
+                        j.live = False
+                    else:
+                        grown.append((j, r))
+                if not grown:
+                    break
+                oks = self.settle_all([r[0] for _, r in grown], [r[3] for _, r in grown])
+                for (j, (arr, sub, g, fixed)), ok in zip(grown, oks, strict=True):
+                    j.kept.append(arr.take(ok))
+                    j.ksub.append(sub[ok])
+                    if rnd == REFILLS:  # no round left to regrow the holes in
+                        j.live = False
+                        continue
+                    # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
+                    j.more, j.more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], j.piece,
+                                                          Arrangement.concat([fixed, j.kept[-1]]).xy)  # fmt: skip
+                    j.live = len(j.more) > 0
+            for j in jobs:
+                w = j.cell
+                if self.pred is not None:
+                    self.fill_gaps(j.piece, [w.before, *w.grown], [w.bsub, *w.gsub], j.kept, j.ksub)
+                w.grown.extend(j.kept)
+                w.gsub.extend(j.ksub)
+        return [(Arrangement.concat(w.grown), np.concatenate(w.gsub) if w.gsub else np.zeros(0, np.int64))
+                for w in work]  # fmt: skip
+
+    def _cell(self, c: tuple[int, int], done: dict[tuple[int, int], Arrangement]) -> _Cell:
+        """Cell ``c``'s fixed surroundings: its earlier-phase neighbours' motifs within reach."""
         a, b = c
-        rings, p = self.rings, self.p
         w, h = self.cell
         nb = [(a + da, b + db) for da in (-1, 0, 1) for db in (-1, 0, 1)
               if _phase((a + da, b + db)) < _phase(c) and (a + da, b + db) in done]  # fmt: skip
         before = Arrangement.concat([done[q] for q in nb])
         bsub = np.concatenate([self.subs[q] for q in nb]) if nb else np.zeros(0, np.int64)
-        margin = rings.radius * 1.2 + 2 * self.radius + float(self.stats.distance.max())
+        margin = self.rings.radius * 1.2 + 2 * self.radius + float(self.stats.distance.max())
         near = ((before.xy[:, 0] > a * w - margin) & (before.xy[:, 0] < (a + 1) * w + margin)
                 & (before.xy[:, 1] > b * h - margin) & (before.xy[:, 1] < (b + 1) * h + margin))  # fmt: skip
-        before, bsub = before.take(near), bsub[near]
         flow = self.flow_table(a, b) if self.rotation == "flow" else None
-        key = self.ctx.key
+        return _Cell(c, before.take(near), bsub[near], flow, self.pieces(a, b))
 
-        grown: list[Arrangement] = []
-        gsub: list[np.ndarray] = []
-        for part, piece in enumerate(self.pieces(a, b)):
-            shapely.prepare(piece)
-            outline = rings_of(piece)  # made once for the up to 1 + REFILLS growths of this piece
-            start, ring0 = self.start(a, b, part, piece)
-            # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
-            draws = np.random.default_rng(int(cellrng.hash64(key, _NOISE, a, b, part)))
-            kept: list[Arrangement] = []
-            ksub: list[np.ndarray] = []
-            more = more_kind = None
-            for rnd in range(1 + REFILLS):
-                fixed = Arrangement.concat([before, *grown, *kept])
-                fsub = np.concatenate([bsub, *gsub, *ksub])
+    def _job(self, w: _Cell, part: int) -> _Job:
+        """Piece ``part`` of cell ``w``, ready to grow: its seed (§5.1) and tie-breaking draws."""
+        a, b = w.c
+        piece = w.pieces[part]
+        shapely.prepare(piece)
+        start, ring0 = self.start(a, b, part, piece)
+        # tie-breaking draws: one generator per piece, seeded by a world-anchored hash
+        draws = np.random.default_rng(int(cellrng.hash64(self.ctx.key, _NOISE, a, b, part)))
+        # its outline is made once for the up to 1 + REFILLS growths of the piece
+        return _Job(w, piece, rings_of(piece), start, ring0, draws)
 
-                def relaxer(xy, ring, theta, first):
-                    return relax(rings, xy, ring, theta, first, rows=self.rows)
+    def grow_round(self, j: _Job, rnd: int) -> tuple[Arrangement, np.ndarray, Grown, Arrangement] | None:
+        """Growth round ``rnd`` of piece ``j`` (§5.1, §5.4; relaxed, §5.5): the new motifs, their
+        sub-ids, the growth they came from and the fixed motifs they grew against; None if none
+        grew.  The exact check is the caller's (:meth:`settle_all`)."""
+        rings, p, w = self.rings, self.p, j.cell
+        fixed = Arrangement.concat([w.before, *w.grown, *j.kept])
+        fsub = np.concatenate([w.bsub, *w.gsub, *j.ksub])
 
-                g = grow(rings, piece, start, ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
-                         fixed_sub=fsub, more=more, more_kind=more_kind, rotation=self.rotation, flow=flow,
-                         priority=self.priority, weights=p.weights, centre_gap=self.gap,
-                         draws=draws, outline=outline,
-                         relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
-                if not len(g.xy):
-                    break
-                xy = g.xy
-                if p.relaxation and len(xy) > 1:
-                    held = None
-                    if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
-                        held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
-                    xy = relax(rings, np.r_[fixed.xy, xy], g.ring, g.theta, len(fixed), held, rows=self.rows)
-                sub = rings.element[g.ring]
-                angle = rings.angle[g.ring] + np.degrees(g.theta)
-                if self.snap:
-                    xy, sub = self.on_sites(xy, rings.kind[g.ring])
-                    angle = self.ex.motifs.angle[sub]
-                arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, self.ex.motifs.scale[sub])
-                if self.rows is not None:
-                    arr = slide_apart(arr, fixed, self.ex.prototypes, self.stats.distance, self.rows)
-                arr = arr.quantized(DECIMALS)
-                ok = self.settle(arr, fixed)
-                kept.append(arr.take(ok))
-                ksub.append(sub[ok])
-                if rnd == REFILLS:  # no round left to regrow the holes in
-                    break
-                # the holes conflicts left: seeds at the free ring slots of the motifs kept (§5.4)
-                more, more_kind = self.free_slots(arr.xy[ok], g.ring[ok], g.theta[ok], piece,
-                                                  Arrangement.concat([fixed, kept[-1]]).xy)  # fmt: skip
-                if not len(more):
-                    break
-            if self.pred is not None:
-                self.fill_gaps(piece, [before, *grown], [bsub, *gsub], kept, ksub)
-            grown.extend(kept)
-            gsub.extend(ksub)
-        return Arrangement.concat(grown), np.concatenate(gsub) if gsub else np.zeros(0, np.int64)
+        def relaxer(xy, ring, theta, first):
+            return relax(rings, xy, ring, theta, first, rows=self.rows)
+
+        g = grow(rings, j.piece, j.start, j.ring0 if rnd == 0 else -1, fixed_xy=fixed.xy, fixed_kind=fixed.kind,
+                 fixed_sub=fsub, more=j.more, more_kind=j.more_kind, rotation=self.rotation, flow=w.flow,
+                 priority=self.priority, weights=p.weights, centre_gap=self.gap, draws=j.draws, outline=j.outline,
+                 relax=relaxer if p.relaxation and p.relax_every else None, relax_every=p.relax_every)  # fmt: skip
+        if not len(g.xy):
+            return None
+        xy = g.xy
+        if p.relaxation and len(xy) > 1:
+            held = None
+            if self.barriers is not None:  # §5.5 eq. (6): elements at the boundaries stay put
+                held = shapely.dwithin(self.barriers, shapely.points(xy), self.radius + rings.short_length)
+            xy = relax(rings, np.concatenate([fixed.xy, xy]), g.ring, g.theta, len(fixed), held, rows=self.rows)
+        sub = rings.element[g.ring]
+        angle = rings.angle[g.ring] + np.degrees(g.theta)
+        if self.snap:
+            xy, sub = self.on_sites(xy, rings.kind[g.ring])
+            angle = self.ex.motifs.angle[sub]
+        arr = Arrangement(rings.kind[g.ring], xy, (angle + 180.0) % 360.0 - 180.0, self.ex.motifs.scale[sub])
+        if self.rows is not None:  # drawn rows: new motifs in conflict along a row slide apart on it
+            arr = slide_apart(arr, fixed, self.ex.prototypes, self.stats.distance, self.rows)
+        return arr.quantized(DECIMALS), sub, g, fixed
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of
@@ -354,28 +393,83 @@ class Growth:
         """(n,) bool: the motifs of ``new`` that stay — no overlap, no distance-rule violation, no
         barrier crossed, checked on footprints against each other and ``before`` (which stay).
         Among conflicting new motifs those with more ``support`` ((n,) int, optional) stay first."""
+        return self.settle_all([new], [before], None if support is None else [support])[0]
+
+    def settle_all(self, news: list[Arrangement], befores: list[Arrangement],
+                   supports: list[np.ndarray] | None = None) -> list[np.ndarray]:  # fmt: skip
+        """:meth:`settle` of several independent checks at once (one per piece of cells that do
+        not meet): ``news[i]`` against itself and ``befores[i]`` alone, the same outcome as one
+        call each — pairs of two checks are never tested, and each check is culled on its own —
+        at the cost of one."""
         protos, d = self.ex.prototypes, self.stats.distance
+        sizes = [len(x) for x in news]
+        new = Arrangement.concat(news)
+        group = np.repeat(np.arange(len(news)), sizes)
         ok = np.ones(len(new), bool)
-        if not len(new):
-            return ok
-        if self.barriers is not None:
-            ok &= ~shapely.intersects(world_footprints(new, protos), self.barriers)
-        if self.within is not None:
-            ok &= shapely.contains_xy(self.within, new.xy[:, 0], new.xy[:, 1])
-        if len(before):
-            ok[ok] = ~cross_conflicts(new.take(ok), before, protos, d)
-        sel = np.flatnonzero(ok)
-        sub = new.take(sel)
-        grid = np.round(sub.xy * 16).astype(np.int64)
-        prio = cellrng.uniform(self.ctx.key, _PRIORITY, grid[:, 0], grid[:, 1])
-        if support is not None:
-            prio = prio - support[sel]
-        found = find_conflicts(sub, protos, d)
-        violator = np.zeros(len(sub))
-        side = found.violation & ~found.overlap
-        violator[found.i[side]] = violator[found.j[side]] = 1.0
-        ok[sel] = cull(len(sub), found, prio, violator)
-        return ok
+        if len(new):
+            if self.barriers is not None:
+                ok &= ~shapely.intersects(world_footprints(new, protos), self.barriers)
+            if self.within is not None:
+                ok &= shapely.contains_xy(self.within, new.xy[:, 0], new.xy[:, 1])
+            before = Arrangement.concat(befores)
+            if len(before):
+                bgroup = np.repeat(np.arange(len(befores)), [len(x) for x in befores])
+                ok[ok] = ~cross_conflicts(new.take(ok), before, protos, d, groups=(group[ok], bgroup))
+            sel = np.flatnonzero(ok)
+            sub = new.take(sel)
+            grid = np.round(sub.xy * 16).astype(np.int64)
+            prio = cellrng.uniform(self.ctx.key, _PRIORITY, grid[:, 0], grid[:, 1])
+            if supports is not None:
+                prio = prio - np.concatenate(supports)[sel]
+            found = find_conflicts(sub, protos, d)
+            check = group[sel]  # (s,) the check each motif belongs to
+            mine = check[found.i] == check[found.j]  # pairs of two checks are not this run's to find
+            found = Conflicts(found.i[mine], found.j[mine], found.overlap[mine], found.violation[mine])
+            violator = np.zeros(len(sub))
+            side = found.violation & ~found.overlap
+            violator[found.i[side]] = violator[found.j[side]] = 1.0
+            # culled check by check: cull ranks the priorities of all the motifs it is given
+            at = np.searchsorted(check, np.arange(len(news) + 1))
+            order = np.argsort(check[found.i], kind="stable")
+            pair_at = np.searchsorted(check[found.i][order], np.arange(len(news) + 1))
+            for q in range(len(news)):
+                lo, hi = at[q], at[q + 1]
+                mine = order[pair_at[q] : pair_at[q + 1]]
+                part = Conflicts(found.i[mine] - lo, found.j[mine] - lo, found.overlap[mine], found.violation[mine])
+                ok[sel[lo:hi]] = cull(hi - lo, part, prio[lo:hi], violator[lo:hi])
+        return np.split(ok, np.cumsum(sizes)[:-1])
+
+
+@dataclass(eq=False)
+class _Cell:
+    """A cell in growth: its earlier-phase neighbours' motifs within reach (and their sub-ids),
+    its flow table, its pieces, and the motifs of the pieces grown so far."""
+
+    c: tuple[int, int]
+    before: Arrangement
+    bsub: np.ndarray
+    flow: tuple[np.ndarray, float, float, float] | None
+    pieces: list[shapely.Geometry]
+    grown: list[Arrangement] = field(default_factory=list)
+    gsub: list[np.ndarray] = field(default_factory=list)
+
+
+@dataclass(eq=False)
+class _Job:
+    """A piece of a cell in growth: what its rounds carry from one to the next — the motifs kept,
+    the seeds of the next round (``more``, ``more_kind``) and whether there is one (``live``)."""
+
+    cell: _Cell
+    piece: shapely.Geometry
+    outline: tuple[np.ndarray, np.ndarray]
+    start: np.ndarray
+    ring0: int
+    draws: np.random.Generator
+    kept: list[Arrangement] = field(default_factory=list)
+    ksub: list[np.ndarray] = field(default_factory=list)
+    more: np.ndarray | None = None
+    more_kind: np.ndarray | None = None
+    live: bool = True
 
 
 def _phase(c: tuple[int, int]) -> int:

@@ -83,7 +83,7 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
          priority: np.ndarray, weights: Weights, centre_gap: np.ndarray, draws: np.random.Generator,
          relax: Callable[[np.ndarray, np.ndarray, np.ndarray, int], np.ndarray] | None = None,
          relax_every: int = 0, limit: int = 1_000_000,
-         outline: tuple[np.ndarray, np.ndarray] | None = None) -> Grown:  # fmt: skip
+         outline: tuple[np.ndarray, np.ndarray] | None = None, room: int | None = None) -> Grown:  # fmt: skip
     """Grow motifs over ``piece`` from one seed at ``start`` (§5.1, §5.4).
 
     Parameters
@@ -110,6 +110,8 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     limit : at most this many motifs
     outline : ``piece``'s rings as :func:`rings_of` gives them, if at hand (a piece grown in
         several rounds: made once)
+    room : how many motifs and seeds the loop's first arrays hold (default: what the piece's
+        area holds, so the loop seldom stops to have them doubled); the outcome is the same
 
     Returns
     -------
@@ -130,8 +132,10 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
     x1, y1 = (egrid[1:3] + egrid[3:5] + 1) * reach
     kept = np.flatnonzero((fixed_xy[:, 0] >= x0) & (fixed_xy[:, 0] <= x1) & (fixed_xy[:, 1] >= y0)
                           & (fixed_xy[:, 1] <= y1))  # fmt: skip
-    ecap = f + 64
-    scap = 1 + len(more) + 64 + M
+    if room is None:  # what a piece this large holds (a lattice of edge l has one motif per 0.87·l²)
+        room = 64 + int(piece.area / (0.5 * rings.mean_length**2))
+    ecap = f + room
+    scap = 1 + len(more) + room + M
     exy = np.zeros((ecap, 2))
     ekind = np.zeros(ecap, np.int64)
     esub = np.zeros(ecap, np.int64)
@@ -144,9 +148,9 @@ def grow(rings: Rings, piece: shapely.Geometry, start: np.ndarray, start_ring: i
              np.full(scap, -1, np.int64), np.full(len(ehead), -1, np.int64),
              np.full(int(wgrid[3] * wgrid[4]), -1, np.int64), np.full(scap, -1, np.int64), wgrid,
              np.zeros(scap), np.zeros(scap, np.int64)]  # fmt: skip
-    seeds = np.r_[np.reshape(start, (1, 2)), more]
-    kinds = np.r_[int(rings.kind[start_ring]) if start_ring >= 0 else -1, more_kind].astype(np.int64)
-    keys = np.r_[0.0, np.hypot(more[:, 0] - start[0], more[:, 1] - start[1])]
+    seeds = np.concatenate([np.reshape(start, (1, 2)), more])
+    kinds = np.concatenate([[int(rings.kind[start_ring]) if start_ring >= 0 else -1], more_kind]).astype(np.int64)
+    keys = np.concatenate([[0.0], np.hypot(more[:, 0] - start[0], more[:, 1] - start[1])])
     ns = len(seeds)
     hn = kernel.plant(tuple(state), seeds, kinds, keys, levels)
     mode = ROTATION_MODES[rotation]

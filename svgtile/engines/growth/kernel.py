@@ -13,11 +13,16 @@ per machine, about 10 s, then loaded from ``__pycache__``):
 * :func:`run` — the loop of :func:`svgtile.engines.growth.grow.grow`: a heap of seeds, bucket
   grids of placed motifs and live seeds as linked lists in arrays, the Fig. 6 heuristics.  It is
   resumable: it returns when its arrays are full or a relaxation is due, and the caller grows the
-  arrays or relaxes and calls it again with the same state.
+  arrays or relaxes and calls it again with the same state;
+* :func:`ring_slots` and :func:`normal_equations` — the assembly of relaxation's least-squares
+  problem (§5.5, :mod:`svgtile.engines.growth.relax`), a few thousand small array operations a
+  run in numpy.
 
 The floating-point operations are those of the numpy version, in the same order (sums in
 numpy's pairwise order, :func:`_sum`), so that a texture grown by either is the same to the last
-written digit.
+written digit.  Where a cheaper test stands in for one of them (:func:`closer` for a ``hypot``
+compared with a threshold, a bound from square roots in :func:`match`), it only ever settles
+cases the exact test would settle the same way, and leaves the others to it.
 """
 
 from __future__ import annotations
@@ -64,6 +69,23 @@ def _sum(a, n):  # pragma: no cover
 
 
 @numba.njit(cache=True)
+def closer(dx, dy, t):  # pragma: no cover
+    """``np.hypot(dx, dy) < t``, decided as that expression decides it, mostly without ``hypot``.
+
+    ``hypot`` costs ~16 ns here against ~2 for a sum of squares, and the loop asks this question
+    some thousand times a motif.  ``dx² + dy²`` (relative error ≤ 2 ulp) against ``t²`` settles
+    every case farther than 1e-12 relative from the threshold; the few nearer are asked of
+    ``hypot`` itself, so the answer is always the one ``hypot`` gives."""
+    s = dx * dx + dy * dy
+    t2 = t * t
+    if s > t2 * (1.0 + 1e-12):
+        return False
+    if s < t2 * (1.0 - 1e-12):
+        return True
+    return np.hypot(dx, dy) < t
+
+
+@numba.njit(cache=True)
 def ring_order(rel, out):  # pragma: no cover
     """The Gabriel neighbours of the origin among ``rel`` ((q, 2) float, relative to the seed),
     counter-clockwise, starting after the widest angular gap (§5.2); written to ``out`` ((q,)
@@ -78,7 +100,7 @@ def ring_order(rel, out):  # pragma: no cover
         mx, my = rel[e, 0] / 2, rel[e, 1] / 2
         shadowed = False
         for o in range(q):
-            if o != e and np.hypot(rel[o, 0] - mx, rel[o, 1] - my) < r[e]:
+            if o != e and closer(rel[o, 0] - mx, rel[o, 1] - my, r[e]):
                 shadowed = True
                 break
         if not shadowed:
@@ -138,6 +160,7 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
     got = 0
     px = np.empty(t)
     py = np.empty(t)
+    slot = np.empty(t, np.int64)
     prune = w1 >= 0 and w2 >= 0 and w3 >= 0
     co0, si0 = np.cos(fa if mode == FLOW else 0.0), np.sin(fa if mode == FLOW else 0.0)
     for i in range(c):
@@ -150,15 +173,16 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
             bad = 0
             same = 0
             for j in range(t):
-                bad += nkind[r, (k + j) % m] != tkind[j]
-                same += nsub[r, (k + j) % m] == tsub[j]
+                slot[j] = k + j - m if k + j >= m else k + j  # (k + j) mod m, without a division
+                bad += nkind[r, slot[j]] != tkind[j]
+                same += nsub[r, slot[j]] == tsub[j]
             base = (w2 * bad if w2 else 0.0) + (w3 * same if w3 else 0.0)
             bound = out_err[got - 1] * (1.0 + 1e-12) + 1e-300 if prune and got == top else np.inf
             if base > bound:
                 continue
             if mode == FIT:
                 for j in range(t):
-                    s = (k + j) % m
+                    s = slot[j]
                     px[j] = rel[r, s, 0] * tar[j, 0] + rel[r, s, 1] * tar[j, 1]
                     py[j] = rel[r, s, 0] * tar[j, 1] - rel[r, s, 1] * tar[j, 0]
                 theta = np.arctan2(_sum(py, t), _sum(px, t))
@@ -166,10 +190,22 @@ def match(rel, size, rkind, nkind, nsub, mean_length, tar, tkind, tsub, want, mo
             else:
                 theta = fa if mode == FLOW else 0.0
                 co, si = co0, si0
+            if bound < np.inf:
+                # the distance sum from square roots (~1 ulp off hypot's) less a margin is below
+                # the sum the loop below makes: a pair whose bound already exceeds the worst
+                # kept is one that loop abandons too, found at a seventh of the cost
+                low = 0.0
+                for j in range(t):
+                    s = slot[j]
+                    dx = co * rel[r, s, 0] - si * rel[r, s, 1] - tar[j, 0]
+                    dy = si * rel[r, s, 0] + co * rel[r, s, 1] - tar[j, 1]
+                    low += np.sqrt(dx * dx + dy * dy)
+                if w1 * (low * (1.0 - 1e-12)) / mean_length + base > bound:
+                    continue
             run = 0.0
             over = False
             for j in range(t):
-                s = (k + j) % m
+                s = slot[j]
                 rx = co * rel[r, s, 0] - si * rel[r, s, 1]
                 ry = si * rel[r, s, 0] + co * rel[r, s, 1]
                 px[j] = np.hypot(rx - tar[j, 0], ry - tar[j, 1])
@@ -353,8 +389,8 @@ def run(state, ivars, fvars, rel, size, rkind, relem, nkind, nsub, priority, cen
         dmin = np.inf
         for i in range(c):
             e = ids[i]
-            d = np.hypot(exy[e, 0] - x, exy[e, 1] - y)
-            if d < reach:
+            if closer(exy[e, 0] - x, exy[e, 1] - y, reach):
+                d = np.hypot(exy[e, 0] - x, exy[e, 1] - y)
                 close[q], dist[q] = e, d
                 dmin = min(dmin, d)
                 q += 1
@@ -426,7 +462,7 @@ def run(state, ivars, fvars, rel, size, rkind, relem, nkind, nsub, priority, cen
                 c = _near(egrid, ehead, enext, px, py, ids)
             taken = False
             for i in range(c):
-                if np.hypot(exy[ids[i], 0] - px, exy[ids[i], 1] - py) < r_short:
+                if closer(exy[ids[i], 0] - px, exy[ids[i], 1] - py, r_short):
                     taken = True
                     break
             if taken:
@@ -479,3 +515,76 @@ def _add_seed(state, ns, x, y, kind, key, levels):  # pragma: no cover
         wnext[ns] = whead[w]
         whead[w] = ns
     return ns + 1
+
+
+@numba.njit(cache=True)
+def normal_equations(ci, cj, b, f, pull):  # pragma: no cover
+    """``AᵀA + λI`` as CSC arrays ``(data, indices, indptr)`` and ``Aᵀb`` ((f, 2) float) of the
+    rows ``x_cj − x_ci = b`` ((e,) int, (e,) int, (e, 2) float; −1 marks a fixed end) over ``f``
+    unknowns, λ = ``pull``: :func:`svgtile.engines.growth.relax._normal_equations`, which says
+    why these are the sparse products bit for bit (off the diagonal sums of −1, exact in any
+    order; ``Aᵀb`` summed row by row, the ``cj`` term of a row before its ``ci`` term)."""
+    e = ci.shape[0]
+    count = np.zeros(f, np.int64)  # rows per unknown: the diagonal of AᵀA
+    rhs = np.zeros((f, 2))
+    both = 0
+    for q in range(e):
+        if cj[q] >= 0:
+            count[cj[q]] += 1
+            rhs[cj[q], 0] += b[q, 0]
+            rhs[cj[q], 1] += b[q, 1]
+        if ci[q] >= 0:
+            count[ci[q]] += 1
+            rhs[ci[q], 0] += -b[q, 0]
+            rhs[ci[q], 1] += -b[q, 1]
+        if ci[q] >= 0 and cj[q] >= 0:
+            both += 1
+    key = np.empty(f + 2 * both, np.int64)  # column · f + row, as the canonical CSC order sorts
+    for p in range(f):
+        key[p] = p * f + p
+    at = f
+    for q in range(e):
+        if ci[q] >= 0 and cj[q] >= 0:
+            key[at] = cj[q] * f + ci[q]
+            key[at + 1] = ci[q] * f + cj[q]
+            at += 2
+    key = np.sort(key)
+    data = np.empty(key.shape[0])
+    indices = np.empty(key.shape[0], np.int32)
+    indptr = np.zeros(f + 1, np.int32)
+    n = 0
+    for p in range(key.shape[0]):
+        if n and key[p] == key[p - 1]:
+            data[n - 1] -= 1.0
+            continue
+        col, row = key[p] // f, key[p] % f
+        data[n] = count[col] + pull if row == col else -1.0
+        indices[n] = row
+        indptr[col + 1] += 1
+        n += 1
+    for p in range(f):
+        indptr[p + 1] += indptr[p]
+    return data[:n].copy(), indices[:n].copy(), indptr, rhs
+
+
+@numba.njit(cache=True)
+def ring_slots(rel, size, ring, co, si, first):  # pragma: no cover
+    """Where each grown motif's ring wants its neighbours (§5.5): for motif ``first + g`` copying
+    reference ring ``ring[g]`` turned by the angle of cosine ``co[g]`` and sine ``si[g]``, one
+    row per slot of that ring, in order — the motif's index ((s,) int) and the slot's offset
+    ((s, 2) float, user units).  ``co``, ``si`` come from numpy (its cos and sin may differ from
+    compiled code's in the last bit)."""
+    total = 0
+    for g in range(ring.shape[0]):
+        total += size[ring[g]]
+    idx = np.empty(total, np.int64)
+    want = np.empty((total, 2))
+    at = 0
+    for g in range(ring.shape[0]):
+        r = ring[g]
+        for slot in range(size[r]):
+            idx[at] = first + g
+            want[at, 0] = co[g] * rel[r, slot, 0] - si[g] * rel[r, slot, 1]
+            want[at, 1] = si[g] * rel[r, slot, 0] + co[g] * rel[r, slot, 1]
+            at += 1
+    return idx, want

@@ -31,6 +31,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 from scipy.spatial import cKDTree
 
+from svgtile.engines.growth import kernel
 from svgtile.engines.growth.connectivity import Rings
 from svgtile.engines.growth.rows import ROW_WEIGHT, RowLines
 
@@ -60,14 +61,7 @@ def relax(rings: Rings, xy: np.ndarray, ring: np.ndarray, theta: np.ndarray, fir
     g = n - first
     if g <= 1:
         return xy[first:].copy()
-    size = rings.size[ring]
-    slot = np.arange(rings.rel.shape[1])
-    valid = slot[None, :] < size[:, None]
-    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
-    v = rings.rel[ring]
-    want = np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)  # (g, M, 2)
-    i = np.broadcast_to((first + np.arange(g))[:, None], valid.shape)[valid]
-    want = want[valid]
+    i, want = kernel.ring_slots(rings.rel, rings.size, np.asarray(ring, np.int64), np.cos(theta), np.sin(theta), first)
     dist, j = cKDTree(xy).query(xy[i] + want, distance_upper_bound=rings.short_length / 2)
     ok = np.isfinite(dist) & (j != i)
     i, j, want = i[ok], j[ok], want[ok]
@@ -128,28 +122,7 @@ def _normal_equations(ci: np.ndarray, cj: np.ndarray, b: np.ndarray, f: int) -> 
     b : (e, 2) float array, user units
     f : number of unknowns
     """
-    fi, fj = ci >= 0, cj >= 0
-    diag = np.bincount(ci[fi], minlength=f) + np.bincount(cj[fj], minlength=f) + PULL
-    both = fi & fj
-    r = np.concatenate([np.arange(f), ci[both], cj[both]])
-    c = np.concatenate([np.arange(f), cj[both], ci[both]])
-    v = np.concatenate([diag, -np.ones(2 * both.sum())])
-    # canonical CSC: by column, then row, duplicates summed (exact: they are all −1)
-    key = c.astype(np.int64) * f + r
-    order = np.argsort(key, kind="stable")
-    key, v = key[order], v[order]
-    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
-    data = np.add.reduceat(v, first)
-    rows = (key[first] % f).astype(np.int32)
-    indptr = np.searchsorted(key[first] // f, np.arange(f + 1)).astype(np.int32)
-    N = sp.csc_matrix((data, rows, indptr), shape=(f, f))
-    # Aᵀb: the rows in order, as the sparse product sums them
-    at = np.concatenate([cj, ci])
-    sign = np.concatenate([np.ones(len(cj)), -np.ones(len(ci))])
-    row = np.concatenate([np.arange(len(cj)), np.arange(len(ci))])
-    keep = np.flatnonzero(at >= 0)
-    keep = keep[np.argsort(row[keep], kind="stable")]
-    w = sign[keep, None] * b[row[keep]]
-    rhs = np.column_stack([np.bincount(at[keep], weights=w[:, 0], minlength=f),
-                           np.bincount(at[keep], weights=w[:, 1], minlength=f)]).astype(np.float64)  # fmt: skip
+    data, indices, indptr, rhs = kernel.normal_equations(np.asarray(ci, np.int64), np.asarray(cj, np.int64),
+                                                         np.ascontiguousarray(b, np.float64), f, PULL)  # fmt: skip
+    N = sp.csc_matrix((data, indices, indptr), shape=(f, f))
     return N, rhs
