@@ -99,11 +99,12 @@ class OptimizeEngine:
         # insertion (opt-in: it overfills tiles of dense rows) refills the seams of patches cut
         # from a repeating tile; elsewhere the start's density holds (patches of a drawn exemplar
         # thinned to ρ, or the tile itself)
-        settings = replace(p.settings(), insert=p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow))
+        refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
+        settings = replace(p.settings(), insert=refill)
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
         arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
-                          overlap=p.start_overlap, flow=ctx.controls.flow)  # fmt: skip
+                          overlap=p.start_overlap, flow=ctx.controls.flow, large_first=refill)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip
         return arr

@@ -11,14 +11,23 @@ bin predicted by at least :data:`VOTES` elements gets one element, at the mean o
 predictions, of the kind, angle and scale of its first prediction's sample — and is kept only
 if it breaks no rule (no overlap, no distance-rule violation, kept by the boundary mode),
 the best-voted first.
+
+Insertion is capped at the exemplar's density ρ (:func:`capped`): in world-anchored windows of
+:data:`WINDOW` spacings, the best-voted elements are added only while the window's covered
+fraction stays below ρ.  Uncapped, every predicted hole was filled, and where the exemplar's
+neighbourhoods predict more neighbours than its density holds — rows whose spacing along the row
+is tighter than across, a drawn exemplar's dense clusters — the texture overfilled (FGDC 610:
+density / ρ 1.44; bundled exemplars 1.06–1.31).  The cap is the count the paper's §4.1 start
+would have had without seams; the predictions say only *where* the missing elements go.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.analysis.stats import Stats
+from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import cull, find_conflicts
@@ -32,6 +41,8 @@ from svgtile.engines.optimize.search import Neighbourhoods
 VOTES = 2
 #: Predictions nearer than this to an output element (spacings) are taken as that element.
 TAKEN = 0.5
+#: Side of the density windows of the cap, exemplar spacings (about 9 motifs each).
+WINDOW = 3.0
 _TIE = 75  # hash stream: ties between equally voted bins
 
 
@@ -103,7 +114,66 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
     priority = np.r_[np.zeros(m), -votes + 0.5 * tie]
     prefer = np.r_[np.zeros(m), np.ones(len(new))]
     keep = cull(len(both), find_conflicts(both, exemplar.prototypes, stats.distance), priority, prefer)
-    add = keep[m:]
     if not keep[:m].all():  # cannot happen: the output has no conflict among itself
         return none
+    add = np.flatnonzero(keep[m:])
+    add = add[capped(arr, new.take(add), -priority[m:][add], exemplar, stats, region, window=WINDOW * spacing)]
     return Arrangement.concat([arr, new.take(add)]), chosen[add]
+
+
+def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region,
+           *, window: float) -> np.ndarray:  # fmt: skip
+    """(m,) bool: the elements of ``new`` added so that no window is filled past ρ.
+
+    The plane is cut into world-anchored square windows of side ``window``; a window's room is
+    ``ρ · area(window ∩ region)`` less the footprint area of the motifs of ``arr`` whose centroid
+    lies in it (as :func:`svgtile.metrics.amounts.density` counts).  The elements of ``new`` in a
+    window are taken by decreasing ``rank`` as long as each brings the window's covered fraction
+    nearer to ρ (the room left before it is more than half its area); the first that would not
+    ends the window's list.
+
+    Parameters
+    ----------
+    arr : (n motifs) the output
+    new : (m motifs) the candidates, no conflict with ``arr`` nor among themselves
+    rank : (m,) float, the higher the sooner a candidate is taken (unique)
+    window : side of the windows, user units
+
+    Returns
+    -------
+    (m,) bool, the candidates taken
+    """
+    m = len(new)
+    if m == 0:
+        return np.zeros(0, dtype=bool)
+    ids, which = np.unique(np.floor(new.xy / window).astype(np.int64), axis=0, return_inverse=True)
+    which = which.ravel()
+    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
+    room = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
+    # the output's cover of those windows: its motifs' windows looked up among ``ids``; a motif
+    # whose centroid lies outside the region (kept by the boundary mode) covers no window's
+    # ``window ∩ region``, as the density figure counts
+    cell = np.floor(arr.xy / window).astype(np.int64)
+    pos = np.searchsorted(_keys(ids), _keys(cell))
+    hit = (pos < len(ids)) & (_keys(ids)[np.minimum(pos, len(ids) - 1)] == _keys(cell))
+    hit &= shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
+    room -= np.bincount(pos[hit], weights=footprint_areas(arr.take(np.flatnonzero(hit)), exemplar.prototypes),
+                        minlength=len(ids))  # fmt: skip
+    area = footprint_areas(new, exemplar.prototypes)
+    order = np.lexsort((-rank, which))  # by window, best first
+    w, a = which[order], area[order]
+    start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
+    before = np.cumsum(a) - a  # area added before this one, if all before it are taken
+    before -= np.repeat(before[start], np.diff(np.r_[start, m]))
+    nearer = room[w] - before > a / 2
+    # a window's candidates are taken up to its first that would not bring it nearer to ρ
+    short = np.cumsum(~nearer)
+    short -= np.repeat(short[start] - ~nearer[start], np.diff(np.r_[start, m]))
+    take = np.zeros(m, dtype=bool)
+    take[order] = short == 0
+    return take
+
+
+def _keys(cells: np.ndarray) -> np.ndarray:
+    """(c,) int64: one sortable key per integer cell ``(c, 2)`` (coordinates well within ±2³¹)."""
+    return cells[:, 0] * (1 << 32) + cells[:, 1]
