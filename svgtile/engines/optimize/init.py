@@ -42,7 +42,7 @@ EXACT = 0.05
 
 #: Weight of a motif's footprint area (over the largest) against its distance from its cell's
 #: centre (over the cell side, ≤ ~0.6) in which of two conflicting start motifs leaves, when
-#: the large go first (``patch_start(large_first=True)``).
+#: the smaller go first (``patch_start(refill=True)``).
 SIZE = 1.0
 
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
@@ -51,7 +51,7 @@ _THIN = 74
 
 
 def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
-                cell: float, overlap: float, flow: FlowField | None = None, large_first: bool = False) -> Arrangement:  # fmt: skip
+                cell: float, overlap: float, flow: FlowField | None = None, refill: bool = False) -> Arrangement:  # fmt: skip
     """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
 
     Parameters
@@ -63,10 +63,11 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     overlap : σ ≥ 0, how far each patch's window reaches past its cell, as a fraction of ``c``
     flow : a flow field, or None; each patch is then turned by the field's angle at its cell's
         centre (§5, eq. (7)), motifs with it
-    large_first : whether, of two conflicting motifs at a seam, the smaller leaves (by
-        :data:`SIZE`), for a start whose holes insertion refills (:mod:`.insert`): small motifs
-        fit them, large ones rarely do, so culling by position alone lost the large kinds
-        (FGDC 605: 91 of 128 clasts, every dot) and with them a fifth of the density
+    refill : whether insertion refills this start's holes (:mod:`.insert`).  Then, of two
+        conflicting motifs at a seam, and in :func:`thin`, the smaller leaves first (by
+        :data:`SIZE`): small motifs fit the holes, large ones rarely do, and culling by position
+        alone lost the large kinds (FGDC 605: 91 of 128 clasts, every dot; 613: 35 of 52 bars)
+        and with them a fifth of the density
 
     Returns
     -------
@@ -110,16 +111,16 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     near = region.keep(arr, protos, boundary)
     arr, ci, e = arr.take(near), ci[near], e[near]
     # the motif farther from its own cell's centre leaves first; ties by a hash of its cell and
-    # source; with large_first, the smaller motif leaves first unless they are of like size
+    # source; with refill, the smaller motif leaves first unless they are of like size
     off = np.abs(arr.xy - centre[ci]).max(axis=1) / cell
     tie = cellrng.uniform(key, _TIE, A[ci], B[ci], e)
     priority = off + 1e-3 * tie
-    if large_first:
+    if refill:
         area = footprint_areas(arr, protos)
         priority -= SIZE * area / max(float(area.max(initial=0.0)), 1e-12)
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), priority)
     arr = arr.take(keep)
-    return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
+    return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell, refill=refill))
 
 
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
@@ -185,7 +186,7 @@ def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str
 
 
 def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, key: int,
-         window: float) -> np.ndarray:  # fmt: skip
+         window: float, refill: bool = False) -> np.ndarray:  # fmt: skip
     """(n,) bool: motifs kept so that no world-anchored window covers more than ρ of its area.
 
     Patches overlap by σ so that their seams, once culled, are not sparser than the exemplar;
@@ -196,6 +197,8 @@ def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, 
     Parameters
     ----------
     window : side of the windows, user units
+    refill : whether insertion refills the start (:func:`patch_start`): the smaller motifs
+        leave first (:data:`SIZE`), and only motifs whose centroid lies in the region count
     """
     n = len(arr)
     if n == 0:
@@ -208,13 +211,21 @@ def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, 
     area = footprint_areas(arr, exemplar.prototypes)
     q = np.round(arr.xy * 1e3).astype(np.int64)
     priority = cellrng.uniform(key, _THIN, q[:, 0], q[:, 1])
+    if refill:
+        priority = priority - SIZE * area / max(float(area.max(initial=0.0)), 1e-12)
     order = np.lexsort((-priority, which))  # by window, highest priority first
+    # with refill, a motif whose centroid lies outside the region (kept by the boundary mode)
+    # covers none of ``window ∩ region``, as the density figure counts: it neither counts nor
+    # leaves (else the windows along the edge, ~⅓ of a 2 × 2-tile region's, look full and lose
+    # motifs inside; the drawn exemplars' figures are kept as they were measured)
+    inside = shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1]) if refill else np.ones(n, dtype=bool)
+    area = np.where(inside, area, 0.0)
     w, a = which[order], area[order]
     start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
     before = np.cumsum(a) - a  # area removed before this one, if all before it leave
     before -= np.repeat(before[start], np.diff(np.r_[start, n]))
     total = np.bincount(which, weights=area, minlength=len(ids))
-    leave = total[w] - before > target[w]
+    leave = (total[w] - before > target[w]) & inside[order]
     keep = np.ones(n, dtype=bool)
     keep[order[leave]] = False
     return keep
