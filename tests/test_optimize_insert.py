@@ -92,3 +92,74 @@ def test_the_cap_at_a_place_does_not_depend_on_how_far_the_region_extends():
                   Region.rectangle(2 * N * STEP, N * STEP), window=WINDOW)  # fmt: skip
     assert 0 < small.sum() < len(new)
     assert np.array_equal(wide[: len(new)], small)
+
+
+def discs_and_dots():
+    """A 40 × 40 repeating scatter tile: discs of radius 2 (a quarter of the motifs, 84 % of the
+    footprint area) among dots of radius 0.5, by dart throwing modulo the period."""
+    side = 40.0
+    rng = np.random.default_rng(5)
+    kept: list[np.ndarray] = []
+    disc: list[bool] = []
+    for p in rng.uniform(0, side, (4000, 2)):
+        d = (np.array(kept).reshape(-1, 2) - p + side / 2) % side - side / 2
+        big = len(kept) % 4 == 0
+        need = np.where(np.array(disc, dtype=bool) | big, 5.0, 2.5)
+        if (np.hypot(d[:, 0], d[:, 1]) >= need).all():
+            kept.append(p)
+            disc.append(big)
+    uses = "".join(f'<use href="#{("dot", "disc")[k]}" x="{x:.3f}" y="{y:.3f}"/>' for (x, y), k in zip(kept, disc, strict=True))
+    return parse_exemplar(f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:svgtile="urn:svgtile:run:1" viewBox="0 0 {side} {side}">'
+                          '<defs><symbol id="dot" overflow="visible"><circle r="0.5"/></symbol>'
+                          '<symbol id="disc" overflow="visible"><circle r="2"/></symbol></defs>'
+                          f'<rect id="region" width="{side}" height="{side}" fill="none" svgtile:period="{side} {side}"/>'
+                          f'{uses}</svg>')  # fmt: skip
+
+
+def test_the_refilled_start_keeps_the_large_motifs_at_its_seams():
+    """Patches of a scatter tile meet at seams where conflicting pairs are culled.  By position
+    alone the culling loses discs (a disc conflicts with more neighbours than a dot): the start
+    holds too few, and too little of ρ.  With ``refill`` (insertion follows, and refills the
+    small) the dot of a pair leaves: the discs come near the tile's count, the density near ρ,
+    and the start keeps every rule."""
+    from test_baselines import brute_force_conflicts
+
+    from svgtile.engines.optimize.init import patch_start, seamless
+
+    ex = discs_and_dots()
+    stats = analyze(ex)
+    assert ex.period is not None and not seamless(ex)
+    disc = int(np.argmax([p.area for p in ex.prototypes]))
+    region = Region.rectangle(160.0, 160.0)
+    want = 16 * int((ex.motifs.kind == disc).sum())  # the tile's discs over the region
+    spacing = float(np.sqrt(ex.region.area / len(ex.motifs)))
+    got = {}
+    for refill in (False, True):
+        starts = [patch_start(ex, stats, region, "centroid", key=key, cell=5 * spacing, overlap=0.25, refill=refill)
+                  for key in (1, 2, 3)]  # fmt: skip
+        assert all(brute_force_conflicts(a, ex, stats) == (0, 0) for a in starts)
+        got[refill] = (np.mean([(a.kind == disc).sum() for a in starts]),
+                       np.mean([footprint_areas(a, ex.prototypes).sum() for a in starts]) / region.area / stats.density)  # fmt: skip
+    assert got[False][0] < 0.92 * want and abs(got[True][0] - want) < 0.05 * want, (got, want)
+    assert got[True][1] > got[False][1] + 0.03 and 0.93 <= got[True][1] <= 1.0, got
+
+
+def test_capped_insertion_keeps_a_tile_of_rows_within_the_density_bounds():
+    """FGDC 610 (rows at a free phase, started from patches): uncapped, insertion filled it to
+    1.44 ρ, since its rows predict more neighbours than its density holds."""
+    from test_optimize_sets import SETS
+
+    from svgtile.engines import synthesize
+    from svgtile.metrics import score
+    from svgtile.tiles.importer import import_tile
+
+    path = SETS["fgdc"] / "610.svg"
+    if not path.is_file():
+        pytest.skip("the shared data sets are not beside the checkout")
+    t = import_tile(path)
+    ex = parse_exemplar(t.text, source=str(path))
+    x0, y0, w, h = t.box
+    stats, region = analyze(ex), Region.rectangle(2 * w, 2 * h, x0, y0)
+    s = score(ex, stats, synthesize(ex, region, "optimize", seed=1, stats=stats).arrangement, region)
+    assert s.overlaps_total == 0 and s.violators_total == 0
+    assert 0.9 <= s.density_ratio <= 1.1, s.density_ratio
