@@ -11,7 +11,8 @@ bin predicted by at least :data:`VOTES` elements gets one element, at the mean o
 predictions, of the kind, angle and scale of its first prediction's sample — and is kept only
 if it breaks no rule (no overlap, no distance-rule violation, kept by the boundary mode),
 the best-voted first.  Where the mean breaks a rule, each of the bin's own predictions (its
-position, its sample) is tried in its place (FGDC 612, 617: +0.02–0.03 of ρ).
+position, its sample) is tried in its place, one element a bin at most (FGDC 601, 612, 613,
+617: +0.01–0.03 of ρ; 605: −0.06).
 
 Insertion is capped at the exemplar's density ρ (:func:`capped`): in world-anchored windows of
 :data:`WINDOW` spacings, the best-voted elements are added only while the window's covered
