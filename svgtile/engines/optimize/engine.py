@@ -57,7 +57,7 @@ class OptimizeParams(EngineParams):
     alpha: float = 1.0
     domain: float = 1.0
     elongated: float = 0.0
-    insert: bool = False
+    insert: bool = True
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -96,14 +96,15 @@ class OptimizeEngine:
         from svgtile.engines.optimize.solver import refine
 
         ex = ctx.exemplar
-        # insertion (opt-in: it overfills tiles of dense rows) refills the seams of patches cut
-        # from a repeating tile; elsewhere the start's density holds (patches of a drawn exemplar
-        # thinned to ρ, or the tile itself)
-        settings = replace(p.settings(), insert=p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow))
+        # insertion, capped at ρ, refills the seams of patches cut from a repeating tile;
+        # elsewhere the start's density holds (patches of a drawn exemplar thinned to ρ, or the
+        # tile itself)
+        refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
+        settings = replace(p.settings(), insert=refill)
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
         arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
-                          overlap=p.start_overlap, flow=ctx.controls.flow)  # fmt: skip
+                          overlap=p.start_overlap, flow=ctx.controls.flow, refill=refill)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip
         return arr

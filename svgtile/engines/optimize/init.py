@@ -40,13 +40,18 @@ from svgtile.core.region import Region
 #: (:data:`svgtile.metrics.order.EXACT`, the repetition figure's half bin).
 EXACT = 0.05
 
+#: Weight of a motif's footprint area (over the largest) against its distance from its cell's
+#: centre (over the cell side, ≤ ~0.6) in which of two conflicting start motifs leaves, when
+#: the smaller go first (``patch_start(refill=True)``).
+SIZE = 1.0
+
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
 _TIE = 73
 _THIN = 74
 
 
 def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
-                cell: float, overlap: float, flow: FlowField | None = None) -> Arrangement:  # fmt: skip
+                cell: float, overlap: float, flow: FlowField | None = None, refill: bool = False) -> Arrangement:  # fmt: skip
     """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
 
     Parameters
@@ -58,6 +63,13 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     overlap : σ ≥ 0, how far each patch's window reaches past its cell, as a fraction of ``c``
     flow : a flow field, or None; each patch is then turned by the field's angle at its cell's
         centre (§5, eq. (7)), motifs with it
+    refill : whether insertion refills this start's holes (:mod:`.insert`).  Then, of two
+        conflicting motifs at a seam, the smaller leaves first (by :data:`SIZE`): small motifs
+        fit the holes, large ones rarely do, and culling by position alone lost the large kinds
+        (FGDC 605: 91 of 128 clasts, every dot; 613: 35 of 52 bars) and with them a fifth of
+        the density.  (The thinning that follows is left as it is: thinned by size too, a tile
+        of discs and dots kept 34 % discs for the exemplar's 25 %; counting only the motifs
+        whose centroid lies in the region, FGDC 612's L fell 0.77 → 0.64 for no density.)
 
     Returns
     -------
@@ -100,10 +112,15 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     arr = Arrangement(motifs.kind[e], xy, angle, motifs.scale[e]).quantized(DECIMALS)
     near = region.keep(arr, protos, boundary)
     arr, ci, e = arr.take(near), ci[near], e[near]
-    # the motif farther from its own cell's centre leaves first; ties by a hash of its cell and source
+    # the motif farther from its own cell's centre leaves first; ties by a hash of its cell and
+    # source; with refill, the smaller motif leaves first unless they are of like size
     off = np.abs(arr.xy - centre[ci]).max(axis=1) / cell
     tie = cellrng.uniform(key, _TIE, A[ci], B[ci], e)
-    keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), off + 1e-3 * tie)
+    priority = off + 1e-3 * tie
+    if refill:
+        area = footprint_areas(arr, protos)
+        priority -= SIZE * area / max(float(area.max(initial=0.0)), 1e-12)
+    keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), priority)
     arr = arr.take(keep)
     return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
 

@@ -56,8 +56,9 @@ class Settings:
         none on a repeating tile, whose samples all have whole neighbourhoods)
     elongated : length over width from which a motif is two samples (§3.1, :mod:`.elements`;
         0, the default: one sample per motif; :data:`.elements.ELONGATED` is the value measured)
-    insert : whether elements are added where the neighbourhoods predict one and none stands
-        (:mod:`.insert`; iterations 2 to N − 1, one sample per motif only).  The paper keeps the
+    insert : whether elements are added where the neighbourhoods predict one and none stands,
+        up to the exemplar's density (:mod:`.insert`; iterations 2 to N − 1, one sample per
+        motif only).  The paper keeps the
         count of its start; the engine inserts, ``--refine`` keeps the count.
     """
 

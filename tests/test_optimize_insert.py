@@ -1,0 +1,165 @@
+"""Insertion capped at the exemplar's density (issue 14; Ma, Wei & Tong 2011 §4.1, :mod:`svgtile.engines.optimize.insert`).
+
+The neighbourhoods predict where elements are missing; the cap says how many may be added: in
+world-anchored windows, only while the window's covered fraction is below ρ.  Known answers on a
+square lattice of dots (ρ = one dot per 36 square units): a full lattice takes nothing however
+many places are proposed, a lattice with holes takes as many as it lacks, the best-ranked first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_optimize_period import H, W, tile
+
+from svgtile import analyze
+from svgtile.analysis.stats import footprint_areas
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.region import Region
+from svgtile.engines.optimize.insert import capped
+from svgtile.svg.reader import parse_exemplar
+
+STEP, N = 6.0, 12  # the lattice's step, user units, and sites per side of the output
+WINDOW = 3 * STEP  # the cap's windows: 3 × 3 sites, 16 of them over the output
+ALONG, ACROSS = np.array([STEP / 2, 0.0]), np.array([0.0, STEP / 2])  # half a step, user units
+
+
+def lattice():
+    """The exemplar (a 4 × 3 lattice of dots of step 6 on a 24 × 18 tile), its analysis, and
+    the output's sites: the lattice over a 72 × 72 square, (144, 2)."""
+    sites = (np.stack(np.meshgrid(np.arange(4), np.arange(3)), -1).reshape(-1, 2) + 0.5) * STEP
+    ex = parse_exemplar(tile(sites * [W / 24, H / 18], np.zeros(12, int)).replace("#dash", "#dot"))
+    g = (np.arange(N) + 0.5) * STEP
+    return ex, analyze(ex), np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+
+
+def dots(xy: np.ndarray) -> Arrangement:
+    n = len(xy)
+    return Arrangement(np.zeros(n, int), xy, np.zeros(n), np.ones(n)).quantized(DECIMALS)
+
+
+def window_of(xy: np.ndarray) -> np.ndarray:
+    return np.floor(xy / WINDOW).astype(int) @ [1, 1000]
+
+
+def test_a_full_lattice_takes_nothing_however_much_is_proposed():
+    """Every window of the full lattice is at ρ: the middles of its rows and columns (what an
+    uncapped insertion of rows tighter than the exemplar's would add) are all refused."""
+    ex, stats, full = lattice()
+    assert stats.density == pytest.approx(footprint_areas(dots(full), ex.prototypes).sum() / (N * STEP) ** 2)
+    mids = np.r_[full + ALONG, full + ACROSS]
+    mids = mids[(mids < N * STEP).all(axis=1)]
+    taken = capped(dots(full), dots(mids), np.arange(len(mids), dtype=float), ex, stats,
+                   Region.rectangle(N * STEP, N * STEP), window=WINDOW)  # fmt: skip
+    assert len(mids) > 200 and not taken.any()
+
+
+def test_holes_are_filled_up_to_rho_the_best_ranked_first():
+    """A lattice with 7 sites emptied (two in one window) and 300 proposals — the holes, ranked
+    first, and the middles of the rows, ranked below — takes exactly the holes: each window
+    gets what it lacks and not one motif more."""
+    ex, stats, full = lattice()
+    holes = np.array([3 * N + 3, 3 * N + 4, 3 * N + 8, 6 * N + 5, 8 * N + 2, 8 * N + 9, 10 * N + 6])
+    arr = dots(np.delete(full, holes, axis=0))
+    mids = full + ALONG
+    mids = mids[mids[:, 0] < N * STEP]
+    new = dots(np.r_[full[holes], mids])
+    rank = np.r_[np.full(len(holes), 1000.0) + np.arange(len(holes)), np.arange(len(mids), dtype=float)]
+    region = Region.rectangle(N * STEP, N * STEP)
+    taken = capped(arr, new, rank, ex, stats, region, window=WINDOW)
+    assert taken[: len(holes)].all() and not taken[len(holes):].any()
+    # ranked the other way round, each window still takes as many as it lacks, now of the middles
+    taken = capped(arr, new, -rank, ex, stats, region, window=WINDOW)
+    lack = np.bincount(np.unique(window_of(full[holes]), return_inverse=True)[1].ravel())
+    got = [taken[window_of(new.xy) == w].sum() for w in np.unique(window_of(full[holes]))]
+    assert got == list(lack) and taken.sum() == len(holes)
+
+
+def test_the_cap_at_a_place_does_not_depend_on_how_far_the_region_extends():
+    """World-anchored windows: growing the region leaves the decisions inside the old one as
+    they were (the engine contract's edit stability)."""
+    ex, stats, full = lattice()
+    rng = np.random.default_rng(3)
+    keep = rng.random(len(full)) > 0.2
+    arr = dots(full[keep])
+    holes = np.repeat(full[~keep], 2, axis=0)  # each hole proposed twice: the cap takes about half
+    new = dots(holes + rng.uniform(-1, 1, holes.shape))
+    rank = rng.random(len(new))
+    small = capped(arr, new, rank, ex, stats, Region.rectangle(N * STEP, N * STEP), window=WINDOW)
+    shifted = arr.xy + 4 * WINDOW * np.array([1.0, 0.0])  # the lattice again, to the right: a region twice as wide
+    both = Arrangement.concat([arr, dots(shifted)])
+    wide = capped(both, Arrangement.concat([new, dots(new.xy + 4 * WINDOW * np.array([1.0, 0.0]))]), np.r_[rank, rank], ex, stats,
+                  Region.rectangle(2 * N * STEP, N * STEP), window=WINDOW)  # fmt: skip
+    assert 0 < small.sum() < len(new)
+    assert np.array_equal(wide[: len(new)], small)
+
+
+def discs_and_dots():
+    """A 40 × 40 repeating scatter tile: discs of radius 2 (a quarter of the motifs, 84 % of the
+    footprint area) among dots of radius 0.5, by dart throwing modulo the period."""
+    side = 40.0
+    rng = np.random.default_rng(5)
+    kept: list[np.ndarray] = []
+    disc: list[bool] = []
+    for p in rng.uniform(0, side, (4000, 2)):
+        d = (np.array(kept).reshape(-1, 2) - p + side / 2) % side - side / 2
+        big = len(kept) % 4 == 0
+        need = np.where(np.array(disc, dtype=bool) | big, 5.0, 2.5)
+        if (np.hypot(d[:, 0], d[:, 1]) >= need).all():
+            kept.append(p)
+            disc.append(big)
+    uses = "".join(f'<use href="#{("dot", "disc")[k]}" x="{x:.3f}" y="{y:.3f}"/>' for (x, y), k in zip(kept, disc, strict=True))
+    return parse_exemplar(f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:svgtile="urn:svgtile:run:1" viewBox="0 0 {side} {side}">'
+                          '<defs><symbol id="dot" overflow="visible"><circle r="0.5"/></symbol>'
+                          '<symbol id="disc" overflow="visible"><circle r="2"/></symbol></defs>'
+                          f'<rect id="region" width="{side}" height="{side}" fill="none" svgtile:period="{side} {side}"/>'
+                          f'{uses}</svg>')  # fmt: skip
+
+
+def test_the_refilled_start_keeps_the_large_motifs_at_its_seams():
+    """Patches of a scatter tile meet at seams where conflicting pairs are culled.  By position
+    alone the culling loses discs (a disc conflicts with more neighbours than a dot): the start
+    holds too few, and too little of ρ.  With ``refill`` (insertion follows, and refills the
+    small) the dot of a pair leaves: the discs come near the tile's count, the density near ρ,
+    and the start keeps every rule."""
+    from test_baselines import brute_force_conflicts
+
+    from svgtile.engines.optimize.init import patch_start, seamless
+
+    ex = discs_and_dots()
+    stats = analyze(ex)
+    assert ex.period is not None and not seamless(ex)
+    disc = int(np.argmax([p.area for p in ex.prototypes]))
+    region = Region.rectangle(160.0, 160.0)
+    want = 16 * int((ex.motifs.kind == disc).sum())  # the tile's discs over the region
+    spacing = float(np.sqrt(ex.region.area / len(ex.motifs)))
+    got = {}
+    for refill in (False, True):
+        starts = [patch_start(ex, stats, region, "centroid", key=key, cell=5 * spacing, overlap=0.25, refill=refill)
+                  for key in (1, 2, 3)]  # fmt: skip
+        assert all(brute_force_conflicts(a, ex, stats) == (0, 0) for a in starts)
+        got[refill] = (np.mean([(a.kind == disc).sum() for a in starts]),
+                       np.mean([footprint_areas(a, ex.prototypes).sum() for a in starts]) / region.area / stats.density)  # fmt: skip
+    assert got[False][0] < 0.92 * want and abs(got[True][0] - want) < 0.05 * want, (got, want)
+    assert got[True][1] > got[False][1] + 0.03 and 0.93 <= got[True][1] <= 1.0, got
+
+
+def test_capped_insertion_keeps_a_tile_of_rows_within_the_density_bounds():
+    """FGDC 610 (rows at a free phase, started from patches): uncapped, insertion filled it to
+    1.44 ρ, since its rows predict more neighbours than its density holds."""
+    from test_optimize_sets import SETS
+
+    from svgtile.engines import synthesize
+    from svgtile.metrics import score
+    from svgtile.tiles.importer import import_tile
+
+    path = SETS["fgdc"] / "610.svg"
+    if not path.is_file():
+        pytest.skip("the shared data sets are not beside the checkout")
+    t = import_tile(path)
+    ex = parse_exemplar(t.text, source=str(path))
+    x0, y0, w, h = t.box
+    stats, region = analyze(ex), Region.rectangle(2 * w, 2 * h, x0, y0)
+    s = score(ex, stats, synthesize(ex, region, "optimize", seed=1, stats=stats).arrangement, region)
+    assert s.overlaps_total == 0 and s.violators_total == 0
+    assert 0.9 <= s.density_ratio <= 1.1, s.density_ratio
