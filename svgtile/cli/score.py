@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import gc
 import json
+import multiprocessing
+import os
+import signal
+from collections.abc import Iterator
+from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -12,6 +17,8 @@ import click
 from svgtile.apps.compare import format_score
 from svgtile.cli.common import json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
+from svgtile.metrics.likeness import baseline_distances
+from svgtile.metrics.scoring import worker_result
 from svgtile.svg.texture import read_texture
 
 
@@ -21,7 +28,9 @@ from svgtile.svg.texture import read_texture
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
 @click.option("--exact", is_flag=True,
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
-def score(exemplar, texture, as_json, exact):
+@click.option("--jobs", type=click.IntRange(min=1), default=None,
+              help="Processes that measure at once: 2 (the default where the system can fork and this process may use two cores) measures half of the figures in a second process; 1 measures everything here. The figures are the same.")  # fmt: skip
+def score(exemplar, texture, as_json, exact, jobs):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
     Figures are measured on the texture's interior (the region shrunk by one exemplar width);
@@ -57,9 +66,12 @@ def score(exemplar, texture, as_json, exact):
     --exact measures everything on every motif.
     """
     ex, stats = load(exemplar)
-    with _no_cycle_collection():
+    with _no_cycle_collection(), _second_process(jobs) as pool:
+        # the baselines depend on the exemplar alone: measured while the texture is read
+        early = pool.submit(baseline_distances, ex, stats) if pool is not None else None
         arr, region = read_texture(texture, ex)
-        result = measure(ex, stats, arr, region, exact=exact)
+        baselines = worker_result(early)
+        result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
     warn_if_few(result.motifs, texture)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
@@ -71,6 +83,34 @@ def score(exemplar, texture, as_json, exact):
             click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
                        "--exact to measure it on every motif)")  # fmt: skip
         click.echo(format_score(result))
+
+
+@contextmanager
+def _second_process(jobs: int | None) -> Iterator[Executor | None]:
+    """One worker process forked from this one, or None (``jobs`` 1, or no ``fork`` here).
+
+    Forked, so that it starts with this process's imports and exemplar (a spawned one would
+    import svgtile again: half a second).  A process, not a thread: most of the figures' time
+    is Python and numpy calls that hold the GIL (benchmarks/README.md, "`svgtile score` on two
+    cores").  Forked at the first ``submit``, before any thread is started."""
+    if jobs is None:  # the cores this process may use (apps.mapfill.default_jobs, without its imports)
+        jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if jobs < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        yield None
+        return
+    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
+    try:
+        yield pool
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _worker_signals() -> None:
+    """The worker leaves ^C to the command (which reports it and stops the worker at the end of
+    its figure) and dies quietly on SIGTERM or SIGHUP: it has nothing to clean up, nor to say."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(signum, signal.SIG_DFL)
 
 
 @contextmanager
