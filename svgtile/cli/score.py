@@ -101,8 +101,8 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
     pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
     try:
         yield pool
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+    finally:  # the worker's exit is waited for at the interpreter's, while the figures are printed
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _worker_signals() -> None:

@@ -258,8 +258,8 @@ def score(
         measured on sample windows holding about ``sample_motifs`` motifs (default
         :data:`~svgtile.metrics.window.SAMPLE_MOTIFS`; :func:`~svgtile.metrics.window.sample_windows`)
     pool : an executor (``svgtile score``: one worker process) to measure the figures of
-        :func:`_footprint_figures` in — the conflicts and the texture's empty disc — while
-        this thread measures the others; None: all here.  The figures are the same.
+        :func:`_footprint_figures` in — the conflicts and the empty discs — while this thread
+        measures the others; None: all here.  The figures are the same.
     baselines : ``(E_tile, E_random)`` if already known (:func:`~svgtile.metrics.likeness.baseline_distances`)
 
     Returns
@@ -298,8 +298,7 @@ def score(
     windows = window_densities(arr, exemplar, window)
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
-    r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
-    conflicts, r_tex = worker_result(far) or _footprint_figures(*apart, geoms=geoms)
+    conflicts, r_tex, r_ex = worker_result(far) or _footprint_figures(*apart, geoms=geoms)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
@@ -337,10 +336,10 @@ def score(
 def _footprint_figures(
     exemplar: Exemplar, stats: Stats, arr: Arrangement, window: shapely.Geometry, shape: shapely.Geometry,
     inside: np.ndarray, step: float | None, sampled: bool, *, geoms: np.ndarray | None = None,
-) -> tuple[Conflicts, float]:  # fmt: skip
-    """The figures :func:`score` may measure in another process: the conflicts and the
-    texture's largest empty disc, which look at the motifs' footprints (about half of the
-    figures' work; the other figures need neither).
+) -> tuple[Conflicts, float, float]:  # fmt: skip
+    """The figures :func:`score` may measure in another process: the conflicts and the largest
+    empty discs of the texture and of the exemplar, which look at the motifs' footprints (about
+    half of the figures' work; the other figures need neither).
 
     ``window`` is the measuring window, ``shape`` the region's, ``inside`` (n,) bool the motifs
     in the window, ``step`` the empty disc's raster step (user units), ``sampled`` whether the
@@ -359,7 +358,8 @@ def _footprint_figures(
         disc = {"step": step, "geoms": geoms}
     conflicts = conflict_counts(arr, protos, stats, inside, geoms)
     r_tex, _ = largest_empty_disc(arr, protos, window, shape, **disc)
-    return conflicts, r_tex
+    r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
+    return conflicts, r_tex, r_ex
 
 
 def worker_result(future: Future | None):
