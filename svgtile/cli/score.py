@@ -7,6 +7,7 @@ import json
 import multiprocessing
 import os
 import signal
+import sys
 from collections.abc import Iterator
 from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
@@ -29,7 +30,7 @@ from svgtile.svg.texture import read_texture
 @click.option("--exact", is_flag=True,
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes that measure at once: 2 (the default where the system can fork and this process may use two cores) measures half of the figures in a second process; 1 measures everything here. The figures are the same.")  # fmt: skip
+              help="Processes to measure in: 2 measures half of the figures in a second one (on Linux; the default where this process may use two cores), 1 all of them in this one. The figures are the same.")  # fmt: skip
 def score(exemplar, texture, as_json, exact, jobs):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
@@ -87,15 +88,17 @@ def score(exemplar, texture, as_json, exact, jobs):
 
 @contextmanager
 def _second_process(jobs: int | None) -> Iterator[Executor | None]:
-    """One worker process forked from this one, or None (``jobs`` 1, or no ``fork`` here).
+    """One worker process forked from this one, or None (``jobs`` 1, or not on Linux).
 
     Forked, so that it starts with this process's imports and exemplar (a spawned one would
-    import svgtile again: half a second).  A process, not a thread: most of the figures' time
-    is Python and numpy calls that hold the GIL (benchmarks/README.md, "`svgtile score` on two
-    cores").  Forked at the first ``submit``, before any thread is started."""
+    import svgtile again: half a second); on Linux only, where forking a process that has used
+    numpy and GEOS is safe (macOS's system libraries are not fork-safe, Windows cannot fork).
+    A process, not a thread: most of the figures' time is Python and numpy calls that hold the
+    GIL (benchmarks/README.md, "`svgtile score` on two cores").  Forked at the first
+    ``submit``, before the executor starts its thread."""
     if jobs is None:  # the cores this process may use (apps.mapfill.default_jobs, without its imports)
         jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-    if jobs < 2 or "fork" not in multiprocessing.get_all_start_methods():
+    if jobs < 2 or not sys.platform.startswith("linux"):
         yield None
         return
     pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
