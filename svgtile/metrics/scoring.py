@@ -33,6 +33,11 @@ the sampled figures lie from the exact ones on large textures of the bundled exe
 
 ``score(…, exact=True)`` (``svgtile score --exact``) measures everything on every motif.
 
+``score(…, pool=…)`` measures the figures that look at footprints (conflicts, empty discs) in
+an executor's worker while it measures the others; ``svgtile score`` hands it a forked worker
+process, which has measured the baselines (``baselines=…``) while the texture was read.  Each
+figure is the same function of the same inputs either way, so the score is the same bit for bit.
+
 References
 ----------
 AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../shared/papers/).
@@ -362,9 +367,9 @@ def _footprint_figures(
     return conflicts, r_tex, r_ex
 
 
-def worker_result(future: Future | None):
-    """What ``future`` computed, or None if there is none or its worker died (killed, out of
-    memory): the caller then computes it here, the same figures a little later."""
+def worker_result(future: Future | None) -> tuple | None:
+    """What ``future`` computed (a tuple of figures), or None if there is none or its worker
+    died (killed, out of memory): the caller then computes them itself, the same a little later."""
     try:
         return future.result() if future is not None else None
     except BrokenExecutor:
