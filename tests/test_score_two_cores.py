@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import multiprocessing
+import os
 import sys
 from concurrent.futures import (
     BrokenExecutor,
@@ -102,11 +103,18 @@ def test_a_dead_worker_leaves_the_figures_to_this_process(gravel):
     assert _json(orphan) == _json(serial)
 
 
-def test_jobs_chooses_one_or_two_processes():
+def test_jobs_chooses_one_or_two_processes(monkeypatch):
     with _second_process(1) as pool:
         assert pool is None
     with _second_process(2) as pool:
         assert isinstance(pool, ProcessPoolExecutor) if LINUX else pool is None
+    if hasattr(os, "sched_getaffinity"):  # by default, as many as the cores this process may use
+        monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
+        with _second_process(None) as pool:
+            assert pool is None
+        monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1, 2})
+        with _second_process(None) as pool:
+            assert isinstance(pool, ProcessPoolExecutor) if LINUX else pool is None
 
 
 @pytest.mark.parametrize("flag", [[], ["--json"]])
