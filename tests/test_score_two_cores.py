@@ -29,7 +29,7 @@ from conftest import arrange
 from svgtile import metrics
 from svgtile.analysis.stats import analyze
 from svgtile.cli.main import main
-from svgtile.cli.score import _second_process
+from svgtile.cli.score import _default_jobs, _second_process
 from svgtile.core.region import Region
 from svgtile.metrics.likeness import baseline_distances
 from svgtile.svg.reader import read_exemplar
@@ -103,18 +103,20 @@ def test_a_dead_worker_leaves_the_figures_to_this_process(gravel):
     assert _json(orphan) == _json(serial)
 
 
-def test_jobs_chooses_one_or_two_processes(monkeypatch):
+def test_jobs_chooses_one_or_two_processes():
     with _second_process(1) as pool:
         assert pool is None
     with _second_process(2) as pool:
         assert isinstance(pool, ProcessPoolExecutor) if LINUX else pool is None
-    if hasattr(os, "sched_getaffinity"):  # by default, as many as the cores this process may use
-        monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
-        with _second_process(None) as pool:
-            assert pool is None
-        monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1, 2})
-        with _second_process(None) as pool:
-            assert isinstance(pool, ProcessPoolExecutor) if LINUX else pool is None
+
+@pytest.mark.skipif(not hasattr(os, "sched_getaffinity"), reason="no affinity to pretend")
+@pytest.mark.parametrize("cores, load, jobs", [(1, 0.0, 1), (2, 0.0, 2), (2, 1.4, 2), (2, 1.6, 1), (4, 2.9, 2), (4, 3.6, 1)])
+def test_two_processes_by_default_where_a_second_core_is_idle(monkeypatch, cores, load, jobs):
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)))
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert _default_jobs() == jobs
+    with _second_process(None) as pool:
+        assert isinstance(pool, ProcessPoolExecutor) if jobs == 2 and LINUX else pool is None
 
 
 @pytest.mark.parametrize("flag", [[], ["--json"]])

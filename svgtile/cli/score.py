@@ -30,7 +30,7 @@ from svgtile.svg.texture import read_texture
 @click.option("--exact", is_flag=True,
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes to measure in: 2 measures half of the figures in a second one (on Linux; the default where this process may use two cores), 1 all of them in this one. The figures are the same.")  # fmt: skip
+              help="Processes to measure in: 2 measures half of the figures in a second one (on Linux; the default where a second core is idle), 1 all of them in this one. The figures are the same.")  # fmt: skip
 def score(exemplar, texture, as_json, exact, jobs):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
@@ -96,8 +96,8 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
     A process, not a thread: most of the figures' time is Python and numpy calls that hold the
     GIL (benchmarks/README.md, "`svgtile score` on two cores").  Forked at the first
     ``submit``, before the executor starts its thread."""
-    if jobs is None:  # the cores this process may use (apps.mapfill.default_jobs, without its imports)
-        jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if jobs is None:
+        jobs = _default_jobs()
     if jobs < 2 or not sys.platform.startswith("linux"):
         yield None
         return
@@ -106,6 +106,19 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
         yield pool
     finally:  # the worker's exit is waited for at the interpreter's, while the figures are printed
         pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _default_jobs() -> int:
+    """2 where a second core is free — this process may use two cores or more and the 1-minute
+    load average leaves at least half a core idle — else 1: on a busy machine a second process
+    only competes for the same cores, and the command took longer (benchmarks/README.md,
+    "`svgtile score` on two cores")."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # no load average here: trust the cores
+        load = 0.0
+    return 2 if cores >= 2 and load <= cores - 0.5 else 1
 
 
 def _worker_signals() -> None:
