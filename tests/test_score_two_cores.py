@@ -110,7 +110,7 @@ def test_jobs_chooses_one_or_two_processes():
         assert isinstance(pool, ProcessPoolExecutor) if LINUX else pool is None
 
 @pytest.mark.skipif(not hasattr(os, "sched_getaffinity"), reason="no affinity to pretend")
-@pytest.mark.parametrize("cores, load, jobs", [(1, 0.0, 1), (2, 0.0, 2), (2, 1.4, 2), (2, 1.6, 1), (4, 2.9, 2), (4, 3.6, 1)])
+@pytest.mark.parametrize("cores, load, jobs", [(1, 0.0, 1), (2, 0.0, 2), (2, 0.9, 2), (2, 1.2, 1), (4, 2.9, 2), (4, 3.2, 1)])
 def test_two_processes_by_default_where_a_second_core_is_idle(monkeypatch, cores, load, jobs):
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)))
     monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))

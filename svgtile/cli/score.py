@@ -110,15 +110,15 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
 
 def _default_jobs() -> int:
     """2 where a second core is free — this process may use two cores or more and the 1-minute
-    load average leaves at least half a core idle — else 1: on a busy machine a second process
-    only competes for the same cores, and the command took longer (benchmarks/README.md,
+    load average leaves a whole core idle — else 1: on a busy machine a second process only
+    competes for the same cores, and the command took as long or longer (benchmarks/README.md,
     "`svgtile score` on two cores")."""
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     try:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):  # no load average here: trust the cores
         load = 0.0
-    return 2 if cores >= 2 and load <= cores - 0.5 else 1
+    return 2 if cores >= 2 and load <= cores - 1 else 1
 
 
 def _worker_signals() -> None:
