@@ -9,7 +9,9 @@
 # directory before PYTHONPATH on sys.path, so run from the repository root it would import the
 # repository's svgtile whatever PYTHONPATH says).  Prints one Markdown row per command: wall, CPU
 # (user + sys), peak RSS, and the 1-minute load average when it started.  Run from the
-# repository root with the venv's python on PATH or as PY.
+# repository root with the venv's python on PATH or as PY.  SCORE_ARGS is added to the score
+# command (not the base's), e.g. SCORE_ARGS="--jobs 2": by default score uses a second process
+# only where the load average leaves a core idle.
 set -e
 ROUNDS=${1:-3}
 BASE=$2
@@ -30,6 +32,6 @@ for r in $(seq "$ROUNDS"); do
   if [ -n "$BASE" ]; then
     row "score (base), round $r" env -C "$BASE" PYTHONPATH="$BASE" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
   fi
-  row "score, round $r" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
+  row "score${SCORE_ARGS:+ $SCORE_ARGS}, round $r" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg" $SCORE_ARGS
 done
 md5sum "$OUT/big.svg"

@@ -4,6 +4,12 @@ from __future__ import annotations
 
 import gc
 import json
+import multiprocessing
+import os
+import signal
+import sys
+from collections.abc import Iterator
+from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -12,6 +18,8 @@ import click
 from svgtile.apps.compare import format_score
 from svgtile.cli.common import json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
+from svgtile.metrics.likeness import baseline_distances
+from svgtile.metrics.scoring import worker_result
 from svgtile.svg.texture import read_texture
 
 
@@ -21,7 +29,9 @@ from svgtile.svg.texture import read_texture
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
 @click.option("--exact", is_flag=True,
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
-def score(exemplar, texture, as_json, exact):
+@click.option("--jobs", type=click.IntRange(min=1), default=None,
+              help="Processes to measure in: 2 measures half of the figures in a second one (on Linux; the default where a second core is idle), 1 all of them in this one. The figures are the same.")  # fmt: skip
+def score(exemplar, texture, as_json, exact, jobs):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
     Figures are measured on the texture's interior (the region shrunk by one exemplar width);
@@ -57,9 +67,12 @@ def score(exemplar, texture, as_json, exact):
     --exact measures everything on every motif.
     """
     ex, stats = load(exemplar)
-    with _no_cycle_collection():
+    with _no_cycle_collection(), _second_process(jobs) as pool:
+        # the baselines depend on the exemplar alone: measured while the texture is read
+        early = pool.submit(baseline_distances, ex, stats) if pool is not None else None
         arr, region = read_texture(texture, ex)
-        result = measure(ex, stats, arr, region, exact=exact)
+        baselines = worker_result(early)
+        result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
     warn_if_few(result.motifs, texture)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
@@ -71,6 +84,49 @@ def score(exemplar, texture, as_json, exact):
             click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
                        "--exact to measure it on every motif)")  # fmt: skip
         click.echo(format_score(result))
+
+
+@contextmanager
+def _second_process(jobs: int | None) -> Iterator[Executor | None]:
+    """One worker process forked from this one, or None (``jobs`` 1, or not on Linux).
+
+    Forked, so that it starts with this process's imports and exemplar (a spawned one would
+    import svgtile again: half a second); on Linux only, where forking a process that has used
+    numpy and GEOS is safe (macOS's system libraries are not fork-safe, Windows cannot fork).
+    A process, not a thread: most of the figures' time is Python and numpy calls that hold the
+    GIL (benchmarks/README.md, "`svgtile score` on two cores").  Forked at the first
+    ``submit``, before the executor starts its thread."""
+    if jobs is None:
+        jobs = _default_jobs()
+    if jobs < 2 or not sys.platform.startswith("linux"):
+        yield None
+        return
+    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
+    try:
+        yield pool
+    finally:  # the worker's exit is waited for at the interpreter's, while the figures are printed
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _default_jobs() -> int:
+    """2 where a second core is free — this process may use two cores or more and the 1-minute
+    load average leaves a whole core idle — else 1: on a busy machine a second process only
+    competes for the same cores, and the command took as long or longer (benchmarks/README.md,
+    "`svgtile score` on two cores")."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # no load average here: trust the cores
+        load = 0.0
+    return 2 if cores >= 2 and load <= cores - 1 else 1
+
+
+def _worker_signals() -> None:
+    """The worker leaves ^C to the command (which reports it and stops the worker at the end of
+    its figure) and dies quietly on SIGTERM or SIGHUP: it has nothing to clean up, nor to say."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(signum, signal.SIG_DFL)
 
 
 @contextmanager

@@ -162,10 +162,14 @@ def baseline_distances(exemplar: Exemplar, stats: Stats) -> tuple[float, float]:
     return known[1]
 
 
-def measure(exemplar: Exemplar, stats: Stats, arrangement: Arrangement, inside: np.ndarray) -> Likeness:
-    """:class:`Likeness` of a texture whose motifs in its interior are ``inside`` ((n,) bool)."""
+def measure(
+    exemplar: Exemplar, stats: Stats, arrangement: Arrangement, inside: np.ndarray, *,
+    baselines: tuple[float, float] | None = None,
+) -> Likeness:  # fmt: skip
+    """:class:`Likeness` of a texture whose motifs in its interior are ``inside`` ((n,) bool);
+    ``baselines``: :func:`baseline_distances` of the exemplar, if already known."""
     e = texture_distance(exemplar, stats, arrangement, inside)
-    e_tile, e_random = baseline_distances(exemplar, stats)
+    e_tile, e_random = baselines if baselines is not None else baseline_distances(exemplar, stats)
     # baselines that do not tell order from disorder leave L undefined, not wild
     apart = e_random > e_tile
     return Likeness(

@@ -33,6 +33,11 @@ the sampled figures lie from the exact ones on large textures of the bundled exe
 
 ``score(…, exact=True)`` (``svgtile score --exact``) measures everything on every motif.
 
+``score(…, pool=…)`` measures the figures that look at footprints (conflicts, empty discs) in
+an executor's worker while it measures the others; ``svgtile score`` hands it a forked worker
+process, which has measured the baselines (``baselines=…``) while the texture was read.  Each
+figure is the same function of the same inputs either way, so the score is the same bit for bit.
+
 References
 ----------
 AlMeraj, Kaplan & Asente 2013, Patch-based geometric texture synthesis (../shared/papers/).
@@ -42,6 +47,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from concurrent.futures import BrokenExecutor, Executor, Future
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,7 +63,7 @@ from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
-from svgtile.metrics.rules import conflict_counts, orientation_outside
+from svgtile.metrics.rules import Conflicts, conflict_counts, orientation_outside
 from svgtile.metrics.window import (
     SAMPLE_HALO,
     Sample,
@@ -240,7 +246,8 @@ def _plain(value):
 
 def score(
     exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region, *, exact: bool = False,
-    sample_above: int | None = None, sample_motifs: int | None = None,
+    sample_above: int | None = None, sample_motifs: int | None = None, pool: Executor | None = None,
+    baselines: tuple[float, float] | None = None,
 ) -> Score:  # fmt: skip
     """All figures of a texture against its exemplar.
 
@@ -255,6 +262,10 @@ def score(
         (default :data:`~svgtile.metrics.window.SAMPLE_ABOVE`) has the figures :data:`SAMPLED`
         measured on sample windows holding about ``sample_motifs`` motifs (default
         :data:`~svgtile.metrics.window.SAMPLE_MOTIFS`; :func:`~svgtile.metrics.window.sample_windows`)
+    pool : an executor (``svgtile score``: one worker process) to measure the figures of
+        :func:`_footprint_figures` in — the conflicts and the empty discs — while this thread
+        measures the others; None: all here.  The figures are the same.
+    baselines : ``(E_tile, E_random)`` if already known (:func:`~svgtile.metrics.likeness.baseline_distances`)
 
     Returns
     -------
@@ -272,32 +283,27 @@ def score(
         motifs=sample_motifs if sample_motifs is not None else _window.SAMPLE_MOTIFS,
     )  # fmt: skip
     step = COVER_STEP * spacing(stats) if stats.count_density > 0 else None
+    sampled = plan is not None
+    geoms = None if sampled or pool is not None else world_footprints(arr, protos)
+    apart = (exemplar, stats, arr, window, region.shape, inside, step, sampled)
+    far = pool.submit(_footprint_figures, *apart) if pool is not None else None
     trees = kind_trees(arr, len(protos))
-    if plan is None:
-        geoms = world_footprints(arr, protos)
+    if not sampled:
         found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
-        disc = {"step": step, "geoms": geoms}
         sample = None
     else:
         boxes, sample = plan
-        # footprints built only for the pairs the k-d tree bounds of the conflict search leave
-        # open and for the motifs near the empty disc's candidate centres
-        geoms = Footprints(arr, protos)
         sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
         found = structure(exemplar, stats, sub, boxes, inside=in_window(sub, boxes), trees=kind_trees(sub, len(protos)))
-        disc = {"step": 2 * step if step is not None else None, "geoms": geoms, "levels": COVER_LEVELS + 1}
-    conflicts = conflict_counts(arr, protos, stats, inside, geoms)
     rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
-    r_tex, _ = largest_empty_disc(arr, protos, window, region.shape, **disc)
-    order = measure_likeness(exemplar, stats, arr, inside)
-
+    order = measure_likeness(exemplar, stats, arr, inside, baselines=baselines)
     density_ratio = (
         finite_or_none(density(arr, exemplar, window, inside=inside) / stats.density) if stats.density > 0 else None
     )
     windows = window_densities(arr, exemplar, window)
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
-    r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
+    conflicts, r_tex, r_ex = worker_result(far) or _footprint_figures(*apart, geoms=geoms)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
@@ -330,6 +336,44 @@ def score(
         likeness=order.likeness,
         sample=sample,
     )
+
+
+def _footprint_figures(
+    exemplar: Exemplar, stats: Stats, arr: Arrangement, window: shapely.Geometry, shape: shapely.Geometry,
+    inside: np.ndarray, step: float | None, sampled: bool, *, geoms: np.ndarray | None = None,
+) -> tuple[Conflicts, float, float]:  # fmt: skip
+    """The figures :func:`score` may measure in another process: the conflicts and the largest
+    empty discs of the texture and of the exemplar, which look at the motifs' footprints (about
+    half of the figures' work; the other figures need neither).
+
+    ``window`` is the measuring window, ``shape`` the region's, ``inside`` (n,) bool the motifs
+    in the window, ``step`` the empty disc's raster step (user units), ``sampled`` whether the
+    texture is large enough to be sampled (then footprints are built only where a figure looks,
+    :class:`~svgtile.metrics.coverage.Footprints`, and the disc is searched on a raster twice as
+    coarse), ``geoms`` every motif's footprint if already built.
+    """
+    protos = exemplar.prototypes
+    if sampled:
+        # footprints built only for the pairs the k-d tree bounds of the conflict search leave
+        # open and for the motifs near the empty disc's candidate centres
+        geoms = Footprints(arr, protos)
+        disc = {"step": 2 * step if step is not None else None, "geoms": geoms, "levels": COVER_LEVELS + 1}
+    else:
+        geoms = world_footprints(arr, protos) if geoms is None else geoms
+        disc = {"step": step, "geoms": geoms}
+    conflicts = conflict_counts(arr, protos, stats, inside, geoms)
+    r_tex, _ = largest_empty_disc(arr, protos, window, shape, **disc)
+    r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
+    return conflicts, r_tex, r_ex
+
+
+def worker_result(future: Future | None) -> tuple | None:
+    """What ``future`` computed (a tuple of figures), or None if there is none or its worker
+    died (killed, out of memory): the caller then computes them itself, the same a little later."""
+    try:
+        return future.result() if future is not None else None
+    except BrokenExecutor:
+        return None
 
 
 def _rarest_spacing(stats: Stats) -> float:
