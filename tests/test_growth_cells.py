@@ -150,13 +150,16 @@ def test_a_piece_that_grows_nothing_is_done_while_the_others_go_on(monkeypatch):
     assert max(calls.values()) > 1 and all(len(arr) for arr, _ in out[1:])
 
 
-def test_a_phase_grown_in_steps_of_a_few_cells_is_the_same(monkeypatch):
-    """Growth.run grows a phase IN_STEP cells at a time (memory); any step gives the same texture."""
+@pytest.mark.parametrize("name, step", [("gravel", 2), ("marsh", 1)])
+def test_a_phase_grown_in_steps_of_a_few_cells_is_the_same(monkeypatch, name, step):
+    """Growth.run grows a phase IN_STEP cells at a time (memory); any step gives the same texture
+    — marsh's too, grown on row lines (growth.rows: the seed on a line, relaxation on the lines,
+    slide_apart), which must stay each cell's own business when cells grow in step."""
     from svgtile.engines.growth import engine
 
-    ex = read_exemplar(REPO / "exemplars" / "gravel.svg")
+    ex = read_exemplar(REPO / "exemplars" / f"{name}.svg")
     region = Region(shapely.box(0, 0, 200, 140))
     whole = synthesize(ex, region, "growth", seed=4).arrangement
-    monkeypatch.setattr(engine, "IN_STEP", 2)
+    monkeypatch.setattr(engine, "IN_STEP", step)
     steps = synthesize(ex, region, "growth", seed=4).arrangement
     assert len(whole) > 300 and _same(whole, steps)

@@ -19,6 +19,11 @@ from svgtile.engines.growth import grows_from
 from svgtile.errors import ExemplarError
 
 COLUMN = [(20.0, 2.0 + 3.0 * i) for i in range(13)]  # 13 dots 3 apart, one above the other
+#: A slanted row as a file writes it: its centres rounded to 3 decimals lie on no exact line (their
+#: matrix has rank 2), yet every triangle of them is a sliver.
+SLANTED = [(round(2 + 2.9 * i, 3), round(3 + 1.0785 * i, 3)) for i in range(13)]
+#: A hand-drawn row: each mark up to a third of a step off the line.
+DRAWN_ROW = [(2 + 2.9 * i, 3 + 1.0785 * i + 0.9 * ((i * 7) % 5 - 2) / 2) for i in range(13)]
 
 
 def column_svg(tmp_path):
@@ -36,6 +41,8 @@ def column_svg(tmp_path):
     (COLUMN, False, False),
     ([(2.0 + 3.0 * i, 7.0) for i in range(13)], False, False),  # a row
     ([(1.0 + i, 1.0 + 2.0 * i) for i in range(13)], False, False),  # a slanted line
+    (SLANTED, False, False),
+    (DRAWN_ROW, False, False),
     ([*COLUMN[:2], (5.0, 5.0)], False, True),  # three points that span the plane
     (COLUMN[:2], False, False),  # too few
     (COLUMN, True, True),  # a tile: its copies fill the plane
@@ -68,3 +75,14 @@ def test_a_drawn_lattice_is_still_grown():
     ex = exemplar(grid_points())
     c = choose(ex, analyze(ex), available=ENGINES)
     assert (c.engine, c.rule) == ("growth", "drawn-order")
+
+
+@pytest.mark.parametrize("points", [SLANTED, DRAWN_ROW], ids=["slanted", "drawn-row"])
+def test_a_row_near_one_line_goes_to_patch_and_growth_refuses_it(points):
+    """Centres near one line (not on it: rank 2) have only skewed triangles, so no ring; growth
+    ended in an internal ValueError (an empty ring table's maximum) and auto had chosen it."""
+    ex = exemplar(points)
+    st = analyze(ex)
+    assert choose(ex, st, available=ENGINES).rule == "one-line"
+    with pytest.raises(ExemplarError, match="lie on one line"):
+        synthesize(ex, Region.rectangle(60, 60), "growth", seed=1, stats=st)

@@ -136,3 +136,72 @@ def test_bad_texture_with_two_jobs_is_one_line(tmp_path, capsys):
     out, err = capsys.readouterr()
     assert rc == 1 and out == ""
     assert err.count("\n") == 1 and err.startswith("svgtile: error: ") and "broken.svg" in err
+
+
+_KILLED_COMMAND = """
+import os, sys, time
+from svgtile.cli.score import _second_process
+with _second_process(2) as pool:
+    print(pool.submit(os.getpid).result(), flush=True)
+    time.sleep(60)
+"""
+
+
+@pytest.mark.skipif(not LINUX, reason="the second process is Linux's")
+def test_a_worker_dies_with_a_command_killed_outright():
+    """A command killed by SIGKILL (or the out-of-memory killer) cleans nothing up; its worker
+    must not wait for work for ever as an orphan."""
+    import signal
+    import subprocess
+    import time
+
+    cmd = subprocess.Popen([sys.executable, "-c", _KILLED_COMMAND], stdout=subprocess.PIPE, text=True)
+    try:
+        worker = int(cmd.stdout.readline())
+        os.kill(worker, 0)  # alive
+        cmd.kill()
+        cmd.wait(10)
+        for _ in range(100):
+            try:
+                os.kill(worker, 0)
+            except ProcessLookupError:
+                break
+            with open(f"/proc/{worker}/stat") as f:  # a zombie of init's is gone too
+                if f.read().split(") ")[-1].startswith("Z"):
+                    break
+            time.sleep(0.05)
+        else:
+            os.kill(worker, signal.SIGKILL)
+            pytest.fail("the worker outlived its command")
+    finally:
+        cmd.kill()
+
+
+_SLOW_BASELINES = """
+import sys, time
+import svgtile.cli.score as cli_score
+from svgtile.cli.main import main
+
+def slow(*args, **kwargs):
+    time.sleep(30)
+
+cli_score.baseline_distances = slow  # the worker, forked from here, measures this one
+sys.exit(main(["score", sys.argv[1], sys.argv[2], "--jobs", "2"]))
+"""
+
+
+@pytest.mark.skipif(not LINUX, reason="the second process is Linux's")
+def test_a_bad_texture_with_two_jobs_does_not_wait_for_the_worker(tmp_path):
+    """The texture is read while the worker measures the baselines; when it is bad, the command
+    says so and ends at once — its exit used not to come until the worker's figure was done."""
+    import subprocess
+    import time
+
+    (tmp_path / "broken.svg").write_text("<svg><g></svg")
+    t = time.monotonic()
+    done = subprocess.run([sys.executable, "-c", _SLOW_BASELINES, str(EXEMPLARS / "gravel.svg"),
+                           str(tmp_path / "broken.svg")], capture_output=True, text=True, timeout=60)  # fmt: skip
+    took = time.monotonic() - t
+    assert done.returncode == 1 and done.stdout == ""
+    assert done.stderr.count("\n") == 1 and "broken.svg" in done.stderr, done.stderr
+    assert took < 15, took

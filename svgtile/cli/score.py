@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ctypes
 import gc
 import json
 import multiprocessing
@@ -21,6 +22,9 @@ from svgtile.metrics import score as measure
 from svgtile.metrics.likeness import baseline_distances
 from svgtile.metrics.scoring import worker_result
 from svgtile.svg.texture import read_texture
+
+#: prctl(2)'s option that has Linux signal a process when its parent ends.
+_PR_SET_PDEATHSIG = 1
 
 
 @click.command(name="score")
@@ -101,11 +105,25 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
     if jobs < 2 or not sys.platform.startswith("linux"):
         yield None
         return
-    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
+    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals,
+                               initargs=(os.getpid(),))  # fmt: skip
     try:
         yield pool
+    except BaseException:  # a bad texture, ^C: the worker's figure is not wanted, nor waited for
+        _stop_worker(pool)
+        raise
     finally:  # the worker's exit is waited for at the interpreter's, while the figures are printed
         pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _stop_worker(pool: ProcessPoolExecutor) -> None:
+    """End ``pool``'s worker now (SIGTERM, which it dies of quietly): the interpreter's exit
+    would otherwise wait for the figure it is measuring (the baselines: about a second on an
+    FGDC tile, after the error was printed).  The executor has no public way to do this before
+    Python 3.14's ``terminate_workers``."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        if process.is_alive():
+            process.terminate()
 
 
 def _default_jobs() -> int:
@@ -121,12 +139,24 @@ def _default_jobs() -> int:
     return 2 if cores >= 2 and load <= cores - 1 else 1
 
 
-def _worker_signals() -> None:
+def _worker_signals(parent: int) -> None:
     """The worker leaves ^C to the command (which reports it and stops the worker at the end of
-    its figure) and dies quietly on SIGTERM or SIGHUP: it has nothing to clean up, nor to say."""
+    its figure) and dies quietly on SIGTERM or SIGHUP: it has nothing to clean up, nor to say.
+
+    It also dies with the command: a command killed outright (SIGKILL, the out-of-memory
+    killer) runs no cleanup, and its worker would otherwise wait for work for ever, an orphan.
+    Linux sends it SIGTERM when the thread that forked it ends (``PR_SET_PDEATHSIG``; the pool
+    is forked by the main thread, at its first ``submit``); ``parent`` is the command's pid."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for signum in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(signum, signal.SIG_DFL)
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    except (OSError, AttributeError):  # no prctl: the worker ends with the pool, as before
+        return
+    if os.getppid() != parent:  # the command died before the request was made
+        os._exit(0)
 
 
 @contextmanager

@@ -18,8 +18,6 @@ import dataclasses
 import re
 from dataclasses import dataclass
 
-import numpy as np
-
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.base import Context, EngineParams, param
@@ -138,13 +136,17 @@ GROWTH = GrowthEngine()
 
 def grows_from(exemplar: Exemplar) -> bool:
     """Whether growth can read rings from ``exemplar`` (§4: the Delaunay triangulation of the
-    motif centres): a repeating tile always can (its copies fill the plane), a drawn exemplar
-    when its centres span the plane — not when they lie on one line (FGDC 624, 625 and nine of
-    the map-pattern symbols drawn as one column of marks), nor when it has fewer than three."""
+    motif centres, skewed triangles left out): a repeating tile always can (its copies fill the
+    plane), a drawn exemplar when some triangle of its centres is not skewed — not when they lie
+    on one line (FGDC 624, 625 and nine of the map-pattern symbols drawn as one column of marks),
+    nor when they lie near one (a slanted row whose coordinates are rounded to the file's digits,
+    a hand-drawn row: every triangle skewed, no edge, no ring), nor with fewer than three."""
+    from svgtile.engines.growth.connectivity import triangles
+
     xy = exemplar.motifs.xy
     if exemplar.period is not None:
         return len(xy) > 0
-    return len(xy) >= 3 and bool(np.linalg.matrix_rank(xy - xy.mean(0)) == 2)
+    return len(triangles(xy)) > 0
 
 
 __all__ = ["GROWTH", "ROTATIONS", "GrowthEngine", "GrowthParams", "Weights", "grows_from"]
