@@ -117,13 +117,15 @@ def _second_process(jobs: int | None) -> Iterator[Executor | None]:
 
 
 def _stop_worker(pool: ProcessPoolExecutor) -> None:
-    """End ``pool``'s worker now (SIGTERM, which it dies of quietly): the interpreter's exit
-    would otherwise wait for the figure it is measuring (the baselines: about a second on an
-    FGDC tile, after the error was printed).  The executor has no public way to do this before
-    Python 3.14's ``terminate_workers``."""
+    """End ``pool``'s worker now: the interpreter's exit would otherwise wait for the figure it
+    is measuring (the baselines: about a second on an FGDC tile, after the error was printed).
+    SIGKILL, not SIGTERM: a worker just forked still has the command's SIGTERM handler until its
+    initializer has run, and a SIGTERM then printed a traceback under the error (a bad texture
+    is read in well under that window's length on a busy machine); it has nothing to clean up.
+    The executor has no public way to do this before Python 3.14's ``terminate_workers``."""
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         if process.is_alive():
-            process.terminate()
+            process.kill()
 
 
 def _default_jobs() -> int:
@@ -147,9 +149,9 @@ def _worker_signals(parent: int) -> None:
     killer) runs no cleanup, and its worker would otherwise wait for work for ever, an orphan.
     Linux sends it SIGTERM when the thread that forked it ends (``PR_SET_PDEATHSIG``; the pool
     is forked by the main thread, at its first ``submit``); ``parent`` is the command's pid."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    for signum in (signal.SIGTERM, signal.SIGHUP):
+    for signum in (signal.SIGTERM, signal.SIGHUP):  # first: the command's handlers raise
         signal.signal(signum, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
