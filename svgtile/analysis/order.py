@@ -43,9 +43,12 @@ STEP_TOLERANCE = 0.2
 SUPPORT = 0.6
 #: A second lattice step differs from the first by at least this many degrees.
 NOT_PARALLEL = 20.0
-#: Beyond the nearest neighbours only exact steps are trusted (:func:`symmetry_steps`): the
-#: matches lie within this many mean spacings (as :data:`svgtile.metrics.order.EXACT`), so a
-#: hand-jittered tile's far displacements and chance matches make no step.
+#: A step is *exact* when its same-kind partners lie within this many mean spacings of it — half
+#: a bin of the repetition figure (0.1 spacings).  Beyond the nearest neighbours only exact steps
+#: are trusted (:func:`symmetry_steps`), so a hand-jittered tile's far displacements and chance
+#: matches make no step; the repetition figure leaves out only exact steps
+#: (:mod:`svgtile.metrics.order`), and optimize starts from the tile itself only on an exact
+#: lattice (:func:`svgtile.engines.optimize.init.seamless`).
 EXACT_STEP = 0.05
 #: Strips across the row direction are this many mean spacings wide (banding).
 STRIP = 1.0

@@ -45,12 +45,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from svgtile.analysis.order import SUPPORT, exact_support, is_period, read_order
+from svgtile.analysis.order import EXACT_STEP, SUPPORT, exact_support, is_period, read_order
 from svgtile.core.exemplar import Exemplar
 
 #: A step is exact when its partners lie within this many mean spacings of it (half a bin of
-#: the repetition figure, whose bins are 0.1 s).
-EXACT = 0.05
+#: the repetition figure, whose bins are 0.1 s): the analysis's own tolerance, one value for both.
+EXACT = EXACT_STEP
 #: A displacement within this many bins (per axis) of a lattice point is explained: the
 #: figure counts partners in the 3 × 3 bins around its mode, ± 1.5 bins of its centre.
 BOX = 1.5

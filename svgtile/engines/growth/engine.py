@@ -423,8 +423,8 @@ class Growth:
                 prio = prio - np.concatenate(supports)[sel]
             found = find_conflicts(sub, protos, d)
             check = group[sel]  # (s,) the check each motif belongs to
-            mine = check[found.i] == check[found.j]  # pairs of two checks are not this run's to find
-            found = Conflicts(found.i[mine], found.j[mine], found.overlap[mine], found.violation[mine])
+            same = check[found.i] == check[found.j]  # pairs of two checks are not this run's to find
+            found = Conflicts(found.i[same], found.j[same], found.overlap[same], found.violation[same])
             violator = np.zeros(len(sub))
             side = found.violation & ~found.overlap
             violator[found.i[side]] = violator[found.j[side]] = 1.0

@@ -26,7 +26,7 @@ import math
 import numpy as np
 import shapely
 
-from svgtile.analysis.order import SUPPORT, exact_support, is_period, read_order
+from svgtile.analysis.order import EXACT_STEP, SUPPORT, exact_support, is_period, read_order
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
@@ -35,10 +35,6 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
-
-#: A lattice step is exact when same-kind partners lie within this many mean spacings of it
-#: (:data:`svgtile.metrics.order.EXACT`, the repetition figure's half bin).
-EXACT = 0.05
 
 #: Weight of a motif's footprint area (over the largest) against its distance from its cell's
 #: centre (over the cell side, ≤ ~0.6) in which of two conflicting start motifs leaves, when
@@ -128,8 +124,8 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
     """Whether the start is the tile itself (:func:`period_start`): a repeating tile whose motifs
     stand on an exact lattice (two steps, neither the tile's period, each met by a same-kind
-    motif within :data:`EXACT` spacings for :data:`~svgtile.analysis.order.SUPPORT` of them),
-    not turned by a flow field.
+    motif within :data:`~svgtile.analysis.order.EXACT_STEP` spacings for
+    :data:`~svgtile.analysis.order.SUPPORT` of them), not turned by a flow field.
 
     Only there is the tile's period a step of the pattern's own order; the tile of irregular
     content, or of rows at a free phase, repeated whole repeats at its period (FGDC 610, 611,
@@ -143,7 +139,7 @@ def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
     if order.kind != "lattice" or len(order.steps) < 2:
         return False
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
-    tol = EXACT * math.sqrt(exemplar.region.area / len(xy))
+    tol = EXACT_STEP * math.sqrt(exemplar.region.area / len(xy))
     for step in order.steps[:2]:
         g = np.asarray(step.vector, dtype=np.float64)
         if is_period(g, period, tol):
