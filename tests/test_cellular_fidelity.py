@@ -83,7 +83,7 @@ def test_fgdc_627_limestone_is_as_dark_as_its_tile_on_screen():
     pytest.importorskip("resvg_py")
     from svgtile.apps.swatches import _swatch
 
-    _, original, texture = _swatch(FGDC / "627.svg", "627", None, 3.0, 1)
+    _, original, (texture,) = _swatch(FGDC / "627.svg", "627", None, 3.0, 1)
     ratio = _ink(*texture, 1.4) / _ink(*original, 1.4)
     assert 0.85 <= ratio <= 1.15, f"texture / tile ink {ratio:.2f}"
 

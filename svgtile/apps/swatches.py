@@ -169,27 +169,26 @@ def swatch_sheet(
         text = ET.SubElement(cell, f"{{{SVG_NS}}}text", {"x": fmt(x), "y": fmt(y + 11), "font-size": "11"})
         text.text = _short(label, 60)
         top = y + LABEL
-        results = [_swatch(path, label, swatch, tiles, seed, max_motifs, engine=e) for e in engines]
-        done.extend(r[0] for r in results)
-        if not captions and results[0][0].likeness is not None:  # the label keeps room for it
-            text.text = f"{_short(label, 50)}  L {results[0][0].likeness:.2f}"
-        original = next((r[1] for r in results if r[1] is not None), None)
+        found, original, panels = _swatch(path, label, swatch, tiles, seed, max_motifs, engines=engines)
+        done.extend(found)
+        if not captions and found[0].likeness is not None:  # the label keeps room for it
+            text.text = f"{_short(label, 50)}  L {found[0].likeness:.2f}"
         if original is not None:
             cell.append(_nest(original, f"s{n + 1}o", x, top))
         _frame(cell, x, top)
         if captions:
             _caption(cell, "tile", x, top + PANEL)
-        for i, (found, _, texture) in enumerate(results):
+        for i, (one, texture) in enumerate(zip(found, panels, strict=True)):
             px = x + (1 + i) * (PANEL + GAP)
             if texture is not None:
                 # the first engine's ids are those of a one-engine sheet; the others' get their number
                 cell.append(_nest(texture, f"s{n + 1}t" + (f"{i + 1}" if i else ""), px, top))
             else:
-                _reason(cell, found.refused or "", px, top)
+                _reason(cell, one.refused or "", px, top)
             _frame(cell, px, top)
             if captions:
-                shown = f"  L {found.likeness:.2f}" if found.likeness is not None else ""
-                name = engines[i] if found.chosen in (None, engines[i]) else f"{engines[i]} ({found.chosen})"
+                shown = f"  L {one.likeness:.2f}" if one.likeness is not None else ""
+                name = engines[i] if one.chosen in (None, engines[i]) else f"{engines[i]} ({one.chosen})"
                 _caption(cell, f"{name}{shown}", px, top + PANEL)
     ET.indent(root, space=" ")
     return Sheet(ET.tostring(root, encoding="unicode") + "\n", tuple(done), engines)
@@ -199,42 +198,52 @@ def swatch_sheet(
 
 
 def _swatch(path: Path, label: str, swatch, tiles: float, seed: int, max_motifs: float = math.inf, *,
-            engine: str = AUTO):
-    """(Swatch, original panel, texture panel) of ``engine``; panels are (content root, viewBox)
-    or None."""
+            engines: tuple[str, ...] = (AUTO,)):  # fmt: skip
+    """(Swatches, original panel, texture panels) of the tile at ``path``: one Swatch and one
+    texture panel per engine of ``engines``, in order; panels are (content root, viewBox) or None.
+    The tile is read, imported and analysed once, whatever the number of engines."""
     try:
         data = read_input(path, error=ExemplarError)
         original_root = ET.fromstring(data)
         box = _box(original_root)
     except (OSError, ET.ParseError, ValueError) as exc:
         reason = _oneline(exc if not isinstance(exc, ET.ParseError) else f"not a well-formed XML file ({exc})")
-        return Swatch(path, label, refused=reason, engine=engine), None, None
+        return [Swatch(path, label, refused=reason, engine=e) for e in engines], None, [None] * len(engines)
     try:
         imported = import_tile(path)
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
         original = _repeated(original_root, box, swatch, tiles) if box else None
-        return Swatch(path, label, refused=reason, engine=engine), original, None
+        return [Swatch(path, label, refused=reason, engine=e) for e in engines], original, [None] * len(engines)
     x0, y0, w, h = imported.box
     sw, sh = swatch if swatch is not None else (tiles * w, tiles * h)
+    original = _repeated(original_root, imported.box, (sw, sh), tiles)
+    region = Region.rectangle(sw, sh, x0, y0)
     try:
         exemplar = parse_exemplar(imported.text, source=str(path))
         stats = analyze(exemplar)
-        region = Region.rectangle(sw, sh, x0, y0)
         check_motif_count(exemplar, stats, region, "the swatch", limit=max_motifs, hint="choose a smaller --size")
-        made = synthesize(exemplar, region, engine, seed=seed, stats=stats)
-        arr = made.arrangement
     except SvgtileError as exc:
         reason = str(exc).removeprefix(f"{path}: ")
-        refused = Swatch(path, label, refused=reason, engine=engine)
-        return refused, _repeated(original_root, imported.box, (sw, sh), tiles), None
-    texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed}, cells=made.cells))
-    # L on the swatch's interior (one tile in from each edge): few motifs, a rough figure
-    inside = in_window(arr, interior(exemplar, region))
-    found = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() and made.cells is None else None
-    result = Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=found, engine=engine,
-                    chosen=made.engine)  # fmt: skip
-    return result, _repeated(original_root, imported.box, (sw, sh), tiles), (texture, (x0, y0, sw, sh))
+        return [Swatch(path, label, refused=reason, engine=e) for e in engines], original, [None] * len(engines)
+    found, panels = [], []
+    for engine in engines:
+        try:
+            made = synthesize(exemplar, region, engine, seed=seed, stats=stats)
+        except SvgtileError as exc:
+            found.append(Swatch(path, label, refused=str(exc).removeprefix(f"{path}: "), engine=engine))
+            panels.append(None)
+            continue
+        arr = made.arrangement
+        texture = ET.fromstring(svg_document(exemplar, arr, region, boundary="clip", params={"seed": seed},
+                                             cells=made.cells))  # fmt: skip
+        # L on the swatch's interior (one tile in from each edge): few motifs, a rough figure
+        inside = in_window(arr, interior(exemplar, region))
+        likeness = measure_likeness(exemplar, stats, arr, inside).likeness if inside.any() and made.cells is None else None
+        found.append(Swatch(path, label, len(imported), imported.kinds, len(arr), likeness=likeness, engine=engine,
+                            chosen=made.engine))  # fmt: skip
+        panels.append((texture, (x0, y0, sw, sh)))
+    return found, original, panels
 
 
 def _box(root: ET.Element) -> tuple[float, float, float, float] | None:
