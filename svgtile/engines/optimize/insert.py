@@ -86,7 +86,8 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
     at = arr.xy[src] + np.einsum("eij,ej->ei", rotation(hoods.turn[src]), rel)
     sample = samples.nindex[match[src], slot]
     spacing = samples.spacing
-    empty = cKDTree(arr.xy).query(at, distance_upper_bound=TAKEN * spacing)[0] == np.inf
+    tree = cKDTree(arr.xy)  # the output's, for the holes here and the rules below
+    empty = tree.query(at, distance_upper_bound=TAKEN * spacing)[0] == np.inf
     at, sample, src = at[empty], sample[empty], src[empty]
     if len(at) == 0:
         return none
@@ -120,7 +121,7 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
         return none
     # the rules, against the output near the new elements and among them: the output stays
     reach = 2 * float(motif_radius(arr, exemplar.prototypes).max(initial=0.0)) + float(stats.distance.max(initial=0.0))
-    near = np.unique(np.concatenate([np.zeros(0, np.int64), *map(np.asarray, cKDTree(arr.xy).query_ball_point(
+    near = np.unique(np.concatenate([np.zeros(0, np.int64), *map(np.asarray, tree.query_ball_point(
         new.xy, reach + float(motif_radius(new, exemplar.prototypes).max())))]).astype(np.int64))  # fmt: skip
     both = Arrangement.concat([arr.take(near), new])
     m = len(near)
