@@ -166,7 +166,8 @@ def slide_apart(new: Arrangement, before: Arrangement, protos: list[Prototype], 
     if not len(new):
         return new
     # two motifs farther apart than ``reach`` cannot conflict; a motif slides less than a reach
-    reach = 2 * float(motif_radius(Arrangement.concat([before, new]), protos).max()) + float(distance.max())
+    largest = max(float(motif_radius(new, protos).max()), float(motif_radius(before, protos).max(initial=0.0)))
+    reach = 2 * largest + float(distance.max())
     near = before
     if len(before):
         near = before.take(np.flatnonzero(np.isfinite(cKDTree(new.xy).query(before.xy, distance_upper_bound=2 * reach)[0])))
