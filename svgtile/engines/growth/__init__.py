@@ -59,6 +59,9 @@ class GrowthParams(EngineParams):
         predict (library only, see :mod:`.gapfill`)
     snap : on a repeating tile grown with rotation ``none``, move each grown motif to the
         nearest site of its kind in the tile's pattern (library only, see :meth:`.engine.Growth.on_sites`)
+    row_phases : on a tile of rows exact along x whose phases repeat only at its height, give each
+        world row its own phase, a Markov chain of the tile's row-to-row phase steps, instead of
+        the tile's sites (library only, see :mod:`.phases`)
     rows : on a drawn exemplar of rows grown with rotation ``none``, grow on world row lines and
         hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
@@ -75,6 +78,7 @@ class GrowthParams(EngineParams):
     relaxation: bool = True
     gap_fill: bool = True
     snap: bool = True
+    row_phases: bool = True
     rows: bool = True
     cell_widths: float = 1.0
     weights: Weights = dataclasses.field(default_factory=Weights)

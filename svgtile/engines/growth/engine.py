@@ -63,6 +63,7 @@ from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
+from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
@@ -127,6 +128,8 @@ class Growth:
         self.pred = predictions(ex, self.rings) if p.gap_fill and ex.period is not None else None
         # grown unturned, every motif of a tile belongs on a site of the tile's pattern
         self.snap = p.snap and ex.period is not None and rotation == "none"
+        # a tile of rows exact along x: the sites' rows at wandering phases (see .phases)
+        self.phases = row_phases(ex, ctx.key) if self.snap and p.row_phases else None
         # grown unturned, a drawn exemplar's rows run along world lines (see .rows)
         self.rows = row_lines(ex) if p.rows and rotation == "none" else None
         x0, y0, x1, y1 = ex.region.bounds
@@ -210,6 +213,8 @@ class Growth:
         na, nb = np.round((centre - base) / (pw, ph))
         da, db = (v.ravel() for v in np.meshgrid(np.arange(-2, 3), np.arange(-2, 3)))
         cand = base + np.c_[(na + da) * pw, (nb + db) * ph]
+        if self.phases is not None:
+            cand = self.phases.place(ex, rings.element[r], (na + da).astype(np.int64), (nb + db).astype(np.int64))
         ok = shapely.contains_xy(piece, cand[:, 0], cand[:, 1])
         if ok.any():
             cand = cand[ok]
@@ -349,7 +354,8 @@ class Growth:
 
     def on_sites(self, xy: np.ndarray, kind: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each grown position moved to the nearest site of its kind in the tile's pattern (the
-        tile repeated from the world origin): (n, 2) positions and (n,) the exemplar motifs
+        tile repeated from the world origin, or its rows at their world phases, :mod:`.phases`):
+        (n, 2) positions and (n,) the exemplar motifs
         (sub-ids) they now copy.
 
         Parameters
@@ -357,6 +363,8 @@ class Growth:
         xy : (n, 2) float array, user units
         kind : (n,) int array
         """
+        if self.phases is not None:
+            return self.phases.sites(self.ex, xy, kind)
         motifs = self.ex.motifs
         period = np.asarray(self.ex.period, float)
         out, sub = np.array(xy, float), np.zeros(len(xy), np.int64)
@@ -378,6 +386,8 @@ class Growth:
             if not len(placed):
                 return
             cand, csub, support = candidates(self.pred, self.ex, placed, psub)
+            if self.phases is not None:  # the tile's predictions, moved onto the world rows' sites
+                cand, csub, support = on_rows(self.phases, self.ex, cand, support)
             use = shapely.contains_xy(piece, cand.xy[:, 0], cand.xy[:, 1])
             use[use] = cKDTree(placed.xy).query(cand.xy[use])[0] >= r_short
             if not use.any():

@@ -1,0 +1,203 @@
+"""Row phases: growth on a tile of hand-jittered rows that does not repeat at the tile's period.
+
+On a repeating tile the growth engine moves each grown motif to the nearest site of its kind in
+the tile's pattern (:meth:`.engine.Growth.on_sites`), so that fronts grown from two seeds meet in
+step.  On a tile whose rows are drawn by hand — FGDC 619 and 620: eighteen rows of dashes, each
+row repeating its content exactly every 8.94 units along x, each row put at its own hand-drawn
+phase — the tile's pattern repeats the eighteen phases at the tile's height, and so does every
+texture snapped to it, as stamping the tile does.
+
+Such a tile holds more than its period tells: a row is exact along x, so it may be moved along
+itself by any phase and still be the tile's row; and the tile shows how a row's phase follows
+the one below (its *row-to-row phase steps*).  This module makes world rows out of the tile's
+rows, in the tile's order and at the tile's heights, and gives world row ``k`` the phase of row
+``k − 1`` plus one of the tile's own phase steps, drawn by a world-anchored hash of ``(key, k)``
+(:mod:`svgtile.core.cellrng`) — a Markov chain of phases over the world rows, the texture
+``tests/row_probes.py``'s ``markov_rows`` samples.  Neighbouring rows relate as some pair of the
+tile's rows does; the phase wanders, so the tile's period is gone.  Growth still decides which
+sites are filled and the kinds, as on any tile; only the sites move.
+
+It applies to a tile (read by :func:`row_phases`) whose motifs fall into at least
+:data:`~svgtile.engines.growth.rows.MIN_ROWS` rows across y, whose whole pattern repeats
+exactly by a step along x shorter than the tile's width (an exact symmetry step of
+:func:`svgtile.analysis.order.symmetry_steps`, the row's step), and which has no exact step
+across its rows: a tile whose rows already repeat at a shorter step across them (a brick or a
+lattice drawn exactly: FGDC 711, vineyard) has its order in that step and keeps its sites.  Of
+the twenty regular FGDC and osm-carto tiles only 619 and 620 are such tiles (FGDC 670's rows of
+dashes are jittered along x: they have no along-row step, and its rows repeat exactly every four).
+
+References
+----------
+Ijiri, Měch, Igarashi & Miller 2008, §5.4 (growth places the ring's slots; here the slots snap to
+the world rows' sites instead of the tile's).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from svgtile.analysis.order import EXACT_STEP, symmetry_steps
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.engines.growth.rows import MIN_ROWS
+
+#: The hash stream of the phase steps (the engine's own streams are 0–3).
+STREAM = 4
+#: Phases are summed as whole multiples of this many user units, so that a world row's phase is
+#: exact however far it lies from the origin (an integer walk, no rounding drift).
+QUANTUM = 1e-6
+#: A site's distance counts its across-row part this many times: a prediction lies on its row's
+#: height exactly but up to half a row step off its phase, and must snap onto its own row.
+ACROSS_WEIGHT = 4.0
+
+
+@dataclass(frozen=True, eq=False)
+class RowPhases:
+    """A tile's rows as world rows with wandering phases.
+
+    Attributes
+    ----------
+    period : (2,) float array, user units — the tile's width and height
+    step : float, user units — the exact step along a row (x)
+    row : (m,) int array — the tile row of each exemplar motif (0 the lowest y)
+    phase : (n,) int array, :data:`QUANTUM` units — each tile row's phase: x of its first motif of
+        its lowest kind, modulo ``step``
+    steps : (n,) int array, :data:`QUANTUM` units — the tile's phase step from each row to the next
+        (the last to the first row's copy above), modulo ``step``
+    key : int — the run's root key (:func:`svgtile.core.cellrng.root_key`)
+    """
+
+    period: np.ndarray
+    step: float
+    row: np.ndarray
+    phase: np.ndarray
+    steps: np.ndarray
+    key: int
+
+    @property
+    def rows(self) -> int:
+        return len(self.phase)
+
+    def walk(self, k: np.ndarray) -> np.ndarray:
+        """(…) int: the phase of world rows ``k`` (int array; row ``b·n + r`` is tile row ``r`` of
+        tile copy ``b``), in :data:`QUANTUM` units modulo the step.  Row 0 has tile row 0's phase;
+        row ``k + 1`` adds the phase step ``steps[d]``, ``d`` hashed from ``(key, k)`` — summed
+        from row 0, so a row's phase is the same whatever rows are asked for with it."""
+        k = np.asarray(k, np.int64)
+        q = round(self.step / QUANTUM)
+        lo, hi = min(int(k.min(initial=0)), 0), max(int(k.max(initial=0)), 0)
+        i = np.arange(lo, hi)
+        d = self.steps[(cellrng.hash64(self.key, STREAM, i) % np.uint64(self.rows)).astype(np.int64)]
+        up = np.r_[0, np.cumsum(d[i >= 0])]  # up[k] = the steps of rows 0 … k − 1
+        down = np.r_[0, np.cumsum(d[i < 0][::-1])]  # down[j] = the steps of rows −j … −1
+        total = np.where(k >= 0, up[np.clip(k, 0, len(up) - 1)], -down[np.clip(-k, 0, len(down) - 1)])
+        return (self.phase[0] + total) % q
+
+    def shift(self, b: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """(…) float, user units in [0, step): how far tile row ``r`` of tile copy ``b`` (int
+        arrays, broadcast) is moved along x from where the tile puts it."""
+        q = round(self.step / QUANTUM)
+        return ((self.walk(np.asarray(b) * self.rows + r) - self.phase[r]) % q) * QUANTUM
+
+    def place(self, exemplar: Exemplar, s: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """(…, 2) float: where exemplar motif ``s`` of tile copy ``(a, b)`` lies (int arrays,
+        broadcast; copy ``(0, 0)`` is the tile where it is drawn)."""
+        w, h = self.period
+        s, a, b = np.broadcast_arrays(s, a, b)
+        xy = exemplar.motifs.xy[s]
+        return np.stack([xy[..., 0] + a * w + self.shift(b, self.row[s]), xy[..., 1] + b * h], axis=-1)
+
+    def sites(self, exemplar: Exemplar, xy: np.ndarray, kind: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Each position moved to the nearest site of its kind in the world rows (across-row
+        distance counted :data:`ACROSS_WEIGHT` times): (n, 2) positions and (n,) the exemplar
+        motifs (sub-ids) they now copy.
+
+        Parameters
+        ----------
+        exemplar : the tile
+        xy : (n, 2) float array, user units
+        kind : (n,) int array
+        """
+        motifs = exemplar.motifs
+        w, h = self.period
+        out, sub = np.array(xy, float).reshape(-1, 2), np.zeros(len(xy), np.int64)
+        for c in np.unique(kind):  # (n_c, m_c) candidate sites: the kind's tile motifs, in their copy
+            i, s = np.flatnonzero(kind == c), np.flatnonzero(motifs.kind == c)
+            b = np.round((out[i, 1, None] - motifs.xy[s, 1][None]) / h).astype(np.int64)
+            x0 = motifs.xy[s, 0][None] + self.shift(b, self.row[s][None])
+            a = np.round((out[i, 0, None] - x0) / w).astype(np.int64)
+            site = self.place(exemplar, s[None], a, b)
+            miss = (site - out[i, None]) * (1.0, ACROSS_WEIGHT)
+            best = np.argmin(np.hypot(miss[..., 0], miss[..., 1]), axis=1)
+            out[i], sub[i] = site[np.arange(len(i)), best], s[best]
+        return out, sub
+
+
+def row_phases(exemplar: Exemplar, key: int) -> RowPhases | None:
+    """The world rows of a tile of rows exact along x whose phases repeat only at the tile's
+    height (see the module docstring), or None for any other exemplar.
+
+    The rows are cut where the motifs' sorted y jump by more than half the mean spacing
+    ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
+    :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
+    the width; an exact step with a part across the rows refuses the tile.
+    """
+    if exemplar.period is None or len(exemplar.motifs) < MIN_ROWS:
+        return None
+    m = exemplar.motifs
+    w, h = (float(v) for v in exemplar.period)
+    spacing = math.sqrt(w * h / len(m))
+    tol = EXACT_STEP * spacing
+    found = symmetry_steps(m.xy, m.kind, (w, h), tol)
+    along = [s for s in found if abs(s.vector[1]) <= tol]
+    if not along or len(along) < len(found) or along[0].support < 1.0:
+        return None
+    step = abs(float(along[0].vector[0]))
+    whole = round(w / step)
+    if not (tol < step < w - tol and abs(whole * step - w) <= tol):
+        return None
+    step = w / whole  # the width holds a whole number of steps: the exact value, not the measured one
+    y = m.xy[:, 1]
+    by = np.argsort(y, kind="stable")
+    row = np.empty(len(y), np.int64)
+    row[by] = np.r_[0, np.cumsum(np.diff(y[by]) > 0.5 * spacing)]
+    n = int(row.max()) + 1
+    if n < MIN_ROWS:
+        return None
+    q = round(step / QUANTUM)
+    phase = np.array([round(float(np.min(m.xy[(row == r) & (m.kind == m.kind[row == r].min()), 0] % step)) / QUANTUM)
+                      for r in range(n)], np.int64) % q  # fmt: skip
+    steps = np.diff(np.r_[phase, phase[0]]) % q
+    return RowPhases(np.array([w, h]), step, row, phase, steps, int(key))
+
+
+def on_rows(phases: RowPhases, exemplar: Exemplar, cand: Arrangement, support: np.ndarray,
+            ) -> tuple[Arrangement, np.ndarray, np.ndarray]:  # fmt: skip
+    """The gap fill's candidates (:func:`.gapfill.candidates`: the tile's own predictions around
+    each placed motif) moved onto the world rows' sites, merged where they meet, supports added.
+
+    Parameters
+    ----------
+    phases : the world rows
+    exemplar : the tile
+    cand : the c predicted motifs
+    support : (c,) int array — how many placed motifs predict each
+
+    Returns
+    -------
+    arrangement : the distinct sites, quantized; sub : their exemplar motifs; support : summed
+    """
+    xy, sub = phases.sites(exemplar, cand.xy, cand.kind)
+    ex = exemplar.motifs
+    arr = Arrangement(ex.kind[sub], xy, ex.angle[sub], ex.scale[sub]).quantized(DECIMALS)
+    key = np.c_[sub, np.round(arr.xy * 10**DECIMALS).astype(np.int64)]
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    total = np.bincount(inverse.ravel(), weights=support, minlength=len(first)).astype(np.int64)
+    return arr.take(first), sub[first], total
+
+
+__all__ = ["ACROSS_WEIGHT", "QUANTUM", "STREAM", "RowPhases", "on_rows", "row_phases"]
