@@ -144,7 +144,8 @@ def row_phases(exemplar: Exemplar, key: int) -> RowPhases | None:
     The rows are cut where the motifs' sorted y jump by more than half the mean spacing
     ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
     :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
-    the width; an exact step with a part across the rows refuses the tile.
+    the width; an exact step across the rows that maps every motif refuses the tile (one that maps
+    some rows only is two rows the hand drew at one phase: 619 has none, the test tile one).
     """
     if exemplar.period is None or len(exemplar.motifs) < MIN_ROWS:
         return None
@@ -153,8 +154,9 @@ def row_phases(exemplar: Exemplar, key: int) -> RowPhases | None:
     spacing = math.sqrt(w * h / len(m))
     tol = EXACT_STEP * spacing
     found = symmetry_steps(m.xy, m.kind, (w, h), tol)
-    along = [s for s in found if abs(s.vector[1]) <= tol]
-    if not along or len(along) < len(found) or along[0].support < 1.0:
+    along = [s for s in found if abs(s.vector[1]) <= tol and s.support >= 1.0]
+    across = [s for s in found if abs(s.vector[1]) > tol and s.support >= 1.0]
+    if not along or across:  # no row step, or the rows' phases repeat at a step across them
         return None
     step = abs(float(along[0].vector[0]))
     whole = round(w / step)
