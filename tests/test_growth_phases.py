@@ -14,7 +14,7 @@ from test_baselines import brute_force_conflicts
 from test_growth_gaps import jittered_tile
 from test_growth_regular import REGULAR_TILES, at_step, needs_data
 
-from svgtile import read_exemplar
+from svgtile import analyze, read_exemplar
 from svgtile.analysis.neighbourhood import likeness
 from svgtile.apps.load import load_exemplar
 from svgtile.core.region import Region
@@ -30,13 +30,15 @@ REPO = Path(__file__).resolve().parents[1]
 PHASES = (0.3, 2.9, 1.1, 3.6, 0.8, 2.2)
 
 
-def phased_tile(phases=PHASES, step: float = 4.0, cols: int = 6, dy: float = 3.0, squares: bool = False) -> str:
-    """Rows of dots ``dy`` apart, each exact along x at ``step`` from its own hand-drawn phase;
-    with ``squares`` every other dot is a square (a second kind: the exact step is ``2 · step``)."""
+def phased_tile(phases=PHASES, step: float = 4.0, cols: int = 6, dy: float = 3.0, squares: bool = False,
+                ys=None) -> str:  # fmt: skip
+    """Rows of dots ``dy`` apart (or at heights ``ys``, the tile ``dy`` per row high), each exact
+    along x at ``step`` from its own hand-drawn phase; with ``squares`` every other dot is a square
+    (a second kind: the exact step is ``2 · step``)."""
     marks = []
     for a, ph in enumerate(phases):
         for i in range(cols):
-            x, y = ph + i * step, (a + 0.5) * dy
+            x, y = ph + i * step, (a + 0.5) * dy if ys is None else ys[a]
             marks.append(f'<rect x="{x - 0.4:.4f}" y="{y - 0.4:.4f}" width="0.8" height="0.8"/>' if squares and i % 2
                          else f'<circle cx="{x:.4f}" cy="{y:.4f}" r="0.5"/>')  # fmt: skip
     w, h = cols * step, len(phases) * dy
@@ -44,9 +46,14 @@ def phased_tile(phases=PHASES, step: float = 4.0, cols: int = 6, dy: float = 3.0
             f'<rect id="region" width="{w}" height="{h}" fill="none" svgtile:period="{w} {h}"/>{"".join(marks)}</svg>')  # fmt: skip
 
 
+def phases_of(ex, key: int = 7):
+    """:func:`row_phases` of ``ex`` with its own distance rule."""
+    return row_phases(ex, key, analyze(ex).distance)
+
+
 def test_a_tile_of_exact_rows_at_hand_drawn_phases_has_row_phases():
     ex = parse_exemplar(phased_tile())  # one kind: dots
-    r = row_phases(ex, key=7)
+    r = phases_of(ex)
     assert r is not None
     assert r.step == pytest.approx(4.0) and r.rows == 6
     assert np.allclose(r.phase * QUANTUM, PHASES, atol=1e-4)
@@ -62,17 +69,17 @@ def test_a_tile_of_exact_rows_at_hand_drawn_phases_has_row_phases():
     (phased_tile(phases=(0.3, 2.9)), "two rows are too few"),
 ])  # fmt: skip
 def test_other_tiles_have_no_row_phases(svg, why):
-    assert row_phases(parse_exemplar(svg), key=7) is None, why
+    assert phases_of(parse_exemplar(svg)) is None, why
 
 
 def test_drawn_exemplars_have_no_row_phases():
     for path in sorted((REPO / "exemplars").glob("*.svg")):
-        assert row_phases(read_exemplar(path), key=7) is None, path.name
+        assert phases_of(read_exemplar(path)) is None, path.name
 
 
 def test_the_walk_is_a_chain_of_the_tiles_own_steps_anchored_at_row_zero():
     ex = parse_exemplar(phased_tile())
-    r = row_phases(ex, key=7)
+    r = phases_of(ex)
     q = round(r.step / QUANTUM)
     k = np.arange(-200, 201)
     walk = r.walk(k)
@@ -82,16 +89,56 @@ def test_the_walk_is_a_chain_of_the_tiles_own_steps_anchored_at_row_zero():
     # a row's phase is the same whatever rows are asked for with it (a region's extent)
     assert np.array_equal(r.walk(np.array([-150, 3, 180])), walk[[50, 203, 380]])
     assert np.array_equal(r.walk(np.array([5])), walk[[205]])
-    assert not np.array_equal(row_phases(ex, key=8).walk(k), walk)  # another key, another walk
+    assert not np.array_equal(phases_of(ex, 8).walk(k), walk)  # another key, another walk
     shift = r.shift(np.arange(-30, 30)[:, None], np.arange(6)[None])
     assert shift.min() >= 0 and shift.max() < r.step
     # not the tile's own phases repeated: rows one tile height apart move by different amounts
     assert np.ptp(shift, axis=0).min() > 1.0
 
 
+def test_a_row_follows_the_one_below_only_by_steps_that_keep_the_distance_rule():
+    """Rows 1.6 and 2.4 apart by turns (dots of radius 0.5), the wider pairs nearly above each
+    other: their phase steps break the distance rule between a narrower pair.  The steps kept are
+    exactly those that keep it (checked pair by pair on footprints), and the walk draws no other."""
+    from svgtile.core.arrangement import Arrangement
+    from svgtile.core.footprint import world_footprints
+
+    ex = parse_exemplar(phased_tile((0.3, 1.6, 1.9, 3.8, 0.3, 1.9), dy=2.0, ys=(0.8, 2.4, 4.8, 6.4, 8.8, 10.4)))
+    st = analyze(ex)
+    r = row_phases(ex, 5, st.distance)
+    assert r is not None
+    n, m = r.rows, ex.motifs
+    w, h = ex.period
+    fits = np.zeros((n, n), bool)
+    for a in range(n):
+        for j in range(n):
+            moved = ((r.steps[j] - r.steps[a]) * QUANTUM) % r.step
+            lo = np.flatnonzero(r.row == a)
+            hi = np.flatnonzero(r.row == (a + 1) % n)
+            up = np.c_[moved + np.array([-w, 0.0, w])[:, None].repeat(len(hi), 1).ravel(),
+                       np.full(3 * len(hi), h if a == n - 1 else 0.0)]  # fmt: skip
+            other = Arrangement(m.kind[np.tile(hi, 3)], m.xy[np.tile(hi, 3)] + up, m.angle[np.tile(hi, 3)],
+                                m.scale[np.tile(hi, 3)])  # fmt: skip
+            g1 = world_footprints(m.take(lo), ex.prototypes)
+            g2 = world_footprints(other, ex.prototypes)
+            gap = shapely.distance(g1[:, None], g2[None])
+            need = st.distance[m.kind[lo][:, None], other.kind[None]]
+            fits[a, j] = bool((gap >= need - 1e-9).all())
+    fits[np.arange(n), np.arange(n)] = True
+    kept = np.zeros((n, n), bool)
+    for a in range(n):
+        kept[a, r.choices[a, : r.count[a]]] = True
+    assert 0 < (~fits).sum() and fits.sum() > n  # some steps refused, some besides the tile's own kept
+    assert np.array_equal(kept, fits)
+    q = round(r.step / QUANTUM)
+    k = np.arange(-100, 100)
+    drawn = np.diff(r.walk(k)) % q
+    assert all(d in r.steps[r.choices[a, : r.count[a]]] for d, a in zip(drawn, k[:-1] % n, strict=True))
+
+
 def test_sites_are_the_tiles_rows_moved_along_x():
     ex = parse_exemplar(phased_tile(squares=True))
-    r = row_phases(ex, key=3)
+    r = phases_of(ex, 3)
     assert r.step == pytest.approx(8.0) and len(ex.kinds) == 2
     rng = np.random.default_rng(0)
     xy = rng.uniform(-60, 60, (400, 2))
@@ -121,8 +168,11 @@ def grown(name: str, seed: int = 1, **params):
 
 @needs_data
 def test_only_619_and_620_of_the_regular_tiles_have_row_phases():
-    found = {n for n, p in REGULAR_TILES.items()
-             if row_phases(load_exemplar(str(p), as_tile=True, warn=lambda m: None)[0], key=1) is not None}  # fmt: skip
+    found = set()
+    for name, path in REGULAR_TILES.items():
+        ex, st = load_exemplar(str(path), as_tile=True, warn=lambda m: None)
+        if row_phases(ex, 1, st.distance) is not None:
+            found.add(name)
     assert found == {"619", "620"}
 
 
@@ -132,14 +182,14 @@ def test_growth_on_hand_phased_rows_does_not_repeat_at_the_tiles_period(name):
     ex, st, region, arr = grown(name)
     _, _, _, old = grown(name, row_phases=False)
     tol = 0.01 * spacing(st)
-    r = row_phases(ex, key=1)
+    r = row_phases(ex, 1, st.distance)
     # a motif's same-kind partners one tile height up lie every ``step`` along that row: by chance,
     # one within ``tol`` of x ± 0 for a share 4·tol / step of the motifs
     chance = 4 * tol / r.step
     h = ex.period[1]
     assert at_step(old, (0.0, h), tol) > 0.95  # snapped to the tile's sites: its period, everywhere
-    assert at_step(arr, (0.0, h), tol) <= chance + 0.05
-    assert at_step(arr, (ex.period[0], h), tol) <= chance + 0.05
+    assert at_step(arr, (0.0, h), tol) <= chance + 0.1
+    assert at_step(arr, (ex.period[0], h), tol) <= chance + 0.1
     s = score(ex, st, arr, region)
     _vx, vy = s.repetition_vector
     assert abs(vy) < 0.1 * spacing(st), s.repetition_vector  # the mode is along a row, not the period across
@@ -153,7 +203,7 @@ def test_growth_on_hand_phased_rows_keeps_the_tiles_rows(name):
     ex, st, _region, arr = grown(name)
     m = ex.motifs
     w, h = ex.period
-    r = row_phases(ex, key=1)
+    r = row_phases(ex, 1, st.distance)
     # each motif's tile row: the tile motif of its kind whose height (mod h) is nearest
     dy = arr.xy[:, None, 1] - m.xy[None, :, 1]
     miss = np.abs(dy - np.round(dy / h) * h) + np.where(arr.kind[:, None] == m.kind[None], 0.0, np.inf)

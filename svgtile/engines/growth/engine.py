@@ -124,12 +124,15 @@ class Growth:
         self.rotation = rotation
         self.priority = kind_priority(ex, p.priorities())
         self.gap = centre_gaps(ex, self.k)
-        # a repeating tile: what each motif predicts around it is the tile itself (see .gapfill)
-        self.pred = predictions(ex, self.rings) if p.gap_fill and ex.period is not None else None
         # grown unturned, every motif of a tile belongs on a site of the tile's pattern
         self.snap = p.snap and ex.period is not None and rotation == "none"
         # a tile of rows exact along x: the sites' rows at wandering phases (see .phases)
-        self.phases = row_phases(ex, ctx.key) if self.snap and p.row_phases else None
+        self.phases = row_phases(ex, ctx.key, self.stats.distance) if self.snap and p.row_phases else None
+        # a repeating tile: what each motif predicts around it is the tile itself (see .gapfill);
+        # on rows at wandering phases, its own row's next motifs too (see .phases.reach)
+        self.pred = None
+        if p.gap_fill and ex.period is not None:
+            self.pred = predictions(ex, self.rings, None if self.phases is None else self.phases.reach(self.rings.radius))
         # grown unturned, a drawn exemplar's rows run along world lines (see .rows)
         self.rows = row_lines(ex) if p.rows and rotation == "none" else None
         x0, y0, x1, y1 = ex.region.bounds

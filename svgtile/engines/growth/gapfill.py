@@ -51,14 +51,15 @@ class Predictions:
     sub: np.ndarray
 
 
-def predictions(exemplar: Exemplar, rings: Rings) -> Predictions:
+def predictions(exemplar: Exemplar, rings: Rings, radius: float | None = None) -> Predictions:
     """The prediction table of a repeating tile ``exemplar``: around each of its motifs, every
-    motif of the periodic block (3 × 3 tiles) within the ring radius (× 1.05), itself excepted."""
+    motif of the periodic block (3 × 3 tiles) within the ring radius × 1.05 (or ``radius``, user
+    units), itself excepted."""
     if exemplar.period is None:
         raise ValueError("predictions are made for a repeating tile only (see the module docstring)")
     m = len(exemplar.motifs)
     block = periodic_block(exemplar.motifs, exemplar.period)
-    pairs = cKDTree(exemplar.motifs.xy).sparse_distance_matrix(cKDTree(block.xy), rings.radius * 1.05,
+    pairs = cKDTree(exemplar.motifs.xy).sparse_distance_matrix(cKDTree(block.xy), radius or rings.radius * 1.05,
                                                                output_type="ndarray")  # fmt: skip
     i, j = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64)
     keep = j != i  # block motif i is tile motif i itself

@@ -42,6 +42,7 @@ import numpy as np
 from svgtile.analysis.order import EXACT_STEP, symmetry_steps
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.growth.rows import MIN_ROWS
 
@@ -68,6 +69,10 @@ class RowPhases:
         its lowest kind, modulo ``step``
     steps : (n,) int array, :data:`QUANTUM` units — the tile's phase step from each row to the next
         (the last to the first row's copy above), modulo ``step``
+    choices : (n, n) int array — row ``r``'s first ``count[r]`` entries are the steps (indices
+        into ``steps``) by which row ``r + 1`` may follow row ``r``: those that put no motif of
+        the two rows in conflict (:func:`fitting_steps`); its own, ``r``, always among them
+    count : (n,) int array
     key : int — the run's root key (:func:`svgtile.core.cellrng.root_key`)
     """
 
@@ -76,22 +81,36 @@ class RowPhases:
     row: np.ndarray
     phase: np.ndarray
     steps: np.ndarray
+    choices: np.ndarray
+    count: np.ndarray
     key: int
 
     @property
     def rows(self) -> int:
         return len(self.phase)
 
+    def reach(self, ring_radius: float) -> float:
+        """User units: how far around a motif the gap fill (:mod:`.gapfill`) predicts on these rows
+        — the ring radius, and at least one along-row step.  The tile's predictions across rows
+        land up to half a step off a row at its own phase and are snapped to its sites, two of
+        them at times onto one; a motif's neighbours along its own row are exact, so a gap in a
+        row closes from both ends (FGDC 620: its ring radius 6.8 is under its step, 8.93, and
+        holes two dashes wide and five rows high stayed open)."""
+        return 1.05 * max(ring_radius, 1.01 * self.step)
+
     def walk(self, k: np.ndarray) -> np.ndarray:
         """(…) int: the phase of world rows ``k`` (int array; row ``b·n + r`` is tile row ``r`` of
         tile copy ``b``), in :data:`QUANTUM` units modulo the step.  Row 0 has tile row 0's phase;
-        row ``k + 1`` adds the phase step ``steps[d]``, ``d`` hashed from ``(key, k)`` — summed
-        from row 0, so a row's phase is the same whatever rows are asked for with it."""
+        row ``k + 1`` adds a phase step that fits after row ``k``'s tile row (``choices``), chosen
+        by a hash of ``(key, k)`` — summed from row 0, so a row's phase is the same whatever rows
+        are asked for with it."""
         k = np.asarray(k, np.int64)
         q = round(self.step / QUANTUM)
         lo, hi = min(int(k.min(initial=0)), 0), max(int(k.max(initial=0)), 0)
         i = np.arange(lo, hi)
-        d = self.steps[(cellrng.hash64(self.key, STREAM, i) % np.uint64(self.rows)).astype(np.int64)]
+        r = i % self.rows
+        pick = (cellrng.hash64(self.key, STREAM, i) % self.count[r].astype(np.uint64)).astype(np.int64)
+        d = self.steps[self.choices[r, pick]]
         up = np.r_[0, np.cumsum(d[i >= 0])]  # up[k] = the steps of rows 0 … k − 1
         down = np.r_[0, np.cumsum(d[i < 0][::-1])]  # down[j] = the steps of rows −j … −1
         total = np.where(k >= 0, up[np.clip(k, 0, len(up) - 1)], -down[np.clip(-k, 0, len(down) - 1)])
@@ -137,11 +156,62 @@ class RowPhases:
         return out, sub
 
 
-def row_phases(exemplar: Exemplar, key: int) -> RowPhases | None:
+def fitting_steps(exemplar: Exemplar, row: np.ndarray, steps: np.ndarray, step: float, distance: np.ndarray,
+                  ) -> np.ndarray:  # fmt: skip
+    """(n, n) bool: whether row ``r + 1`` may follow row ``r`` by phase step ``steps[j]`` — no
+    footprint of the two rows overlapping or closer than the distance rule ``distance`` ((k, k),
+    user units) — the tile's own step ``j = r`` always.
+
+    A phase step is another pair of rows' relation; the rows' heights and the hand's jitter differ
+    from pair to pair, so not every step suits every pair (FGDC 619: dashes one row apart keep
+    3.29 units, its rows lie 2.8–3.2 apart; unchecked, 48–132 motifs of ``markov_rows`` break the
+    rule over 4 × 4 tiles, and the exact check left holes in growth's rows).  All n² pairs of
+    rows are laid out at once, far apart, and checked in one :func:`find_conflicts`.
+
+    Parameters
+    ----------
+    row : (m,) int array — each exemplar motif's tile row
+    steps : (n,) int array, :data:`QUANTUM` units — the tile's row-to-row phase steps
+    step : float, user units — the along-row step
+    """
+    m = exemplar.motifs
+    w, h = exemplar.period
+    n = len(steps)
+    r, j = (v.ravel() for v in np.meshgrid(np.arange(n), np.arange(n), indexing="ij"))
+    # row r + 1 moves by (steps[j] − steps[r]) from where the tile has it; the last row's next is
+    # row 0 of the copy above
+    moved = ((steps[j] - steps[r]) % round(step / QUANTUM)) * QUANTUM
+    parts, owner, lower = [], [], []
+    for side, nxt in ((0, r), (1, (r + 1) % n)):
+        s = [np.flatnonzero(row == x) for x in nxt]
+        cnt = np.array([len(x) for x in s])
+        idx = np.concatenate(s)
+        c = np.repeat(np.arange(n * n), cnt)
+        for a in (-1, 0, 1):
+            xy = m.xy[idx] + np.c_[a * w + side * moved[c], side * (r[c] == n - 1) * h + c * 4 * h]
+            parts.append(Arrangement(m.kind[idx], xy, m.angle[idx], m.scale[idx]))
+            owner.append(c)
+            lower.append(np.full(len(idx), side == 0 and a == 0))
+    both = Arrangement.concat(parts)
+    owner, lower = np.concatenate(owner), np.concatenate(lower)
+    side = np.concatenate([np.full(len(p), k >= 3) for k, p in enumerate(parts)])
+    found = find_conflicts(both, exemplar.prototypes, distance)
+    i, k = found.i, found.j
+    # a pair of one configuration, one motif of row r's middle copy, the other of row r + 1
+    hit = (owner[i] == owner[k]) & (side[i] != side[k]) & (lower[i] | lower[k])
+    bad = np.zeros(n * n, bool)
+    bad[owner[i[hit]]] = True
+    ok = ~bad.reshape(n, n)
+    ok[np.arange(n), np.arange(n)] = True
+    return ok
+
+
+def row_phases(exemplar: Exemplar, key: int, distance: np.ndarray) -> RowPhases | None:
     """The world rows of a tile of rows exact along x whose phases repeat only at the tile's
     height (see the module docstring), or None for any other exemplar.
 
-    The rows are cut where the motifs' sorted y jump by more than half the mean spacing
+    ``distance`` is the distance rule ((k, k), user units; :func:`fitting_steps`).  The rows are
+    cut where the motifs' sorted y jump by more than half the mean spacing
     ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
     :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
     the width; an exact step across the rows that maps every motif refuses the tile (one that maps
@@ -174,7 +244,10 @@ def row_phases(exemplar: Exemplar, key: int) -> RowPhases | None:
     phase = np.array([round(float(np.min(m.xy[(row == r) & (m.kind == m.kind[row == r].min()), 0] % step)) / QUANTUM)
                       for r in range(n)], np.int64) % q  # fmt: skip
     steps = np.diff(np.r_[phase, phase[0]]) % q
-    return RowPhases(np.array([w, h]), step, row, phase, steps, int(key))
+    ok = fitting_steps(exemplar, row, steps, step, distance)
+    count = ok.sum(1)
+    choices = np.argsort(~ok, axis=1, kind="stable")  # each row's fitting steps first, in order
+    return RowPhases(np.array([w, h]), step, row, phase, steps, choices, count, int(key))
 
 
 def on_rows(phases: RowPhases, exemplar: Exemplar, cand: Arrangement, support: np.ndarray,
@@ -202,4 +275,4 @@ def on_rows(phases: RowPhases, exemplar: Exemplar, cand: Arrangement, support: n
     return arr.take(first), sub[first], total
 
 
-__all__ = ["ACROSS_WEIGHT", "QUANTUM", "STREAM", "RowPhases", "on_rows", "row_phases"]
+__all__ = ["ACROSS_WEIGHT", "QUANTUM", "STREAM", "RowPhases", "fitting_steps", "on_rows", "row_phases"]
