@@ -256,3 +256,32 @@ def test_growth_on_hand_phased_rows_is_seeded_and_a_cells_content_is_independent
     key = lambda a: {(int(k), float(x), float(y)) for k, (x, y) in zip(a.kind, a.xy, strict=True)}  # noqa: E731
     assert len(small) > 100 and key(small) == key(big.take(np.flatnonzero(inside)))
     assert (small.xy[:, 1] < 0).sum() > 20  # rows below world row 0 were grown
+
+
+@needs_data
+def test_growth_on_hand_phased_rows_honours_a_barrier_a_growth_area_and_avoid_zones():
+    """Sites move before the exact check, which still removes a motif that would cross a barrier
+    or leave the growth area; both sides of the barrier are filled, and avoid zones stay empty."""
+    from svgtile.core.footprint import world_footprints
+    from svgtile.engines import Controls
+
+    ex, st = load_exemplar(str(REGULAR_TILES["619"]), as_tile=True, warn=lambda m: None)
+    w, h = ex.period
+    region = Region.rectangle(2 * w, 2 * h)
+    river = shapely.LineString([(0.3 * w, -5), (1.6 * w, 2 * h + 5)])
+    arr = synthesize(ex, region, "growth", seed=4, stats=st, controls=Controls(barriers=river)).arrangement
+    assert not shapely.intersects(world_footprints(arr, ex.prototypes), river).any()
+    side = shapely.contains_xy(shapely.Polygon([(0.3 * w, -5), (1.6 * w, 2 * h + 5), (-10, 2 * h + 5), (-10, -5)]),
+                               arr.xy[:, 0], arr.xy[:, 1])  # fmt: skip
+    assert side.sum() > 0.3 * len(arr) and (~side).sum() > 0.3 * len(arr)
+    assert brute_force_conflicts(arr, ex, st) == (0, 0)
+    spray = shapely.Point(w, h).buffer(0.7 * w)
+    arr = synthesize(ex, region, "growth", seed=6, stats=st, controls=Controls(grow_within=spray)).arrangement
+    assert shapely.contains_xy(spray, arr.xy[:, 0], arr.xy[:, 1]).all()
+    assert len(arr) > 0.85 * spray.area * st.count_density
+    hole = shapely.box(0.8 * w, 0.8 * h, 1.2 * w, 1.2 * h)
+    arr = synthesize(ex, Region(region.shape, avoid=hole), "growth", seed=6, stats=st, boundary="inside").arrangement
+    feet = world_footprints(arr, ex.prototypes)
+    assert not shapely.intersects(feet, hole).any() and shapely.within(feet, region.shape).all()
+    assert brute_force_conflicts(arr, ex, st) == (0, 0)
+    assert row_phases(ex, 1, st.distance) is not None  # all this on row phases
