@@ -25,7 +25,9 @@ growth runs per *world cell*:
   are near duplicates, so the best match is often another motif's ring and each front drifts
   off the lattice as a random walk, and fronts meeting out of step left gaps (FGDC 619 and 670
   grew at density 0.77 and 0.67); growth still decides which sites are filled and the kinds,
-  and barriers, growth areas and priorities apply as before;
+  and barriers, growth areas and priorities apply as before; on a tile of rows exact along x at
+  hand-drawn phases (FGDC 619, 620) the sites are the tile's rows at world phases that wander by
+  the tile's own row-to-row steps (:mod:`.phases`), so the texture does not repeat at the period;
 * on a repeating tile a last pass fills the gaps that are left with the motifs the placed ones
   predict (:mod:`.gapfill`), the tile's motifs that no whole ring places among them.
 * on a drawn exemplar of rows grown unturned, the rows run along world lines (:mod:`.rows`): each

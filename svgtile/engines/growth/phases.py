@@ -35,7 +35,7 @@ the world rows' sites instead of the tile's).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -51,6 +51,10 @@ STREAM = 4
 #: Phases are summed as whole multiples of this many user units, so that a world row's phase is
 #: exact however far it lies from the origin (an integer walk, no rounding drift).
 QUANTUM = 1e-6
+#: :meth:`RowPhases.walk` works out the phases of this many rows more each way than it is asked for.
+WALK_BLOCK = 256
+#: :meth:`RowPhases.sites` looks at the sites of this many world rows nearest a position's height.
+NEAR = 3
 #: A site's distance counts its across-row part this many times: a prediction lies on its row's
 #: height exactly but up to half a row step off its phase, and must snap onto its own row.
 ACROSS_WEIGHT = 4.0
@@ -84,6 +88,7 @@ class RowPhases:
     choices: np.ndarray
     count: np.ndarray
     key: int
+    _walks: dict = field(default_factory=dict, repr=False)  # the phases worked out so far (:meth:`walk`)
 
     @property
     def rows(self) -> int:
@@ -105,16 +110,20 @@ class RowPhases:
         by a hash of ``(key, k)`` — summed from row 0, so a row's phase is the same whatever rows
         are asked for with it."""
         k = np.asarray(k, np.int64)
-        q = round(self.step / QUANTUM)
         lo, hi = min(int(k.min(initial=0)), 0), max(int(k.max(initial=0)), 0)
-        i = np.arange(lo, hi)
-        r = i % self.rows
-        pick = (cellrng.hash64(self.key, STREAM, i) % self.count[r].astype(np.uint64)).astype(np.int64)
-        d = self.steps[self.choices[r, pick]]
-        up = np.r_[0, np.cumsum(d[i >= 0])]  # up[k] = the steps of rows 0 … k − 1
-        down = np.r_[0, np.cumsum(d[i < 0][::-1])]  # down[j] = the steps of rows −j … −1
-        total = np.where(k >= 0, up[np.clip(k, 0, len(up) - 1)], -down[np.clip(-k, 0, len(down) - 1)])
-        return (self.phase[0] + total) % q
+        table = self._walks.get("table")
+        if table is None or lo < self._walks["lo"] or hi >= self._walks["lo"] + len(table):
+            # the phases of rows lo … hi, a block of WALK_BLOCK rows more each way: a run asks again and again
+            lo, hi = min(lo, self._walks.get("lo", 0)) - WALK_BLOCK, max(hi, self._walks.get("hi", 0)) + WALK_BLOCK
+            i = np.arange(lo, hi)
+            r = i % self.rows
+            pick = (cellrng.hash64(self.key, STREAM, i) % self.count[r].astype(np.uint64)).astype(np.int64)
+            d = self.steps[self.choices[r, pick]]
+            up = np.cumsum(d[i >= 0])  # up[k − 1] = the steps of rows 0 … k − 1
+            down = np.cumsum(d[i < 0][::-1])  # down[j − 1] = the steps of rows −j … −1
+            table = (self.phase[0] + np.r_[-down[::-1], 0, up[:-1]]) % round(self.step / QUANTUM)
+            self._walks.update(table=table, lo=lo, hi=hi)
+        return table[k - self._walks["lo"]]
 
     def shift(self, b: np.ndarray, r: np.ndarray) -> np.ndarray:
         """(…) float, user units in [0, step): how far tile row ``r`` of tile copy ``b`` (int
@@ -135,6 +144,10 @@ class RowPhases:
         distance counted :data:`ACROSS_WEIGHT` times): (n, 2) positions and (n,) the exemplar
         motifs (sub-ids) they now copy.
 
+        The sites looked at are those of the :data:`NEAR` world rows nearest each position's
+        height — a site farther across costs more than the worst miss along a nearer row — so a
+        position weighs a few rows' motifs, not every motif of the tile.
+
         Parameters
         ----------
         exemplar : the tile
@@ -143,16 +156,32 @@ class RowPhases:
         """
         motifs = exemplar.motifs
         w, h = self.period
+        n = self.rows
+        height = np.bincount(self.row, weights=motifs.xy[:, 1], minlength=n) / np.bincount(self.row, minlength=n)
         out, sub = np.array(xy, float).reshape(-1, 2), np.zeros(len(xy), np.int64)
-        for c in np.unique(kind):  # (n_c, m_c) candidate sites: the kind's tile motifs, in their copy
-            i, s = np.flatnonzero(kind == c), np.flatnonzero(motifs.kind == c)
-            b = np.round((out[i, 1, None] - motifs.xy[s, 1][None]) / h).astype(np.int64)
-            x0 = motifs.xy[s, 0][None] + self.shift(b, self.row[s][None])
-            a = np.round((out[i, 0, None] - x0) / w).astype(np.int64)
-            site = self.place(exemplar, s[None], a, b)
+        for c in np.unique(kind):
+            i = np.flatnonzero(kind == c)
+            # (n, L) the kind's motifs of each tile row, −1 where a row has fewer
+            mine = np.flatnonzero(motifs.kind == c)
+            mine = mine[np.argsort(self.row[mine], kind="stable")]
+            count = np.bincount(self.row[mine], minlength=n)
+            table = np.full((n, max(int(count.max()), 1)), -1, np.int64)
+            table[self.row[mine], np.arange(len(mine)) - np.repeat(np.cumsum(count) - count, count)] = mine
+            # (n_i, NEAR) the nearest world rows: tile row and copy
+            copy = np.round((out[i, 1, None] - height[None]) / h).astype(np.int64)
+            off = np.abs(out[i, 1, None] - height[None] - copy * h) + np.where(count > 0, 0.0, np.inf)[None]
+            near = np.argsort(off, axis=1, kind="stable")[:, : min(NEAR, n)]
+            b = np.take_along_axis(copy, near, axis=1)
+            cand = table[near]  # (n_i, NEAR, L)
+            valid = cand >= 0
+            cand = np.maximum(cand, 0)
+            x0 = motifs.xy[cand, 0] + self.shift(b, near)[..., None]
+            a = np.round((out[i, 0, None, None] - x0) / w)
+            site = np.stack([x0 + a * w, motifs.xy[cand, 1] + (b * h)[..., None]], axis=-1).reshape(len(i), -1, 2)
             miss = (site - out[i, None]) * (1.0, ACROSS_WEIGHT)
-            best = np.argmin(np.hypot(miss[..., 0], miss[..., 1]), axis=1)
-            out[i], sub[i] = site[np.arange(len(i)), best], s[best]
+            cost = np.where(valid.reshape(len(i), -1), np.hypot(miss[..., 0], miss[..., 1]), np.inf)
+            best = np.argmin(cost, axis=1)
+            out[i], sub[i] = site[np.arange(len(i)), best], cand.reshape(len(i), -1)[np.arange(len(i)), best]
         return out, sub
 
 
@@ -275,4 +304,4 @@ def on_rows(phases: RowPhases, exemplar: Exemplar, cand: Arrangement, support: n
     return arr.take(first), sub[first], total
 
 
-__all__ = ["ACROSS_WEIGHT", "QUANTUM", "STREAM", "RowPhases", "fitting_steps", "on_rows", "row_phases"]
+__all__ = ["ACROSS_WEIGHT", "NEAR", "QUANTUM", "STREAM", "RowPhases", "fitting_steps", "on_rows", "row_phases"]
