@@ -2,9 +2,9 @@
 
 On a repeating tile the growth engine moves each grown motif to the nearest site of its kind in
 the tile's pattern (:meth:`.engine.Growth.on_sites`), so that fronts grown from two seeds meet in
-step.  On a tile whose rows are drawn by hand — FGDC 619 and 620: eighteen rows of dashes, each
-row repeating its content exactly every 8.94 units along x, each row put at its own hand-drawn
-phase — the tile's pattern repeats the eighteen phases at the tile's height, and so does every
+step.  On a tile whose rows are drawn by hand — FGDC 619 and 620: eighteen rows of dashes (619:
+dashes and dots by turns), each row repeating its content exactly every 8.93 units along x, each
+row put at its own hand-drawn phase — the tile's pattern repeats the eighteen phases at the tile's height, and so does every
 texture snapped to it, as stamping the tile does.
 
 Such a tile holds more than its period tells: a row is exact along x, so it may be moved along
@@ -12,7 +12,8 @@ itself by any phase and still be the tile's row; and the tile shows how a row's 
 the one below (its *row-to-row phase steps*).  This module makes world rows out of the tile's
 rows, in the tile's order and at the tile's heights, and gives world row ``k`` the phase of row
 ``k − 1`` plus one of the tile's own phase steps, drawn by a world-anchored hash of ``(key, k)``
-(:mod:`svgtile.core.cellrng`) — a Markov chain of phases over the world rows, the texture
+(:mod:`svgtile.core.cellrng`) among those that keep the two rows clear of the distance rule
+(:func:`fitting_steps`) — a Markov chain of phases over the world rows, the texture
 ``tests/row_probes.py``'s ``markov_rows`` samples.  Neighbouring rows relate as some pair of the
 tile's rows does; the phase wanders, so the tile's period is gone.  Growth still decides which
 sites are filled and the kinds, as on any tile; only the sites move.
@@ -24,7 +25,8 @@ exactly by a step along x shorter than the tile's width (an exact symmetry step 
 across its rows: a tile whose rows already repeat at a shorter step across them (a brick or a
 lattice drawn exactly: FGDC 711, vineyard) has its order in that step and keeps its sites.  Of
 the twenty regular FGDC and osm-carto tiles only 619 and 620 are such tiles (FGDC 670's rows of
-dashes are jittered along x: they have no along-row step, and its rows repeat exactly every four).
+dashes are jittered along x: they have no along-row step; and its rows repeat every four rows
+within the exact-step tolerance).
 
 References
 ----------
@@ -244,7 +246,7 @@ def row_phases(exemplar: Exemplar, key: int, distance: np.ndarray) -> RowPhases 
     ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
     :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
     the width; an exact step across the rows that maps every motif refuses the tile (one that maps
-    some rows only is two rows the hand drew at one phase: 619 has none, the test tile one).
+    some rows only is a few rows the hand happened to draw at one relation, and does not).
     """
     if exemplar.period is None or len(exemplar.motifs) < MIN_ROWS:
         return None
