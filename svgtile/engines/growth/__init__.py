@@ -62,6 +62,9 @@ class GrowthParams(EngineParams):
     rows : on a drawn exemplar of rows grown with rotation ``none``, grow on world row lines and
         hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
+    kind_sweeps : on a drawn exemplar of rows grown with rotation ``none``, sweeps of the final
+        kind pass that re-chooses kinds against each motif's complete ring (library only, see
+        :mod:`.kinds`); 0 = none
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
 
@@ -77,6 +80,7 @@ class GrowthParams(EngineParams):
     snap: bool = True
     rows: bool = True
     cell_widths: float = 1.0
+    kind_sweeps: int = 4
     weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:
@@ -84,6 +88,8 @@ class GrowthParams(EngineParams):
             raise ParameterError(f"rotation must be one of {', '.join(ROTATIONS)}, not {self.rotation!r}")
         if not 0 <= self.relax_every <= 1_000_000:
             raise ParameterError(f"relax_every must be at least 0, not {self.relax_every}")
+        if self.kind_sweeps < 0:
+            raise ParameterError(f"kind_sweeps must be at least 0, not {self.kind_sweeps}")
         if not self.cell_widths > 0:
             raise ParameterError(f"cell_widths must be positive, not {self.cell_widths:g}")
         self.priorities()

@@ -63,6 +63,7 @@ from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
+from svgtile.engines.growth.kinds import repick
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
@@ -253,6 +254,8 @@ class Growth:
                     j.live = len(j.more) > 0
             for j in jobs:
                 w = j.cell
+                if self.rows is not None and self.p.kind_sweeps and j.kept:
+                    self.repick_kinds(j)
                 if self.pred is not None:
                     self.fill_gaps(j.piece, [w.before, *w.grown], [w.bsub, *w.gsub], j.kept, j.ksub)
                 w.grown.extend(j.kept)
@@ -317,6 +320,39 @@ class Growth:
         if self.rows is not None:  # drawn rows: new motifs in conflict along a row slide apart on it
             arr = slide_apart(arr, fixed, self.ex.prototypes, self.stats.distance, self.rows)
         return arr.quantized(DECIMALS), sub, g, fixed
+
+    def repick_kinds(self, j: _Job) -> None:
+        """Piece ``j``'s motifs (``j.kept``) with their kinds re-chosen against their complete
+        rings, the cell's earlier motifs and its earlier-phase neighbours' held (:mod:`.kinds`,
+        §5.2); a changed motif that fails the exact check keeps its old kind."""
+        w, ex = j.cell, self.ex
+        own, osub = Arrangement.concat(j.kept), np.concatenate(j.ksub)
+        fixed = Arrangement.concat([w.before, *w.grown])
+        fsub = np.concatenate([w.bsub, *w.gsub])
+        f = len(fixed)
+        kind, ring = repick(self.rings, np.concatenate([fixed.xy, own.xy]), np.concatenate([fixed.kind, own.kind]),
+                            np.concatenate([fsub, osub]), np.arange(f + len(own)) >= f, weights=self.p.weights,
+                            sweeps=self.p.kind_sweeps)  # fmt: skip
+        kind, ring = kind[f:], ring[f:]
+        changed = np.flatnonzero((kind != own.kind) & (ring >= 0))
+        while len(changed):
+            sub = osub.copy()
+            sub[changed] = self.rings.element[ring[changed]]
+            k = own.kind.copy()
+            k[changed] = kind[changed]
+            angle = own.angle.copy()
+            angle[changed] = (self.rings.angle[ring[changed]] + 180.0) % 360.0 - 180.0
+            cand = Arrangement(k, own.xy, angle, ex.motifs.scale[sub]).quantized(DECIMALS)
+            found = find_conflicts(cand, ex.prototypes, self.stats.distance)
+            bad = np.zeros(len(cand), bool)
+            bad[found.i] = bad[found.j] = True
+            if f:
+                bad |= cross_conflicts(cand, fixed, ex.prototypes, self.stats.distance)
+            keep = ~np.isin(changed, np.flatnonzero(bad))
+            if keep.all():
+                j.kept, j.ksub = [cand], [sub]
+                return
+            changed = changed[keep]  # the others keep their old kinds; check again
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of
