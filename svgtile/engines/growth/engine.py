@@ -334,25 +334,24 @@ class Growth:
                             np.concatenate([fsub, osub]), np.arange(f + len(own)) >= f, weights=self.p.weights,
                             sweeps=self.p.kind_sweeps)  # fmt: skip
         kind, ring = kind[f:], ring[f:]
-        changed = np.flatnonzero((kind != own.kind) & (ring >= 0))
-        while len(changed):
-            sub = osub.copy()
-            sub[changed] = self.rings.element[ring[changed]]
-            k = own.kind.copy()
-            k[changed] = kind[changed]
-            angle = own.angle.copy()
-            angle[changed] = (self.rings.angle[ring[changed]] + 180.0) % 360.0 - 180.0
-            cand = Arrangement(k, own.xy, angle, ex.motifs.scale[sub]).quantized(DECIMALS)
-            found = find_conflicts(cand, ex.prototypes, self.stats.distance)
-            bad = np.zeros(len(cand), bool)
+        changed = (kind != own.kind) & (ring >= 0)
+        turned = (self.rings.angle[ring] + 180.0) % 360.0 - 180.0
+        protos, d = ex.prototypes, self.stats.distance
+        while True:
+            sub = np.where(changed, self.rings.element[ring], osub)
+            cand = Arrangement(np.where(changed, kind, own.kind), own.xy, np.where(changed, turned, own.angle),
+                               ex.motifs.scale[sub]).quantized(DECIMALS)  # fmt: skip
+            if not changed.any():
+                break
+            # the motifs were conflict-free: only pairs with a changed one can conflict now
+            new = cand.take(changed)
+            bad = cross_conflicts(new, Arrangement.concat([fixed, cand.take(~changed)]), protos, d)
+            found = find_conflicts(new, protos, d)
             bad[found.i] = bad[found.j] = True
-            if f:
-                bad |= cross_conflicts(cand, fixed, ex.prototypes, self.stats.distance)
-            keep = ~np.isin(changed, np.flatnonzero(bad))
-            if keep.all():
-                j.kept, j.ksub = [cand], [sub]
-                return
-            changed = changed[keep]  # the others keep their old kinds; check again
+            if not bad.any():
+                break
+            changed[np.flatnonzero(changed)[bad]] = False  # these keep their old kinds; check again
+        j.kept, j.ksub = [cand], [sub]
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of

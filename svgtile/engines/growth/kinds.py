@@ -97,12 +97,18 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
     n = kind.shape[0]
     noise = np.zeros(rel.shape[0])
     out = (np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1), np.empty(1))
+    needed = movable.copy()  # the rings a change can touch: those of the movable motifs, those holding one
+    for i in range(n):
+        if movable[i]:
+            for m in range(mptr[i], mptr[i + 1]):
+                needed[midx[m]] = True
     cur = np.empty(n)
     gain = np.zeros(n)
     best = np.empty(n, np.int64)
     for _ in range(sweeps):
         for c in range(n):
-            cur[c] = _error(c, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_length, w, noise, out)
+            if needed[c]:
+                cur[c] = _error(c, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_length, w, noise, out)
         for i in range(n):
             gain[i], best[i] = 0.0, kind[i]
             if not movable[i]:
