@@ -103,16 +103,20 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
             for m in range(mptr[i], mptr[i + 1]):
                 needed[midx[m]] = True
     cur = np.empty(n)
+    fresh = np.zeros(n, np.bool_)  # cur[c] holds ring c's error with the kinds as they are
     gain = np.zeros(n)
-    best = np.empty(n, np.int64)
+    best = kind.copy()
+    dirty = movable.copy()  # gain[i] and best[i] must be found again
     for _ in range(sweeps):
         for c in range(n):
-            if needed[c]:
+            if needed[c] and not fresh[c]:
                 cur[c] = _error(c, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_length, w, noise, out)
+                fresh[c] = True
         for i in range(n):
+            if not dirty[i]:
+                continue  # no ring it is in, nor any of their members, changed kind: its gain stands
+            dirty[i] = False
             gain[i], best[i] = 0.0, kind[i]
-            if not movable[i]:
-                continue
             old = kind[i]
             for a in range(k):
                 if a == old:
@@ -126,7 +130,6 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
                 if d < gain[i] - 1e-9:
                     gain[i], best[i] = d, a
             kind[i] = old
-        changed = 0
         flip = np.zeros(n, np.bool_)
         for i in range(n):
             if gain[i] >= 0.0:
@@ -137,12 +140,20 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
                 if gain[q] < gain[i] or (gain[q] == gain[i] and q < i):
                     flip[i] = False
                     break
-        for i in range(n):
-            if flip[i]:
-                kind[i] = best[i]
-                changed += 1
-        if changed == 0:
+        if not flip.any():
             break
+        for f in range(n):
+            if not flip[f]:
+                continue
+            kind[f] = best[f]
+            # the rings whose error reads f's kind: its own and those holding it; and every motif
+            # whose gain reads one of them (the ring's centre and its members)
+            for m in range(-1, mptr[f + 1] - mptr[f]):
+                c = f if m < 0 else midx[mptr[f] + m]
+                fresh[c] = False
+                dirty[c] = movable[c]
+                for j in range(ptr[c], ptr[c + 1]):
+                    dirty[idx[j]] = movable[idx[j]]
     for i in range(n):
         if ring_of_motif[i] == -2:  # asked for: the reference its (new) ring matches best
             e = _error(i, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_length, w, noise, out)
