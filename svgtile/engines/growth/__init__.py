@@ -80,7 +80,7 @@ class GrowthParams(EngineParams):
     snap: bool = True
     rows: bool = True
     cell_widths: float = 1.0
-    kind_sweeps: int = 4
+    kind_sweeps: int = 4  # growth.kinds.SWEEPS (not imported: this module imports no engine module)
     weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:
