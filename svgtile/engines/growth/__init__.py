@@ -3,7 +3,8 @@
 Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
 seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.rows` (a drawn exemplar's row lines, held by
-growth and relaxation), :mod:`.engine` (world cells, the tools).
+growth and relaxation), :mod:`.kinds` (the final kind pass on such rows, §5.2 over each motif's
+complete ring), :mod:`.engine` (world cells, the tools).
 
 This module is the engine's declaration — its parameters (:class:`GrowthParams`, from which the
 CLI options, styles keys and dialogs are made) and its protocol object (:data:`GROWTH`) — and

@@ -31,7 +31,10 @@ growth runs per *world cell*:
 * on a drawn exemplar of rows grown unturned, the rows run along world lines (:mod:`.rows`): each
   cell's first seed is put on a line, relaxation holds every motif on its line, and motifs too
   close on one row slide apart along it before the exact check (marsh's rows climbed and met
-  out of step at the seams, and a fifth of its grown motifs were removed in conflicts).
+  out of step at the seams, and a fifth of its grown motifs were removed in conflicts); and
+  after a piece has grown, its motifs' kinds are re-chosen against their complete rings, its
+  earlier-phase neighbours held (:mod:`.kinds`: each growth step matched only the neighbours
+  placed then, and marsh's likeness fell with the distance from the cell's seed).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
