@@ -3,8 +3,9 @@
 Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
 seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.rows` (a drawn exemplar's row lines, held by
-growth and relaxation), :mod:`.gapfill` and :mod:`.phases` (a repeating tile's sites: its gaps
-filled, its hand-phased rows at wandering world phases), :mod:`.engine` (world cells, the tools).
+growth and relaxation), :mod:`.kinds` (the final kind pass on such rows, §5.2 over each motif's
+complete ring), :mod:`.gapfill` and :mod:`.phases` (a repeating tile's sites: its gaps filled, its
+hand-phased rows at wandering world phases), :mod:`.engine` (world cells, the tools).
 
 This module is the engine's declaration — its parameters (:class:`GrowthParams`, from which the
 CLI options, styles keys and dialogs are made) and its protocol object (:data:`GROWTH`) — and
@@ -66,6 +67,9 @@ class GrowthParams(EngineParams):
     rows : on a drawn exemplar of rows grown with rotation ``none``, grow on world row lines and
         hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
+    kind_sweeps : on a drawn exemplar of rows grown with rotation ``none``, sweeps of the final
+        kind pass that re-chooses kinds against each motif's complete ring (library only, see
+        :mod:`.kinds`); 0 = none
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
 
@@ -82,6 +86,7 @@ class GrowthParams(EngineParams):
     row_phases: bool = True
     rows: bool = True
     cell_widths: float = 1.0
+    kind_sweeps: int = 4  # growth.kinds.SWEEPS (not imported: this module imports no engine module)
     weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:
@@ -89,6 +94,8 @@ class GrowthParams(EngineParams):
             raise ParameterError(f"rotation must be one of {', '.join(ROTATIONS)}, not {self.rotation!r}")
         if not 0 <= self.relax_every <= 1_000_000:
             raise ParameterError(f"relax_every must be at least 0, not {self.relax_every}")
+        if self.kind_sweeps < 0:
+            raise ParameterError(f"kind_sweeps must be at least 0, not {self.kind_sweeps}")
         if not self.cell_widths > 0:
             raise ParameterError(f"cell_widths must be positive, not {self.cell_widths:g}")
         self.priorities()

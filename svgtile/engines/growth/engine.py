@@ -33,7 +33,10 @@ growth runs per *world cell*:
 * on a drawn exemplar of rows grown unturned, the rows run along world lines (:mod:`.rows`): each
   cell's first seed is put on a line, relaxation holds every motif on its line, and motifs too
   close on one row slide apart along it before the exact check (marsh's rows climbed and met
-  out of step at the seams, and a fifth of its grown motifs were removed in conflicts).
+  out of step at the seams, and a fifth of its grown motifs were removed in conflicts); and
+  after a piece has grown, its motifs' kinds are re-chosen against their complete rings, its
+  earlier-phase neighbours held (:mod:`.kinds`: each growth step matched only the neighbours
+  placed then, and marsh's likeness fell with the distance from the cell's seed).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
@@ -65,6 +68,7 @@ from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
+from svgtile.engines.growth.kinds import repick
 from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
@@ -263,6 +267,8 @@ class Growth:
                     j.live = len(j.more) > 0
             for j in jobs:
                 w = j.cell
+                if self.rows is not None and self.p.kind_sweeps and j.kept:
+                    self.repick_kinds(j)
                 if self.pred is not None:
                     self.fill_gaps(j.piece, [w.before, *w.grown], [w.bsub, *w.gsub], j.kept, j.ksub)
                 w.grown.extend(j.kept)
@@ -327,6 +333,38 @@ class Growth:
         if self.rows is not None:  # drawn rows: new motifs in conflict along a row slide apart on it
             arr = slide_apart(arr, fixed, self.ex.prototypes, self.stats.distance, self.rows)
         return arr.quantized(DECIMALS), sub, g, fixed
+
+    def repick_kinds(self, j: _Job) -> None:
+        """Piece ``j``'s motifs (``j.kept``) with their kinds re-chosen against their complete
+        rings, the cell's earlier motifs and its earlier-phase neighbours' held (:mod:`.kinds`,
+        §5.2); a changed motif that fails the exact check keeps its old kind."""
+        w, ex = j.cell, self.ex
+        own, osub = Arrangement.concat(j.kept), np.concatenate(j.ksub)
+        fixed = Arrangement.concat([w.before, *w.grown])
+        fsub = np.concatenate([w.bsub, *w.gsub])
+        f = len(fixed)
+        kind, ring = repick(self.rings, np.concatenate([fixed.xy, own.xy]), np.concatenate([fixed.kind, own.kind]),
+                            np.concatenate([fsub, osub]), np.arange(f + len(own)) >= f, weights=self.p.weights,
+                            sweeps=self.p.kind_sweeps)  # fmt: skip
+        kind, ring = kind[f:], ring[f:]
+        changed = (kind != own.kind) & (ring >= 0)
+        turned = (self.rings.angle[ring] + 180.0) % 360.0 - 180.0
+        protos, d = ex.prototypes, self.stats.distance
+        while True:
+            sub = np.where(changed, self.rings.element[ring], osub)
+            cand = Arrangement(np.where(changed, kind, own.kind), own.xy, np.where(changed, turned, own.angle),
+                               ex.motifs.scale[sub]).quantized(DECIMALS)  # fmt: skip
+            if not changed.any():
+                break
+            # the motifs were conflict-free: only pairs with a changed one can conflict now
+            new = cand.take(changed)
+            bad = cross_conflicts(new, Arrangement.concat([fixed, cand.take(~changed)]), protos, d)
+            found = find_conflicts(new, protos, d)
+            bad[found.i] = bad[found.j] = True
+            if not bad.any():
+                break
+            changed[np.flatnonzero(changed)[bad]] = False  # these keep their old kinds; check again
+        j.kept, j.ksub = [cand], [sub]
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of
