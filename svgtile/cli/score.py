@@ -17,7 +17,7 @@ from pathlib import Path
 import click
 
 from svgtile.apps.compare import format_score
-from svgtile.cli.common import json_safe, load, warn_if_few
+from svgtile.cli.common import Ending, json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
 from svgtile.metrics.likeness import baseline_distances
 from svgtile.metrics.scoring import worker_result
@@ -88,6 +88,8 @@ def score(exemplar, texture, as_json, exact, jobs):
             click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
                        "--exact to measure it on every motif)")  # fmt: skip
         click.echo(format_score(result))
+    # all is printed and no file written: the interpreter's teardown would only free memory
+    Ending.ask()
 
 
 @contextmanager
