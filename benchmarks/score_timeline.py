@@ -23,7 +23,6 @@ import time
 
 
 def _child(t0: float, argv: list[str]) -> None:
-    marks = []
 
     def mark(what: str) -> None:
         who = "cmd" if os.getpid() == main_pid else "worker"
@@ -37,8 +36,10 @@ def _child(t0: float, argv: list[str]) -> None:
 
     mark("imports done")
 
-    def wrap(module, name, label):
-        inner = getattr(module, name)
+    def wrap(module, name, label):  # what this commit's package has (it may be an older one)
+        inner = getattr(module, name, None)
+        if inner is None:
+            return
 
         @functools.wraps(inner)
         def timed(*args, **kwargs):
@@ -51,17 +52,28 @@ def _child(t0: float, argv: list[str]) -> None:
         setattr(module, name, timed)
 
     wrap(cmd, "load", "exemplar")
+    import svgtile.svg.texture as texture
+
     wrap(cmd, "read_texture", "read")
+    wrap(cmd, "start_reading", "read the file")
+    wrap(texture.Reading, "finish", "read: the rest")
+    wrap(texture, "_scan", "scan of <use> lines")  # before the split
+    import svgtile.svg.uselines as uselines
+
+    wrap(uselines, "scan", "scan of <use> lines")
     wrap(cmd, "worker_result", "wait for worker")
     wrap(cmd, "measure", "figures (this process)")
     wrap(scoring, "worker_result", "wait for worker")
     wrap(scoring, "_footprint_figures", "footprint figures")
+    wrap(scoring, "ready_worker", "worker ready")
     import svgtile.metrics.likeness as likeness
 
     wrap(likeness, "baseline_distances", "baselines")
-    cmd.baseline_distances = likeness.baseline_distances
+    # the command's names of what it hands the worker: the wrappers (pickled by their names)
+    for name, module in (("baseline_distances", likeness), ("ready_worker", scoring)):
+        if hasattr(cmd, name):
+            setattr(cmd, name, getattr(module, name))
     wrap(cmd, "format_score", "format")
-    del marks
     import atexit
     import threading
 

@@ -20,8 +20,8 @@ from svgtile.apps.compare import format_score
 from svgtile.cli.common import Ending, json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
 from svgtile.metrics.likeness import baseline_distances
-from svgtile.metrics.scoring import worker_result
-from svgtile.svg.texture import read_texture
+from svgtile.metrics.scoring import ready_worker
+from svgtile.svg.texture import start_reading
 
 #: prctl(2)'s option that has Linux signal a process when its parent ends.
 _PR_SET_PDEATHSIG = 1
@@ -72,10 +72,14 @@ def score(exemplar, texture, as_json, exact, jobs):
     """
     ex, stats = load(exemplar)
     with _no_cycle_collection(), _second_process(jobs) as pool:
-        # the baselines depend on the exemplar alone: measured while the texture is read
-        early = pool.submit(baseline_distances, ex, stats) if pool is not None else None
-        arr, region = read_texture(texture, ex)
-        baselines = worker_result(early)
+        if pool is not None:  # forked now: the worker starts while this process reads the file
+            pool.submit(ready_worker)
+        # the worker scans the second half of the texture's <use> lines, then measures the
+        # baselines (they depend on the exemplar alone) while this process scans the first half
+        # and measures the figures up to the texture's E
+        reading = start_reading(texture, pool=pool)
+        baselines = pool.submit(baseline_distances, ex, stats) if pool is not None else None
+        arr, region = reading.finish(ex)
         result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
     warn_if_few(result.motifs, texture)
     if as_json:
