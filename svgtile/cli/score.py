@@ -34,7 +34,7 @@ _PR_SET_PDEATHSIG = 1
 @click.option("--exact", is_flag=True,
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes to measure in: 2 measures half of the figures in a second one (on Linux; the default where a second core is idle), 1 all of them in this one. The figures are the same.")  # fmt: skip
+              help="Processes to read and measure in: 2 reads half of a large texture and measures half of the figures in a second one (on Linux; the default where a second core is idle), 1 all of them in this one. The figures are the same.")  # fmt: skip
 def score(exemplar, texture, as_json, exact, jobs):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
