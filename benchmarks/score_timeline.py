@@ -15,6 +15,8 @@ measure.
 from __future__ import annotations
 
 import functools
+import importlib
+import importlib.util
 import os
 import subprocess
 import sys
@@ -37,7 +39,7 @@ def _child(t0: float, argv: list[str]) -> None:
     mark("imports done")
 
     def wrap(module, name, label):  # what this commit's package has (it may be an older one)
-        inner = getattr(module, name, None)
+        inner = getattr(module, name, None) if module is not None else None
         if inner is None:
             return
 
@@ -56,11 +58,10 @@ def _child(t0: float, argv: list[str]) -> None:
 
     wrap(cmd, "read_texture", "read")
     wrap(cmd, "start_reading", "read the file")
-    wrap(texture.Reading, "finish", "read: the rest")
+    wrap(getattr(texture, "Reading", None), "finish", "read: the rest")
     wrap(texture, "_scan", "scan of <use> lines")  # before the split
-    import svgtile.svg.uselines as uselines
-
-    wrap(uselines, "scan", "scan of <use> lines")
+    uselines = importlib.util.find_spec("svgtile.svg.uselines") and importlib.import_module("svgtile.svg.uselines")
+    wrap(uselines or None, "scan", "scan of <use> lines")
     wrap(cmd, "worker_result", "wait for worker")
     wrap(cmd, "measure", "figures (this process)")
     wrap(scoring, "worker_result", "wait for worker")
@@ -81,15 +82,18 @@ def _child(t0: float, argv: list[str]) -> None:
     threading._register_atexit(mark, "interpreter exit begins")  # runs before the executor's
     import svgtile.cli.common as common
 
-    ending = common.Ending.end
+    if hasattr(common, "Ending"):  # a package that ends the process once the figures are out
+        ending = common.Ending.end
 
-    def end(code):
-        mark(f"command returned ({code}); asked to end now: {common.Ending.asked}")
-        ending(code)
+        def end(code):
+            mark(f"command returned ({code}); asked to end now: {common.Ending.asked}")
+            ending(code)
 
-    common.Ending.end = end
+        common.Ending.end = end
     sys.argv = ["svgtile", "score", *argv]  # as the command line runs it: main() reads sys.argv
-    sys.exit(cli_main.main())
+    code = cli_main.main()
+    mark(f"command returned ({code})")
+    sys.exit(code)
 
 def main() -> None:
     if len(sys.argv) > 2 and sys.argv[1] == "--child":

@@ -35,9 +35,9 @@ the sampled figures lie from the exact ones on large textures of the bundled exe
 
 ``score(…, pool=…)`` measures the figures that look at footprints (conflicts, empty discs) in
 an executor's worker while it measures the others; ``svgtile score`` hands it a forked worker
-process, which has scanned half of the texture's ``<use>`` lines
+process, which has scanned part of the texture's ``<use>`` lines
 (:func:`svgtile.svg.texture.start_reading`) and measures the baselines (``baselines=`` a future)
-while this process scans the other half and measures the first figures.  Each
+while this process scans the rest and measures the first figures.  Each
 figure is the same function of the same inputs either way, so the score is the same bit for bit.
 
 References

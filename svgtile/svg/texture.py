@@ -57,9 +57,10 @@ def read_texture(
     path : the texture SVG (svgtile's output, or any SVG using the exemplar's symbols)
     exemplar : the exemplar it was made from
     pool : an executor (``svgtile score``: one forked worker process) whose worker scans the
-        second half of the ``<use>`` lines of a texture in svgtile's own form while this thread
-        scans the first (:func:`start_reading`); None: all here.  The motifs are the same.
-    split_above : split the scan only above this many lines (default :data:`~svgtile.svg.uselines.SPLIT_ABOVE`)
+        last part of the ``<use>`` lines of a large texture in svgtile's own form while this
+        thread scans the rest (:func:`start_reading`); None: all here.  The motifs are the same.
+    split_above : split the scan only above this many lines (default
+        :data:`~svgtile.svg.uselines.SPLIT_ABOVE`)
 
     Returns
     -------
@@ -79,11 +80,12 @@ def read_texture(
 
 def start_reading(path: str | Path, *, pool: Executor | None = None, split_above: int | None = None) -> Reading:
     """Read the file of a texture and, if it is in svgtile's own form with more than
-    ``split_above`` ``<use>`` lines (default :data:`~svgtile.svg.uselines.SPLIT_ABOVE`), hand the second half of them
-    to ``pool``'s worker to scan (:func:`~svgtile.svg.uselines.scan`); :meth:`Reading.finish` does the rest.
+    ``split_above`` ``<use>`` lines (default :data:`~svgtile.svg.uselines.SPLIT_ABOVE`), hand the
+    last :data:`~svgtile.svg.uselines.WORKER_SHARE` of them to ``pool``'s worker to scan
+    (:func:`~svgtile.svg.uselines.scan`); :meth:`Reading.finish` does the rest.
 
     In two steps so that a caller can give the worker more work behind the scan before this
-    thread scans its half (``svgtile score``: the baselines, which need the exemplar alone).
+    thread scans its part (``svgtile score``: the baselines, which need the exemplar alone).
     Errors are raised by :meth:`Reading.finish`.
     """
     try:
@@ -204,7 +206,7 @@ def _own_use_block(
     If ``data`` ends with such a group, every line of which matches :data:`~svgtile.svg.uselines._OWN_USE`, this
     returns the document with only the first line of each group of lines kept (for
     ElementTree: its parse of 177k ``<use>`` takes a second) and the lines scanned; ``pool``'s
-    worker scans the second half of more than ``split_above`` lines.  Any other document gives
+    worker scans the last :data:`~svgtile.svg.uselines.WORKER_SHARE` of more than ``split_above`` lines.  Any other document gives
     None: then it is parsed whole.
     """
     found = uselines.start_block(data, pool, split_above)

@@ -7,7 +7,7 @@ expression (:func:`scan`) and composes and splits every transform with numpy exa
 exemplar reader composes and splits each one with svgelements (:func:`pose`), bit for bit.
 
 Every figure of a line depends on that line alone but for the numbering of the groups (a kind's
-lines), so the lines can be scanned in parts — the second half in another process, for
+lines), so the lines can be scanned in parts — the last part in another process, for
 ``svgtile score --jobs 2`` — and the parts joined (:func:`joined`) into what one scan gives.
 """
 
@@ -59,10 +59,16 @@ _OWN_USE = re.compile(_possessive(
 ), re.M)
 
 
-#: ``<use>`` lines of svgtile's motif group above which a reader given a pool scans the second
-#: half of them in its worker (:func:`svgtile.svg.texture.start_reading`): below it, handing the lines over and the
-#: result back costs more than half a scan saves.
+#: ``<use>`` lines of svgtile's motif group above which a reader given a pool scans part of them
+#: in its worker (:func:`svgtile.svg.texture.start_reading`): below it, handing the lines over
+#: and the result back costs more than the part of the scan saves.
 SPLIT_ABOVE = 20_000
+
+#: The worker's share of the lines (of their text, cut at a line boundary): less than half, as
+#: after its scan it measures the baselines and the footprint figures, a little longer than the
+#: figures this process measures after its own (benchmarks/README.md, "`svgtile score`: the
+#: read split across the two processes").
+WORKER_SHARE = 0.4
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,7 +121,7 @@ class OwnLines:
 @dataclass(frozen=True, eq=False)
 class Block:
     """Where the ``<use>`` lines of svgtile's motif group lie in a texture (:func:`start_block`):
-    ``data[start:end]`` is ``"\\n" + body + "\\n" + indent``; ``body[cut:]`` is the second half of
+    ``data[start:end]`` is ``"\\n" + body + "\\n" + indent``; ``body[cut:]`` is the last part of
     the lines, which ``far`` (a future of :func:`scan`) is scanning, or ``cut`` is past the end."""
 
     start: int
@@ -127,8 +133,8 @@ class Block:
 
 def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block | None:
     """Find svgtile's motif group of ``<use>`` lines at the end of ``data`` (None if there is
-    none) and, with a ``pool`` and more than ``split_above`` lines, hand the second half of them
-    (from the line boundary nearest the middle on) to its worker (:func:`scan`).
+    none) and, with a ``pool`` and more than ``split_above`` lines, hand the last
+    :data:`WORKER_SHARE` of them (from a line boundary on) to its worker (:func:`scan`).
 
     A dropped line repeats the ``href`` and attributes text of a kept one and has a transform of
     plain numbers, so the cut document is well-formed and means the same exactly when the whole
@@ -156,7 +162,7 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
         return None
     body = inner[1:-1]
     cut, far = len(body) + 1, None
-    middle = body.find("\n", len(body) // 2)
+    middle = body.find("\n", int(len(body) * (1.0 - WORKER_SHARE)))
     if pool is not None and middle >= 0 and body.count("\n") >= split_above:
         cut = middle + 1
         far = pool.submit(scan, body[cut:])
@@ -168,7 +174,7 @@ def cut_document(data: bytes, block: Block) -> tuple[bytes, OwnLines] | None:
     halves' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it."""
     lines = scan(block.body[: block.cut - 1])
     if lines is None:
-        return None  # the worker's half is not wanted
+        return None  # the worker's part is not wanted
     if block.far is not None:
         try:
             far = block.far.result()
