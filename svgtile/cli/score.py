@@ -74,7 +74,7 @@ def score(exemplar, texture, as_json, exact, jobs):
     with _no_cycle_collection(), _second_process(jobs) as pool:
         if pool is not None:  # forked now: the worker starts while this process reads the file
             pool.submit(ready_worker)
-        # the worker scans the last 40 % of the texture's <use> lines, then measures the
+        # the worker scans the last 30 % of the texture's <use> lines, then measures the
         # baselines (they depend on the exemplar alone) while this process scans the rest
         # and measures the figures up to the texture's E
         reading = start_reading(texture, pool=pool)
