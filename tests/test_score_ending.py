@@ -1,8 +1,8 @@
 """``svgtile score`` run as a command ends as soon as its figures are printed.
 
-The interpreter's teardown after a large texture (freeing every object, the modules) took 0.2–0.4
-s of the command's wall time for nothing (benchmarks/README.md, "`svgtile score` ends when its
-figures are out"): the command asks :class:`svgtile.cli.common.Ending` to end the process once
+The interpreter's teardown after a large texture (freeing every object, the modules) took
+0.2–0.45 s of the command's wall time for nothing (benchmarks/README.md, "`svgtile score`: the
+read split across the two processes, and no teardown"): the command asks :class:`svgtile.cli.common.Ending` to end the process once
 all is printed.  These tests hold it to what a user sees: the same output, the same exit code,
 the teardown skipped only on success and only for the process's own command line — ``main([...])``
 called from Python (these tests, ``benchmarks/score_identity.sh``) goes on.

@@ -59,9 +59,10 @@ class Ending:
     """Whether the process may end as soon as the command's output is out (:meth:`ask`).
 
     Tearing the interpreter down after a command that held a large texture in memory — freeing
-    every object one by one, modules, the worker's pool — took ``svgtile score`` 0.2–0.4 s on a
-    177,723-motif texture (benchmarks/README.md, "`svgtile score` ends when its figures are
-    out"), time in which nothing is left to do: its figures are printed and it wrote no file.
+    every object one by one, modules, the worker's pool — took ``svgtile score`` 0.2–0.45 s on a
+    177,723-motif texture (benchmarks/README.md, "`svgtile score`: the read split across the two
+    processes, and no teardown"), time in which nothing is left to do: its figures are printed
+    and it wrote no file.
     A command asks with :meth:`ask` once all its output is written; :func:`svgtile.cli.main.main`,
     run as the process's command line (not ``main([...])`` from Python, which goes on), then
     flushes stdout and stderr and ends the process with the command's exit code (:meth:`end`).

@@ -68,7 +68,8 @@ SPLIT_ABOVE = 20_000
 #: after its scan it measures the baselines and the footprint figures (≈ 0.84 s CPU on the
 #: 177,723-motif gravel texture) while this process, after its scan and the rest of the read
 #: (≈ 0.1 s), measures the other figures (≈ 0.59 s); the scan is ≈ 0.39 s in all
-#: (benchmarks/README.md, "`svgtile score`: the read split across the two processes").
+#: (benchmarks/README.md, "`svgtile score`: the read split across the two processes, and no
+#: teardown").
 WORKER_SHARE = 0.3
 
 
