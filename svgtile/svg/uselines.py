@@ -173,7 +173,7 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
 
 def cut_document(data: bytes, block: Block) -> tuple[bytes, OwnLines] | None:
     """The document cut to the first ``<use>`` of each group, and the lines scanned (both
-    halves' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it."""
+    parts' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it."""
     lines = scan(block.body[: block.cut - 1])
     if lines is None:
         return None  # the worker's part is not wanted
