@@ -11,7 +11,8 @@
 # texture, where the plain outputs may differ on textures above the sampling threshold
 # (SAMPLE_ABOVE motifs, issue 11: the 3000² gravel texture) — the script lists those.  (A BEFORE
 # without --exact, older than the sampling, is compared plain against AFTER's --exact.)  Run
-# from the repository root.
+# from the repository root.  SCORE_ARGS is added to AFTER's commands, e.g. SCORE_ARGS="--jobs 2"
+# (by default score uses a second process only where the load average leaves a core idle).
 set -e
 PY=${PY:-$(pwd)/.venv/bin/python}
 OUT=${TMPDIR:-/tmp}/svgtile-score-identity
@@ -22,8 +23,9 @@ synth "$1" gravel tile 2 500x300 tile
 synth "$1" till random 2 500x500 random
 synth "$1" gravel big 1 3000x3000
 # one process per package scores every texture, text and --json, as `svgtile score` prints them
-score_all() {  # PKG_DIR OUT_SUBDIR [--exact]
-  (cd "$1" && PYTHONPATH="$1" "$PY" - "$OUT/tex" "$OUT/$2" $3 <<'PY'
+score_all() {  # PKG_DIR OUT_SUBDIR [OPTIONS…]
+  pkg=$1; sub=$2; shift 2
+  (cd "$pkg" && PYTHONPATH="$pkg" "$PY" - "$OUT/tex" "$OUT/$sub" "$@" <<'PY'
 import contextlib, io, sys
 from pathlib import Path
 from svgtile.cli.main import main
@@ -38,8 +40,8 @@ PY
   )
 }
 score_all "$1" before
-score_all "$2" after
-score_all "$2" after-exact --exact
+score_all "$2" after $SCORE_ARGS
+score_all "$2" after-exact --exact $SCORE_ARGS
 if grep -q -- "--exact" "$1/svgtile/cli/score.py"; then score_all "$1" before-exact --exact
 else rmdir "$OUT/before-exact"; ln -s before "$OUT/before-exact"; fi
 echo "differ before → after (sampled above the threshold):"; diff -rq "$OUT/before" "$OUT/after" || true

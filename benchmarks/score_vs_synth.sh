@@ -11,7 +11,7 @@
 # (user + sys), peak RSS, and the 1-minute load average when it started.  Run from the
 # repository root with the venv's python on PATH or as PY.  SCORE_ARGS is added to the score
 # command (not the base's), e.g. SCORE_ARGS="--jobs 2": by default score uses a second process
-# only where the load average leaves a core idle.
+# only where the load average leaves a core idle.  BASE_ARGS is added to the base's score command.
 set -e
 ROUNDS=${1:-3}
 BASE=$2
@@ -30,7 +30,7 @@ echo "|---|---:|---:|---:|---:|"
 for r in $(seq "$ROUNDS"); do
   row "synth, round $r" "$PY" -m svgtile synth exemplars/gravel.svg -o "$OUT/big.svg" --size 3000x3000 --seed 1 --force
   if [ -n "$BASE" ]; then
-    row "score (base), round $r" env -C "$BASE" PYTHONPATH="$BASE" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg"
+    row "score (base)${BASE_ARGS:+ $BASE_ARGS}, round $r" env -C "$BASE" PYTHONPATH="$BASE" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg" $BASE_ARGS
   fi
   row "score${SCORE_ARGS:+ $SCORE_ARGS}, round $r" "$PY" -m svgtile score exemplars/gravel.svg "$OUT/big.svg" $SCORE_ARGS
 done

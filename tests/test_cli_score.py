@@ -529,7 +529,7 @@ def test_the_use_scan_without_possessive_quantifiers_matches_the_same_lines(tmp_
     gives there) must compile and find the same columns in a texture svgtile wrote."""
     import re
 
-    from svgtile.svg import texture
+    from svgtile.svg import uselines as texture
 
     out = tmp_path / "t.svg"
     assert main(["synth", str(EXEMPLARS / "gravel.svg"), "-o", str(out), "--size", "120x90", "--seed", "2",

@@ -15,7 +15,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "svgtile"
 STAGES = [
     ("svgtile.errors", "svgtile.files", "svgtile.core"),
     ("svgtile.svg.dialect", "svgtile.svg.numbers", "svgtile.svg.reader", "svgtile.svg.kinds", "svgtile.svg.tilepieces",
-     "svgtile.svg.mapdoc", "svgtile.svg.texture"),
+     "svgtile.svg.mapdoc", "svgtile.svg.uselines", "svgtile.svg.texture"),
     ("svgtile.analysis", "svgtile.tiles"),
     ("svgtile.engines",),
     ("svgtile.svg.writer", "svgtile.gis", "svgtile.metrics", "svgtile.runners"),

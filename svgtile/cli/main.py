@@ -20,7 +20,7 @@ import click
 import shapely
 
 from svgtile import __version__
-from svgtile.cli.common import Stderr, command_paths, one_line, showwarning
+from svgtile.cli.common import Ending, Stderr, command_paths, one_line, showwarning
 from svgtile.errors import SvgtileError
 from svgtile.files import check_paths
 
@@ -121,14 +121,19 @@ def main(argv: list[str] | None = None) -> int:
     other code no output file was written, except by ``map`` with failed units (exit 1, the
     message says the others were written).
     """
+    Ending.asked = False
     if threading.current_thread() is not threading.main_thread():  # signals are the main thread's
         return _main(argv)
     old = {s: signal.signal(s, _terminate) for s in (signal.SIGTERM, signal.SIGHUP)}
     try:
-        return _main(argv)
+        code = _main(argv)
     finally:
         for signum, handler in old.items():
             signal.signal(signum, handler)
+    if argv is None:  # the process's command line: a command may have asked to end it now
+        Ending.end(code)
+    Ending.asked = False  # main([...]) from Python goes on
+    return code
 
 
 def _main(argv: list[str] | None) -> int:

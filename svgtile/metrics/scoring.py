@@ -35,7 +35,9 @@ the sampled figures lie from the exact ones on large textures of the bundled exe
 
 ``score(…, pool=…)`` measures the figures that look at footprints (conflicts, empty discs) in
 an executor's worker while it measures the others; ``svgtile score`` hands it a forked worker
-process, which has measured the baselines (``baselines=…``) while the texture was read.  Each
+process, which has scanned part of the texture's ``<use>`` lines
+(:func:`svgtile.svg.texture.start_reading`) and measures the baselines (``baselines=`` a future)
+while this process scans the rest and measures the first figures.  Each
 figure is the same function of the same inputs either way, so the score is the same bit for bit.
 
 References
@@ -247,7 +249,7 @@ def _plain(value):
 def score(
     exemplar: Exemplar, stats: Stats, arrangement: Arrangement, region: Region, *, exact: bool = False,
     sample_above: int | None = None, sample_motifs: int | None = None, pool: Executor | None = None,
-    baselines: tuple[float, float] | None = None,
+    baselines: tuple[float, float] | Future | None = None,
 ) -> Score:  # fmt: skip
     """All figures of a texture against its exemplar.
 
@@ -265,7 +267,9 @@ def score(
     pool : an executor (``svgtile score``: one worker process) to measure the figures of
         :func:`_footprint_figures` in — the conflicts and the empty discs — while this thread
         measures the others; None: all here.  The figures are the same.
-    baselines : ``(E_tile, E_random)`` if already known (:func:`~svgtile.metrics.likeness.baseline_distances`)
+    baselines : ``(E_tile, E_random)`` if already known (:func:`~svgtile.metrics.likeness.baseline_distances`),
+        or a future of them (``pool``'s), waited for where they are needed, after the structure
+        and repetition figures (measured here if its worker died)
 
     Returns
     -------
@@ -296,6 +300,8 @@ def score(
         sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
         found = structure(exemplar, stats, sub, boxes, inside=in_window(sub, boxes), trees=kind_trees(sub, len(protos)))
     rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
+    if isinstance(baselines, Future):
+        baselines = worker_result(baselines)
     order = measure_likeness(exemplar, stats, arr, inside, baselines=baselines)
     density_ratio = (
         finite_or_none(density(arr, exemplar, window, inside=inside) / stats.density) if stats.density > 0 else None
@@ -365,6 +371,14 @@ def _footprint_figures(
     r_tex, _ = largest_empty_disc(arr, protos, window, shape, **disc)
     r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
     return conflicts, r_tex, r_ex
+
+
+def ready_worker() -> None:
+    """A worker's first task, handed to it as it is forked (``svgtile score``): while the command
+    reads the texture file, import what only the figures of :func:`_footprint_figures` need
+    (scipy.ndimage, for the empty discs: ≈ 0.04 s), which the worker would otherwise import in
+    the middle of them."""
+    import scipy.ndimage  # noqa: F401
 
 
 def worker_result(future: Future | None) -> tuple | None:

@@ -20,12 +20,10 @@ moved element) is read by the exemplar reader, motif by motif.
 
 from __future__ import annotations
 
-import math
 import re
-import sys
 import xml.etree.ElementTree as ET
+from concurrent.futures import Executor
 from dataclasses import dataclass
-from operator import itemgetter
 from pathlib import Path
 
 import numpy as np
@@ -36,8 +34,10 @@ from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
 from svgtile.errors import ExemplarError, RegionError
 from svgtile.files import MAX_TEXTURE_BYTES, read_input
+from svgtile.svg import uselines
 from svgtile.svg.dialect import SVG_NS, XLINK_NS, drawable_children
 from svgtile.svg.reader import DocumentReader, read_exemplar
+from svgtile.svg.uselines import Block, OwnLines, Pose
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
@@ -47,13 +47,20 @@ def kind_key(kind: Kind) -> tuple:
     return (kind.href, tuple(np.round(kind.residual, 4).ravel()), tuple(kind.use_attrs))
 
 
-def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Region]:
+def read_texture(
+    path: str | Path, exemplar: Exemplar, *, pool: Executor | None = None, split_above: int | None = None
+) -> tuple[Arrangement, Region]:
     """The motifs and output region of a texture made from ``exemplar``.
 
     Parameters
     ----------
     path : the texture SVG (svgtile's output, or any SVG using the exemplar's symbols)
     exemplar : the exemplar it was made from
+    pool : an executor (``svgtile score``: one forked worker process) whose worker scans the
+        last part of the ``<use>`` lines of a large texture in svgtile's own form while this
+        thread scans the rest (:func:`start_reading`); None: all here.  The motifs are the same.
+    split_above : split the scan only above this many lines (default
+        :data:`~svgtile.svg.uselines.SPLIT_ABOVE`)
 
     Returns
     -------
@@ -68,41 +75,73 @@ def read_texture(path: str | Path, exemplar: Exemplar) -> tuple[Arrangement, Reg
     RegionError
         The clip path has no area.
     """
-    root = own = None
+    return start_reading(path, pool=pool, split_above=split_above).finish(exemplar)
+
+
+def start_reading(path: str | Path, *, pool: Executor | None = None, split_above: int | None = None) -> Reading:
+    """Read the file of a texture and, if it is in svgtile's own form with more than
+    ``split_above`` ``<use>`` lines (default :data:`~svgtile.svg.uselines.SPLIT_ABOVE`), hand the
+    last :data:`~svgtile.svg.uselines.WORKER_SHARE` of them to ``pool``'s worker to scan
+    (:func:`~svgtile.svg.uselines.scan`); :meth:`Reading.finish` does the rest.
+
+    In two steps so that a caller can give the worker more work behind the scan before this
+    thread scans its part (``svgtile score``: the baselines, which need the exemplar alone).
+    Errors are raised by :meth:`Reading.finish`.
+    """
     try:
         data = read_input(path, error=ExemplarError, limit=MAX_TEXTURE_BYTES)
     except ExemplarError:
         data = None  # the exemplar reader reports it
-    if data is not None and _CELL_PATH.search(data):
-        raise ExemplarError("a cellular texture (cells and lines, svgtile's cellular engine): only textures of "
-                            "motifs are measured", source=str(path))  # fmt: skip
-    if data is not None:
-        data = _without_ground(data)
-    cut = _own_use_block(data) if data is not None else None
-    if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines
-        skeleton, lines = cut
-        try:
-            root = ET.fromstring(skeleton)
-        except (ET.ParseError, ValueError, LookupError):
-            root = None
-        own = read_own_texture(root, str(path), lines=lines) if root is not None else None
-        if own is None:
-            root = None
-    if root is None and data is not None:
-        try:
-            root = ET.fromstring(data)
-        except (ET.ParseError, ValueError, LookupError):
-            pass  # the exemplar reader reports it
-        own = read_own_texture(root, str(path)) if root is not None else None
-    if own is not None:
-        kinds, motifs, region = own
-    else:
-        texture = read_exemplar(path)
-        kinds, motifs, region = texture.kinds, texture.motifs, texture.region
-    mapping = _kind_mapping(kinds, exemplar, str(path))
-    arr = Arrangement(mapping[motifs.kind], motifs.xy, motifs.angle, motifs.scale)
-    clip = _clip_region(root, str(path)) if root is not None else None
-    return arr, clip if clip is not None else Region(region)
+    if data is None or _CELL_PATH.search(data):
+        return Reading(str(path), data, None, cellular=data is not None)
+    data = _without_ground(data)
+    block = uselines.start_block(data, pool, uselines.SPLIT_ABOVE if split_above is None else split_above)
+    return Reading(str(path), data, block, cellular=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Reading:
+    """A texture whose file is read and whose ``<use>`` lines may be being scanned
+    (:func:`start_reading`)."""
+
+    path: str
+    data: bytes | None
+    block: Block | None
+    cellular: bool
+
+    def finish(self, exemplar: Exemplar) -> tuple[Arrangement, Region]:
+        """The motifs and output region of the texture, in the terms of ``exemplar``
+        (:func:`read_texture`)."""
+        path, data = self.path, self.data
+        if self.cellular:
+            raise ExemplarError("a cellular texture (cells and lines, svgtile's cellular engine): only textures of "
+                                "motifs are measured", source=path)  # fmt: skip
+        root = own = None
+        cut = uselines.cut_document(data, self.block) if self.block is not None else None
+        if cut is not None:  # svgtile's own form: ElementTree parses it without its <use> lines
+            skeleton, lines = cut
+            try:
+                root = ET.fromstring(skeleton)
+            except (ET.ParseError, ValueError, LookupError):
+                root = None
+            own = read_own_texture(root, path, lines=lines) if root is not None else None
+            if own is None:
+                root = None
+        if root is None and data is not None:
+            try:
+                root = ET.fromstring(data)
+            except (ET.ParseError, ValueError, LookupError):
+                pass  # the exemplar reader reports it
+            own = read_own_texture(root, path) if root is not None else None
+        if own is not None:
+            kinds, motifs, region = own
+        else:
+            texture = read_exemplar(path)
+            kinds, motifs, region = texture.kinds, texture.motifs, texture.region
+        mapping = _kind_mapping(kinds, exemplar, path)
+        arr = Arrangement(mapping[motifs.kind], motifs.xy, motifs.angle, motifs.scale)
+        clip = _clip_region(root, path) if root is not None else None
+        return arr, clip if clip is not None else Region(region)
 
 
 def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> np.ndarray:
@@ -147,63 +186,6 @@ _USE = f"{{{SVG_NS}}}use"
 #: A cell or line as :func:`svgtile.svg.writer.cell_elements` writes it.
 _CELL_PATH = re.compile(rb'<path class="svgtile-(?:corner|edge|face|line)" ')
 _HREF = f"{{{XLINK_NS}}}href"
-#: A number as :func:`svgtile.svg.writer.fmt_array` writes it (no exponent, no leading ``+``).
-_FIXED = r"-?\d+(?:\.\d+)?"
-#: One motif's transform per line: x, y, angle, scale, the kind's suffix (with its leading space).
-_OWN_TRANSFORM = re.compile(
-    rf"^translate\(({_FIXED}) ({_FIXED})\)(?: rotate\(({_FIXED})\))?(?: scale\(({_FIXED})\))?"
-    rf"((?: translate\({_FIXED} {_FIXED}\))?(?: matrix\({_FIXED} {_FIXED} {_FIXED} {_FIXED} 0 0\))?)$",
-    re.M,
-)
-_SUFFIX_PART = re.compile(rf"(translate|matrix)\(((?:{_FIXED} ?)+)\)")
-
-#: :data:`_FIXED` with possessive quantifiers, for the scan of every ``<use>`` line: a number is
-#: followed by a space or ``)``, so giving back a digit never helps a match, and not trying
-#: spares the scan about a seventh of its time.
-_FIXED_SCAN = r"-?\d++(?:\.\d++)?+"
-
-
-def _possessive(pattern: str) -> str:
-    """``pattern`` as written on Python ≥ 3.11; before it (no possessive quantifiers in ``re``)
-    the same pattern with greedy ones, which match the same lines, a little slower."""
-    return pattern if sys.version_info >= (3, 11) else re.sub(r"([+*?])\+", r"\1", pattern)
-
-
-
-_SUFFIX = (rf"((?: translate\({_FIXED_SCAN} {_FIXED_SCAN}\))?+"
-           rf"(?: matrix\({_FIXED_SCAN} {_FIXED_SCAN} {_FIXED_SCAN} {_FIXED_SCAN} 0 0\))?+)")  # fmt: skip
-#: The opening tag of svgtile's motif group, as :func:`svgtile.svg.writer.svg_document` writes it.
-_OWN_GROUP = re.compile(rb'<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>')
-#: One ``<use>`` line as :func:`svgtile.svg.writer.use_elements` writes it: its ``href`` and other
-#: attributes as written, then its transform as :data:`_OWN_TRANSFORM` splits it (the lookahead
-#: spares the scan of each transform as one more attribute).
-_OWN_USE = re.compile(_possessive(
-    rf'^[ \t]*+<use (xlink:href="#[^"<>\n]*+"(?: (?!transform=)[A-Za-z_][-\w.:]*+="[^"<>\n]*+")*+) '
-    rf'transform="translate\(({_FIXED_SCAN}) ({_FIXED_SCAN})\)(?: rotate\(({_FIXED_SCAN})\))?+'
-    rf'(?: scale\(({_FIXED_SCAN})\))?+{_SUFFIX}"/>$',
-), re.M)
-
-
-@dataclass(frozen=True, eq=False)
-class OwnLines:
-    """The ``<use>`` lines of svgtile's motif group, scanned as text (:func:`_own_use_block`).
-
-    Attributes
-    ----------
-    columns : five lists of n strings, ``x``, ``y``, ``angle``, ``scale`` and ``suffix`` of
-        each motif as :data:`_OWN_TRANSFORM` finds them in its transform (``""`` if missing)
-    group : (n,) int array, each motif's group — lines with the same ``href`` and attributes
-        text and the same suffix — numbered in order of first appearance
-    first : (g,) int array, the first motif of each group (increasing)
-    suffix : (n,) int array, each motif's suffix text numbered in order of first appearance
-    """
-
-    columns: tuple[list[str], ...]
-    group: np.ndarray
-    first: np.ndarray
-    suffix: np.ndarray
-
-
 #: The ground svgtile paints first in its motif group (:func:`svgtile.svg.writer._ground`), as written.
 _OWN_GROUND = re.compile(rb'(<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>)\n[ \t]*<path class="svgtile-ground" '
                          rb'style="fill:[^";<>]*;stroke:none" fill-rule="evenodd" d="[^"<>]*" />')
@@ -215,52 +197,20 @@ def _without_ground(data: bytes) -> bytes:
     return _OWN_GROUND.sub(rb"\1", data, count=1)
 
 
-def _own_use_block(data: bytes) -> tuple[bytes, OwnLines] | None:
+def _own_use_block(
+    data: bytes, *, pool: Executor | None = None, split_above: int = uselines.SPLIT_ABOVE
+) -> tuple[bytes, OwnLines] | None:
     """Cut the ``<use>`` lines out of a texture in svgtile's own form, without parsing XML.
 
     svgtile writes its motif group last, one ``<use>`` per line (:func:`svgtile.svg.writer.svg_document`).
-    If ``data`` ends with such a group, every line of which matches :data:`_OWN_USE`, this
+    If ``data`` ends with such a group, every line of which matches :data:`~svgtile.svg.uselines._OWN_USE`, this
     returns the document with only the first line of each group of lines kept (for
-    ElementTree: its parse of 177k ``<use>`` takes a second) and the lines scanned.  Any other
-    document gives None: then it is parsed whole.
-
-    A dropped line repeats the ``href`` and attributes text of a kept one and has a transform of
-    plain numbers, so the cut document is well-formed and means the same exactly when the whole
-    one does.  Before the group there may be no comment, CDATA section, document type or
-    processing instruction (which could hide or redefine what the scan sees).
+    ElementTree: its parse of 177k ``<use>`` takes a second) and the lines scanned; ``pool``'s
+    worker scans the last :data:`~svgtile.svg.uselines.WORKER_SHARE` of more than ``split_above`` lines.  Any other document gives
+    None: then it is parsed whole.
     """
-    start = data.rfind(b'<g id="svgtile')
-    if start < 0:
-        return None
-    before = data[:start]
-    if any(t in before for t in (b"<!--", b"<![CDATA[", b"<!DOCTYPE", b"<!ENTITY")):
-        return None
-    if before.count(b"<?") != (1 if before.startswith(b"<?xml ") else 0):
-        return None
-    opening = _OWN_GROUP.match(data, start)
-    end = data.find(b"</g>", opening.end()) if opening else -1
-    if end < 0 or re.fullmatch(rb"</g>[ \n]*</svg>[ \n]*", data[end:]) is None:
-        return None
-    try:
-        block = data[opening.end() : end].decode("utf-8")
-    except UnicodeDecodeError:
-        return None
-    inner = block.rstrip(" ")  # "\n" + one line per <use> + "\n" + the indent of </g>
-    if len(inner) < 3 or inner[0] != "\n" or inner[-1] != "\n":
-        return None
-    body = inner[1:-1]
-    found = _OWN_USE.findall(body)
-    if len(found) != body.count("\n") + 1:
-        return None  # a line that is not a <use> as svgtile writes it
-    # the columns one by one (zip(*found) would step 177k tuples' iterators together, 4× slower)
-    heads, *columns = (list(map(itemgetter(i), found)) for i in range(6))
-    suffix = _numbered(columns[4])
-    first, group = _first_groups(_numbered(heads) * (int(suffix.max()) + 1) + suffix)
-    # the lines up to the last kept one (a group's first line comes early: splitting all 177k
-    # lines took a tenth of the read)
-    lines = body.split("\n", int(first[-1]) + 1)
-    kept = "\n".join(lines[i] for i in first.tolist()).encode("utf-8")
-    return data[: opening.end()] + b"\n" + kept + b"\n" + data[end:], OwnLines(tuple(columns), group, first, suffix)
+    found = uselines.start_block(data, pool, split_above)
+    return uselines.cut_document(data, found) if found is not None else None
 
 
 def read_own_texture(
@@ -275,7 +225,7 @@ def read_own_texture(
     The exemplar reader composes each ``<use>``'s transform with svgelements (one ``Matrix`` per
     operation) and splits it into position, rotation and scale (``DocumentReader._use_kind``).
     Here every operation is applied to all motifs at once with the same floating-point operations
-    in the same order (:func:`_pre_cat`), the determinant and the matrix products are numpy's
+    in the same order (:func:`~svgtile.svg.uselines._pre_cat`), the determinant and the matrix products are numpy's
     batched versions of the reader's, and ``cos``/``sin``/``atan2`` are the C library's, as
     svgelements and the reader call them (numpy's own may differ in the last bit on some CPUs).
     Kinds are found by the exemplar reader itself, on a copy of the document holding only the
@@ -313,7 +263,7 @@ def read_own_texture(
         return None
     transforms = [r[-1][1] for r in rows]
     text = "\n".join(transforms)
-    parsed = _OWN_TRANSFORM.findall(text)
+    parsed = uselines.OWN_TRANSFORM.findall(text)
     if len(parsed) != len(uses) or text.count("\n") != len(uses) - 1:
         return None
     heads: dict[tuple, int] = {}
@@ -325,16 +275,15 @@ def read_own_texture(
         distinct = {(h, p[4]) for h, p in zip(head.tolist(), parsed, strict=True)}
         if len(uses) != len(lines.first) or len(distinct) != len(uses):
             return None
-        if parsed != [tuple(c[i] for c in lines.columns) for i in lines.first.tolist()]:
+        if parsed != list(lines.first_columns):
             return None
-        columns, first, motif_kind, suffix = lines.columns, lines.first, lines.group, lines.suffix
+        first, motif_kind, pose = lines.first, lines.group, lines.pose
     else:
         columns = tuple(zip(*parsed, strict=True))
-        suffix = _numbered(columns[4])
-        first, motif_kind = _first_groups(head * (int(suffix.max()) + 1) + suffix)
+        suffix = uselines.numbered(columns[4])
+        first, motif_kind = uselines.first_groups(head * (int(suffix.max()) + 1) + suffix)
         uses = [uses[i] for i in first.tolist()]
-    xs, ys, angles, scales, suffix_text = columns
-    suffixes = {suffix_text[i]: s for s, i in enumerate(np.unique(suffix, return_index=True)[1].tolist())}
+        pose = uselines.pose(columns, suffix)
 
     # the kinds, from the exemplar reader on one <use> per group (in order of first appearance),
     # without the viewBox: those first motifs may all lie outside it (clip keeps cut motifs)
@@ -351,102 +300,27 @@ def read_own_texture(
     if len(sample.kinds) != len(first) or len(sample.motifs) != len(first):
         return None  # two groups are one kind, or one draws nothing: leave it to the reader
 
-    m = _compose(np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64), angles, scales)
-    for text_, s in suffixes.items():
-        at = np.flatnonzero(suffix == s)
-        for op, values in _SUFFIX_PART.findall(text_):
-            v = [float(t) for t in values.split()]
-            part = m[:, at]
-            m[:, at] = _pre_cat(part, (1.0, 0.0, 0.0, 1.0, v[0], v[1]) if op == "translate" else tuple(v))
-    return _split(m, motif_kind, sample.kinds, region)
+    if pose is None:
+        return None  # scaled to nothing: the reader drops it with a warning, or refuses a singular transform
+    return _place(pose, motif_kind, sample.kinds, region)
 
 
-def _numbered(keys: list | tuple) -> np.ndarray:
-    """(n,) int array: each of the n hashable ``keys`` numbered in order of first appearance."""
-    index = {k: i for i, k in enumerate(dict.fromkeys(keys))}
-    return np.fromiter(map(index.__getitem__, keys), np.int64, len(keys))
-
-
-def _first_groups(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The first element of each distinct value of ``key`` (n,), increasing, and each element's
-    group, groups numbered in order of first appearance."""
-    groups, first, member = np.unique(key, return_index=True, return_inverse=True)
-    order = np.argsort(first, kind="stable")
-    kind_of_group = np.empty(len(groups), dtype=np.int64)
-    kind_of_group[order] = np.arange(len(groups))
-    return first[order], kind_of_group[member.ravel()]
-
-
-def _pre_cat(s: np.ndarray, m: tuple) -> np.ndarray:
-    """``Matrix.pre_cat`` of svgelements for many matrices: ``s · m`` as its six sums compute it.
-
-    ``s`` : (6, n) float array, the matrices ``(a, b, c, d, e, f)``; ``m`` : six floats or (n,)
-    arrays.  The ``· 0`` and ``· 1`` terms are kept, as they can change the sign of a zero.
-    """
-    sa, sb, sc, sd, se, sf = s
-    ma, mb, mc, md, me, mf = m
-    return np.stack([
-        sa * ma + sc * mb + se * 0.0,
-        sb * ma + sd * mb + sf * 0.0,
-        sa * mc + sc * md + se * 0.0,
-        sb * mc + sd * md + sf * 0.0,
-        sa * me + sc * mf + se,
-        sb * me + sd * mf + sf,
-    ])  # fmt: skip
-
-
-def _compose(x: np.ndarray, y: np.ndarray, angles: tuple[str, ...], scales: tuple[str, ...]) -> np.ndarray:
-    """(6, n) matrices of ``translate(x y) [rotate(a)] [scale(s)]``, as svgelements parses them."""
-    n = len(x)
-    one, zero = np.ones(n), np.zeros(n)
-    m = _pre_cat(np.stack([one, zero, zero, one, zero, zero]), (1.0, 0.0, 0.0, 1.0, x, y))
-    turned = np.flatnonzero(np.fromiter(map(bool, angles), bool, n))
-    if len(turned):
-        a = np.array(list(filter(None, angles)), dtype=np.float64)
-        theta = math.tau * a / 360.0  # svgelements Angle.degrees
-        ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
-        st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
-        m[:, turned] = _pre_cat(m[:, turned], (ct, st, -st, ct, 0.0, 0.0))
-    scaled = np.flatnonzero(np.fromiter(map(bool, scales), bool, n))
-    if len(scaled):
-        s = np.array(list(filter(None, scales)), dtype=np.float64)
-        m[:, scaled] = _pre_cat(m[:, scaled], (s, 0.0, 0.0, s, 0.0, 0.0))
-    return m
-
-
-def _split(
-    m6: np.ndarray, kind: np.ndarray, kinds: tuple[Kind, ...], region: shapely.Geometry
+def _place(
+    pose: Pose, kind: np.ndarray, kinds: tuple[Kind, ...], region: shapely.Geometry
 ) -> tuple[tuple[Kind, ...], Arrangement, shapely.Geometry] | None:
-    """Position, rotation and scale of each motif, as ``DocumentReader._use_kind`` splits them.
+    """Position, rotation and scale of each motif, as ``DocumentReader._use_kind`` gives them.
 
-    ``m6`` : (6, n) svgelements matrices; ``kind`` : (n,) index into ``kinds``; ``region`` : the
+    ``pose`` : the n motifs' poses; ``kind`` : (n,) index into ``kinds``; ``region`` : the
     input region, which keeps the motifs whose centroid it holds (boundary included).
     """
-    n = m6.shape[1]
-    a, b, c, d, e, f = m6
-    mat = np.zeros((n, 3, 3))
-    mat[:, 0], mat[:, 1], mat[:, 2, 2] = np.stack([a, c, e], 1), np.stack([b, d, f], 1), 1.0
-    # the reader's walk: identity (root, group) @ transform @ translation(x = 0, y = 0)
-    mat = np.eye(3) @ mat @ np.eye(3)
-    lin = mat[:, :2, :2]
-    det = np.linalg.det(lin)
-    if (np.abs(det) < 1e-12).any():
-        return None  # scaled to nothing: the reader drops it with a warning, or refuses a singular transform
-    scale = np.sqrt(np.abs(det))
-    # math.degrees and math.radians are one multiplication by a constant (CPython's radToDeg,
-    # degToRad): numpy's is the same, bit for bit; atan2, cos and sin stay the C library's
-    angle = np.fromiter(map(math.atan2, lin[:, 1, 0].tolist(), lin[:, 0, 0].tolist()), np.float64, len(det))
-    angle *= 180.0 / math.pi
-    turn = angle * (math.pi / 180.0)
-    cos = np.fromiter(map(math.cos, turn.tolist()), np.float64, len(turn))
-    sin = np.fromiter(map(math.sin, turn.tolist()), np.float64, len(turn))
+    cos, sin, scale = pose.cos, pose.sin, pose.scale
     rot = np.stack([np.stack([cos, -sin], 1), np.stack([sin, cos], 1)], 1)
     offset = np.array([k.offset for k in kinds]).reshape(-1, 2)[kind]
-    xy = mat[:, :2, 2] + ((scale[:, None, None] * rot) @ (-offset)[:, :, None])[:, :, 0]
+    xy = pose.t + ((scale[:, None, None] * rot) @ (-offset)[:, :, None])[:, :, 0]
     inside = shapely.intersects_xy(region, xy[:, 0], xy[:, 1])
     if not inside.any():
         return None  # the reader's error
-    arr = Arrangement(kind, xy, angle, scale)
+    arr = Arrangement(kind, xy, pose.angle, scale)
     return kinds, arr if inside.all() else arr.take(inside), region
 
 
