@@ -61,6 +61,7 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.base import Context, EngineParams, param
 from svgtile.engines.patch.density import _ORIENT, _PRIORITY, _ROTATE, adjust_density, uniform_at
+from svgtile.engines.patch.holes import fill_holes
 from svgtile.engines.patch.lattice import lattice_pivot, lattice_steps, lattice_variation
 from svgtile.engines.patch.orientation import turn, vary_orientations
 from svgtile.errors import ParameterError
@@ -184,7 +185,10 @@ class PatchEngine:
         arr = arr.take(keep)
         if exact:
             return arr
-        return adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
+        arr = adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
+        if p.density_rounds == 0:  # no density adjustment at all (§3.4), hole filling included
+            return arr
+        return fill_holes(arr, exemplar, stats, region, ctx.boundary, key=key, tolerance=p.density_tolerance)
 
     def reach(self, exemplar: Exemplar, params: PatchParams) -> float:
         """Not tile-exact: density repair decides window by window from what earlier rounds left,

@@ -1,0 +1,216 @@
+"""Hole filling after the patch engine's density repair: the kinds a window lacks *by area*,
+largest first, dropped into its empty places (issues 12 and 14).
+
+Density repair (almeraj2013 §3.4, :func:`svgtile.engines.patch.density.adjust_density`) pastes
+discs of the exemplar: an exemplar motif lands where the disc puts it or not at all.  On FGDC
+scatter tiles — breccias and conglomerates whose large fragments are each drawn once, fields of
+packed dashes — a pasted disc rarely fits whole around what the copies left, so windows stay at
+half to four fifths of ρ, and what they lack is the large kinds: the start loses them where copies
+meet, and the dots that fit anywhere are what comes back.  Density is the covered *area*, so a
+window short of ρ is short of the area of some kinds; counted by motifs, the 2 % of fragments
+that carry a third of 612's ink look like nothing.
+
+:func:`fill_holes` runs only where density repair left the texture as a whole (every window
+lying mostly in the region, at the first offset) below ρ(1 − tolerance); it then fills every window
+below ρ, up to ρ.  Each round:
+
+1. every window's *area deficit per kind* is the exemplar's covered area of that kind, scaled to
+   the window, minus what the window holds;
+2. sample points on a world-anchored grid (half the exemplar's mean spacing, each point jittered
+   inside its cell by a hash of the cell) in the sparse windows are the candidate places; points
+   inside a motif's inscribed disc are dropped at once;
+3. each point proposes :data:`PROPOSALS` kinds drawn in proportion to the window's deficit, each
+   in the orientation and scale of a random exemplar instance of that kind (so a kind's look is
+   the exemplar's);
+4. a proposal is kept if it keeps the distance rule ``d_ij`` from the texture and lies inside the
+   region; of the proposals left, a conflict-free set is taken, largest first (a large fragment
+   needs the hole a dot would otherwise split);
+5. per window and kind, proposals are added in that order while they do not exceed the kind's
+   deficit (one motif over at most), and per window while they do not exceed the window's.
+
+Every random choice is a hash of the run's key and integer world coordinates
+(:mod:`svgtile.core.cellrng`), as in the rest of the engine.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import Stats, footprint_areas
+from svgtile.core import cellrng
+from svgtile.core.arrangement import DECIMALS, Arrangement
+from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
+from svgtile.core.exemplar import Exemplar
+from svgtile.core.footprint import motif_radius
+from svgtile.core.region import Region
+from svgtile.engines.patch.density import _window_of, _windows
+
+# hash streams (after density.py's six)
+_JITTER, _KIND, _INSTANCE, _ORDER = range(6, 10)
+
+#: Rounds of hole filling; each measures the windows again at the next of four half-window offsets.
+ROUNDS = 4
+
+#: Kinds proposed at each sample point (drawn by area deficit, with replacement).
+PROPOSALS = 3
+
+#: Sample points are this fraction of the exemplar's mean spacing apart.
+STEP = 0.5
+
+
+def sparse_windows(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
+                   offset: np.ndarray) -> tuple | None:  # fmt: skip
+    """The exemplar-sized windows at ``offset`` (user units) and what their motifs cover.
+
+    Returns None if no window lies mostly in the region, else ``(origin, ids, area, covered,
+    win)``: the windows' origin, their (w, 2) integer ids and (w,) area inside the region, the
+    (w,) footprint area their motifs cover and the (n,) window of each motif (-1: none of them).
+    """
+    size = _size(exemplar)
+    windows = _windows(region, size, offset)
+    if windows is None:
+        return None
+    origin, ids, area = windows
+    win = _window_of(arr.xy, origin, size, ids)
+    covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, exemplar.prototypes)[win >= 0],
+                          minlength=len(ids))  # fmt: skip
+    return origin, ids, area, covered, win
+
+
+def fill_holes(
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
+    tolerance: float, rounds: int = ROUNDS,
+) -> Arrangement:  # fmt: skip
+    """Fill the windows below ρ with the kinds they lack by area, if the windows together are
+    below ρ(1 − ``tolerance``).
+
+    Parameters
+    ----------
+    arr : the texture after density repair, n motifs, no conflicts
+    exemplar, stats : the exemplar and its analysis (ρ, ``d_ij``, kind frequencies)
+    region, boundary : the output region and boundary mode (candidates are filtered by it)
+    key : the run's root key (:mod:`svgtile.core.cellrng`)
+    tolerance : a texture within ρ(1 − tolerance) is left alone (the engine's density tolerance)
+    rounds : at most this many rounds
+
+    Returns
+    -------
+    Arrangement: ``arr`` followed by the motifs added (``arr`` itself when no window is sparse),
+    with no overlaps and no distance-rule violations.
+    """
+    size = _size(exemplar)
+    offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
+    for rnd in range(rounds):
+        found = sparse_windows(arr, exemplar, stats, region, offsets[rnd % 4])
+        if found is None:
+            continue
+        if rnd == 0 and found[3].sum() >= stats.density * (1 - tolerance) * found[2].sum():
+            return arr  # density repair did its work: the texture as it left it
+        new = _round(arr, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
+        if len(new):
+            arr = Arrangement.concat([arr, new])
+    return arr
+
+
+def kind_targets(exemplar: Exemplar) -> np.ndarray:
+    """(k,) covered area of each kind per unit area of the exemplar's region (sums to ρ)."""
+    ex = exemplar.motifs
+    per_kind = np.bincount(ex.kind, weights=footprint_areas(ex, exemplar.prototypes), minlength=len(exemplar.prototypes))
+    return per_kind / exemplar.region.area
+
+
+def _size(exemplar: Exemplar) -> np.ndarray:
+    x0, y0, x1, y1 = exemplar.region.bounds
+    return np.array([x1 - x0, y1 - y0])
+
+
+def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int) -> Arrangement:
+    """One round of :func:`fill_holes`: the motifs to add (steps 1–5 of the module's docstring)."""
+    origin, ids, area, covered, win = found
+    protos = exemplar.prototypes
+    ex = exemplar.motifs
+    k, size = len(protos), _size(exemplar)
+    sparse = covered < stats.density * area  # once one window is short, every window short of ρ is filled to ρ
+    # 1. area deficits, (w, k) and (w,)
+    mine = win >= 0
+    have = np.bincount(win[mine] * k + arr.kind[mine], weights=footprint_areas(arr, protos)[mine],
+                       minlength=len(ids) * k).reshape(len(ids), k)  # fmt: skip
+    lack = np.maximum(kind_targets(exemplar)[None, :] * area[:, None] - have, 0.0)
+    short = np.where(sparse, stats.density * area - covered, 0.0)
+
+    # 2. jittered world grid points in the sparse windows
+    step = STEP * math.sqrt(exemplar.region.area / max(len(ex), 1))
+    lo = origin + ids[sparse] * size
+    X0, Y0 = lo.min(axis=0)
+    X1, Y1 = (lo + size).max(axis=0)
+    gi, gj = np.meshgrid(np.arange(math.floor(X0 / step), math.ceil(X1 / step)),
+                         np.arange(math.floor(Y0 / step), math.ceil(Y1 / step)))  # fmt: skip
+    gi, gj = gi.ravel(), gj.ravel()
+    u = cellrng.uniform(key, _JITTER, gi[:, None], gj[:, None], rnd, np.arange(2)[None, :])
+    pts = (np.stack([gi, gj], -1) + u) * step
+    w_of = _window_of(pts, origin, size, ids)
+    ok = w_of >= 0
+    ok[ok] = sparse[w_of[ok]] & (lack[w_of[ok]].sum(axis=1) > 0)
+    ok &= shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
+    if len(arr):
+        tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False)
+        d, m = tree.query(pts, k=1, workers=-1)
+        ok &= d >= motif_radius(arr, protos, inner=True)[m]  # not inside a motif
+    else:
+        tree = None
+    pts, w_of, gi, gj = pts[ok], w_of[ok], gi[ok], gj[ok]
+    if not len(pts):
+        return arr.take(np.zeros(0, dtype=np.int64))
+
+    # 3. proposals: kinds by area deficit, each an exemplar instance's look
+    p = np.repeat(np.arange(len(pts)), PROPOSALS)
+    c = np.tile(np.arange(PROPOSALS), len(pts))
+    cdf = np.cumsum(lack[w_of], axis=1)
+    cdf /= cdf[:, -1:]
+    draw = cellrng.uniform(key, _KIND, gi[p], gj[p], rnd, c)
+    kind = np.minimum((draw[:, None] >= cdf[p]).sum(axis=1), k - 1)
+    by_kind = np.argsort(ex.kind, kind="stable")
+    first, count = np.searchsorted(ex.kind[by_kind], kind), np.bincount(ex.kind, minlength=k)[kind]
+    pick = by_kind[first + (cellrng.uniform(key, _INSTANCE, gi[p], gj[p], rnd, c) * count).astype(np.int64) % count]
+    new = Arrangement(kind, pts[p], ex.angle[pick], ex.scale[pick]).quantized(DECIMALS)
+    w_new = w_of[p]
+
+    # 4. the proposals that keep the rule against the texture and lie in the region, then a
+    # conflict-free set of them, largest first
+    good = region.keep(new, protos, boundary)
+    if tree is not None:
+        good[good] = ~cross_conflicts(new.take(good), arr, protos, stats.distance, tree)
+    new, w_new, gi_n, gj_n, c_n = new.take(good), w_new[good], gi[p][good], gj[p][good], c[good]
+    if not len(new):
+        return new
+    a = footprint_areas(new, protos)
+    jitter = cellrng.uniform(key, _ORDER, gi_n, gj_n, rnd, c_n)
+    priority = -a * (1.0 + 0.01 * jitter)  # lower is kept first: the largest
+    keep = cull(len(new), find_conflicts(new, protos, stats.distance), priority)
+    new, w_new, a, priority = new.take(keep), w_new[keep], a[keep], priority[keep]
+
+    # 5. per window and kind, largest first, up to the kind's deficit; per window up to its own
+    order = np.lexsort((priority, new.kind, w_new))
+    new, w_new, a = new.take(order), w_new[order], a[order]
+    slot = w_new * k + new.kind
+    before = _cumsum_within(a, slot) - a
+    take = before < lack.ravel()[slot]
+    order = np.lexsort((-a, w_new))  # largest first within each window
+    w_t, a_t = w_new[order], np.where(take[order], a[order], 0.0)
+    before_w = _cumsum_within(a_t, w_t) - a_t
+    take[order] &= before_w < short[w_t]
+    return new.take(np.sort(np.flatnonzero(take)))
+
+
+def _cumsum_within(values: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """(n,) running sum of ``values`` within runs of equal, sorted ``labels`` (inclusive)."""
+    if not len(values):
+        return values
+    csum = np.cumsum(values)
+    starts = np.r_[0, np.flatnonzero(np.diff(labels)) + 1]
+    base = np.repeat(csum[starts] - values[starts], np.diff(np.r_[starts, len(labels)]))
+    return csum - base
