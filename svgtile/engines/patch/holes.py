@@ -22,11 +22,15 @@ below ρ, up to ρ.  Each round:
 3. each point proposes :data:`PROPOSALS` kinds drawn in proportion to the window's deficit, each
    in the orientation and scale of a random exemplar instance of that kind (so a kind's look is
    the exemplar's);
-4. a proposal is kept if it keeps the distance rule ``d_ij`` from the texture and lies inside the
-   region; of the proposals left, a conflict-free set is taken, largest first (a large fragment
-   needs the hole a dot would otherwise split);
+4. a proposal is kept if it lies inside the region and keeps the distance rule ``d_ij`` from the
+   texture, or if the motifs it breaks the rule with are at most :data:`DISPLACE_MAX`, all of
+   kinds its window holds more than its share of (by area), and together under
+   :data:`DISPLACE_SHARE` of its area: then it displaces them (the dots that culling packed into
+   the hole a fragment needs; almeraj2013 §3.4 lets an inserted element remove a few); of the
+   proposals left, a conflict-free set is taken, the largest gain of area first;
 5. per window and kind, proposals are added in that order while they do not exceed the kind's
-   deficit (one motif over at most), and per window while they do not exceed the window's.
+   deficit (one motif over at most), and per window while their gain does not exceed the
+   window's shortfall.
 
 Every random choice is a hash of the run's key and integer world coordinates
 (:mod:`svgtile.core.cellrng`), as in the rest of the engine.
@@ -43,7 +47,7 @@ from scipy.spatial import cKDTree
 from svgtile.analysis.stats import Stats, footprint_areas
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import cross_conflicts, cull, find_conflicts
+from svgtile.core.conflicts import cross_pairs, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
@@ -57,6 +61,11 @@ ROUNDS = 4
 
 #: Kinds proposed at each sample point (drawn by area deficit, with replacement).
 PROPOSALS = 3
+
+#: A proposal may displace at most this many motifs, of kinds its window holds too much of by
+#: area, whose area together is below this share of its own (dots packed around the holes a
+#: fragment needs: almeraj2013 §3.4's insertion "may remove a few elements").
+DISPLACE_MAX, DISPLACE_SHARE = 5, 0.5
 
 #: Sample points are this fraction of the exemplar's mean spacing apart.
 STEP = 0.5
@@ -99,8 +108,8 @@ def fill_holes(
 
     Returns
     -------
-    Arrangement: ``arr`` followed by the motifs added (``arr`` itself when no window is sparse),
-    with no overlaps and no distance-rule violations.
+    Arrangement: the motifs of ``arr`` not displaced, in their order, then the motifs added
+    (``arr`` itself when the texture is not sparse); no overlaps and no distance-rule violations.
     """
     size = _size(exemplar)
     offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
@@ -110,9 +119,9 @@ def fill_holes(
             continue
         if rnd == 0 and found[3].sum() >= stats.density * (1 - tolerance) * found[2].sum():
             return arr  # density repair did its work: the texture as it left it
-        new = _round(arr, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
+        new, removed = _round(arr, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
         if len(new):
-            arr = Arrangement.concat([arr, new])
+            arr = Arrangement.concat([arr.take(~removed), new])
     return arr
 
 
@@ -128,8 +137,9 @@ def _size(exemplar: Exemplar) -> np.ndarray:
     return np.array([x1 - x0, y1 - y0])
 
 
-def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int) -> Arrangement:
-    """One round of :func:`fill_holes`: the motifs to add (steps 1–5 of the module's docstring)."""
+def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int) -> tuple[Arrangement, np.ndarray]:
+    """One round of :func:`fill_holes` (steps 1–5 of the module's docstring): the motifs to add
+    and the (n,) bool mask of the motifs of ``arr`` they displace."""
     origin, ids, area, covered, win = found
     protos = exemplar.prototypes
     ex = exemplar.motifs
@@ -164,7 +174,7 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
         tree = None
     pts, w_of, gi, gj = pts[ok], w_of[ok], gi[ok], gj[ok]
     if not len(pts):
-        return arr.take(np.zeros(0, dtype=np.int64))
+        return arr.take(np.zeros(0, dtype=np.int64)), np.zeros(len(arr), dtype=bool)
 
     # 3. proposals: kinds by area deficit, each an exemplar instance's look
     p = np.repeat(np.arange(len(pts)), PROPOSALS)
@@ -179,31 +189,50 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     new = Arrangement(kind, pts[p], ex.angle[pick], ex.scale[pick]).quantized(DECIMALS)
     w_new = w_of[p]
 
-    # 4. the proposals that keep the rule against the texture and lie in the region, then a
-    # conflict-free set of them, largest first
+    # 4. the proposals that keep the rule against the texture and lie in the region, or that
+    # displace a few motifs of kinds their window holds too much of (by area) and together
+    # smaller than half of it; then a conflict-free set of them, the largest gain first
+    none = np.zeros(len(arr), dtype=bool)
     good = region.keep(new, protos, boundary)
-    if tree is not None:
-        good[good] = ~cross_conflicts(new.take(good), arr, protos, stats.distance, tree)
     new, w_new, gi_n, gj_n, c_n = new.take(good), w_new[good], gi[p][good], gj[p][good], c[good]
-    if not len(new):
-        return new
     a = footprint_areas(new, protos)
+    cost = np.zeros(len(new))
+    hit_a = hit_b = np.zeros(0, dtype=np.int64)
+    if tree is not None and len(new):
+        hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree)
+        surplus = have - kind_targets(exemplar)[None, :] * area[:, None]  # (w, k), > 0: too much
+        spare = (win[hit_b] >= 0) & (surplus[np.maximum(win[hit_b], 0), arr.kind[hit_b]] > 0)
+        count = np.bincount(hit_a, minlength=len(new))
+        cost = np.bincount(hit_a, weights=footprint_areas(arr, protos)[hit_b], minlength=len(new))
+        unspared = np.bincount(hit_a, weights=~spare, minlength=len(new))
+        ok = (count == 0) | ((count <= DISPLACE_MAX) & (unspared == 0) & (cost < DISPLACE_SHARE * a))
+        keep_at = np.flatnonzero(ok)
+        remap = np.full(len(new), -1)
+        remap[keep_at] = np.arange(len(keep_at))
+        sel = ok[hit_a]
+        hit_a, hit_b = remap[hit_a[sel]], hit_b[sel]
+        new, w_new, gi_n, gj_n, c_n, a, cost = (new.take(keep_at), w_new[keep_at], gi_n[keep_at], gj_n[keep_at],
+                                                c_n[keep_at], a[keep_at], cost[keep_at])  # fmt: skip
+    if not len(new):
+        return new, none
     jitter = cellrng.uniform(key, _ORDER, gi_n, gj_n, rnd, c_n)
-    priority = -a * (1.0 + 0.01 * jitter)  # lower is kept first: the largest
+    priority = -(a - cost) * (1.0 + 0.01 * jitter)  # lower is kept first: the largest gain
     keep = cull(len(new), find_conflicts(new, protos, stats.distance), priority)
-    new, w_new, a, priority = new.take(keep), w_new[keep], a[keep], priority[keep]
 
     # 5. per window and kind, largest first, up to the kind's deficit; per window up to its own
-    order = np.lexsort((priority, new.kind, w_new))
-    new, w_new, a = new.take(order), w_new[order], a[order]
-    slot = w_new * k + new.kind
-    before = _cumsum_within(a, slot) - a
-    take = before < lack.ravel()[slot]
-    order = np.lexsort((-a, w_new))  # largest first within each window
-    w_t, a_t = w_new[order], np.where(take[order], a[order], 0.0)
-    before_w = _cumsum_within(a_t, w_t) - a_t
-    take[order] &= before_w < short[w_t]
-    return new.take(np.sort(np.flatnonzero(take)))
+    idx = np.flatnonzero(keep)
+    idx = idx[np.lexsort((priority[idx], new.kind[idx], w_new[idx]))]
+    slot = w_new[idx] * k + new.kind[idx]
+    take = _cumsum_within(a[idx], slot) - a[idx] < lack.ravel()[slot]
+    idx = idx[take]
+    idx = idx[np.lexsort((priority[idx], w_new[idx]))]  # the largest gain first within each window
+    gain = a[idx] - cost[idx]
+    idx = idx[_cumsum_within(gain, w_new[idx]) - gain < short[w_new[idx]]]
+    taken = np.zeros(len(new), dtype=bool)
+    taken[idx] = True
+    removed = none.copy()
+    removed[hit_b[taken[hit_a]]] = True
+    return new.take(np.flatnonzero(taken)), removed
 
 
 def _cumsum_within(values: np.ndarray, labels: np.ndarray) -> np.ndarray:
