@@ -10,9 +10,10 @@ meet, and the dots that fit anywhere are what comes back.  Density is the covere
 window short of ρ is short of the area of some kinds; counted by motifs, the 2 % of fragments
 that carry a third of 612's ink look like nothing.
 
-:func:`fill_holes` runs only where density repair left the texture as a whole (every window
-lying mostly in the region, at the first offset) below ρ(1 − tolerance); it then fills every window
-below ρ, up to ρ.  Each round:
+:func:`fill_holes` runs only where density repair left a window wholly inside the region (at
+the first offset) below ρ(1 − tolerance); it then fills every window below ρ, up to ρ (windows
+partly outside the region measure its edge as much as the texture, and a small region's textures
+are left as density repair made them).  Each round:
 
 1. every window's *area deficit per kind* is the exemplar's covered area of that kind, scaled to
    the window, minus what the window holds;
@@ -94,8 +95,8 @@ def fill_holes(
     arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
     tolerance: float, rounds: int = ROUNDS,
 ) -> Arrangement:  # fmt: skip
-    """Fill the windows below ρ with the kinds they lack by area, if the windows together are
-    below ρ(1 − ``tolerance``).
+    """Fill the windows below ρ with the kinds they lack by area, if a window wholly inside the
+    region is below ρ(1 − ``tolerance``).
 
     Parameters
     ----------
@@ -103,7 +104,8 @@ def fill_holes(
     exemplar, stats : the exemplar and its analysis (ρ, ``d_ij``, kind frequencies)
     region, boundary : the output region and boundary mode (candidates are filtered by it)
     key : the run's root key (:mod:`svgtile.core.cellrng`)
-    tolerance : a texture within ρ(1 − tolerance) is left alone (the engine's density tolerance)
+    tolerance : a texture whose whole windows are within ρ(1 − tolerance) is left alone (the
+        engine's density tolerance)
     rounds : at most this many rounds
 
     Returns
@@ -117,7 +119,9 @@ def fill_holes(
         found = sparse_windows(arr, exemplar, stats, region, offsets[rnd % 4])
         if found is None:
             continue
-        if rnd == 0 and found[3].sum() >= stats.density * (1 - tolerance) * found[2].sum():
+        _, _, area, covered, _ = found
+        whole = area >= (1 - 1e-9) * size.prod()
+        if rnd == 0 and not (whole & (covered < stats.density * (1 - tolerance) * area)).any():
             return arr  # density repair did its work: the texture as it left it
         new, removed = _round(arr, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
         if len(new):
@@ -151,6 +155,8 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
                        minlength=len(ids) * k).reshape(len(ids), k)  # fmt: skip
     lack = np.maximum(kind_targets(exemplar)[None, :] * area[:, None] - have, 0.0)
     short = np.where(sparse, stats.density * area - covered, 0.0)
+    if not sparse.any():
+        return arr.take(np.zeros(0, dtype=np.int64)), np.zeros(len(arr), dtype=bool)
 
     # 2. jittered world grid points in the sparse windows
     step = STEP * math.sqrt(exemplar.region.area / max(len(ex), 1))
