@@ -68,6 +68,9 @@ PROPOSALS = 3
 #: fragment needs: almeraj2013 §3.4's insertion "may remove a few elements").
 DISPLACE_MAX, DISPLACE_SHARE = 5, 0.5
 
+#: Windows below this fraction of ρ are filled (up to ρ) once the texture has one below ρ(1 − tol).
+FILL_BELOW = 0.9
+
 #: Sample points are this fraction of the exemplar's mean spacing apart.
 STEP = 0.5
 
@@ -148,7 +151,7 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     protos = exemplar.prototypes
     ex = exemplar.motifs
     k, size = len(protos), _size(exemplar)
-    sparse = covered < stats.density * area  # once one window is short, every window short of ρ is filled to ρ
+    sparse = covered < stats.density * FILL_BELOW * area
     # 1. area deficits, (w, k) and (w,)
     mine = win >= 0
     have = np.bincount(win[mine] * k + arr.kind[mine], weights=footprint_areas(arr, protos)[mine],
@@ -160,14 +163,13 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
 
     # 2. jittered world grid points in the sparse windows
     step = STEP * math.sqrt(exemplar.region.area / max(len(ex), 1))
-    lo = origin + ids[sparse] * size
-    X0, Y0 = lo.min(axis=0)
-    X1, Y1 = (lo + size).max(axis=0)
-    gi, gj = np.meshgrid(np.arange(math.floor(X0 / step), math.ceil(X1 / step)),
-                         np.arange(math.floor(Y0 / step), math.ceil(Y1 / step)))  # fmt: skip
-    gi, gj = gi.ravel(), gj.ravel()
+    span = np.ceil(size / step).astype(np.int64) + 1  # grid cells across a window, with its edges
+    first = np.floor((origin + ids[sparse] * size) / step).astype(np.int64)  # (s, 2)
+    di, dj = (v.ravel() for v in np.meshgrid(np.arange(span[0]), np.arange(span[1])))
+    cells = np.unique((first[:, None, :] + np.stack([di, dj], -1)[None, :, :]).reshape(-1, 2), axis=0)
+    gi, gj = cells[:, 0], cells[:, 1]
     u = cellrng.uniform(key, _JITTER, gi[:, None], gj[:, None], rnd, np.arange(2)[None, :])
-    pts = (np.stack([gi, gj], -1) + u) * step
+    pts = (cells + u) * step
     w_of = _window_of(pts, origin, size, ids)
     ok = w_of >= 0
     ok[ok] = sparse[w_of[ok]] & (lack[w_of[ok]].sum(axis=1) > 0)
