@@ -61,7 +61,7 @@ _JITTER, _KIND, _INSTANCE, _ORDER = range(6, 10)
 ROUNDS = 4
 
 #: Kinds proposed at each sample point (drawn by area deficit, with replacement).
-PROPOSALS = 3
+PROPOSALS = 2
 
 #: A proposal may displace at most this many motifs, of kinds its window holds too much of by
 #: area, whose area together is below this share of its own (dots packed around the holes a
