@@ -93,3 +93,31 @@ def test_a_texture_within_tolerance_is_left_as_it_is(holed):
     ex, stats, region, _, _ = holed
     full = synthesize(ex, region, "tile", seed=1, stats=stats).arrangement
     assert fill_holes(full, ex, stats, region, "clip", key=7, tolerance=0.1) is full
+
+
+def test_a_lacking_large_kind_displaces_a_few_surplus_small_ones(holed):
+    """Holes packed with the smallest kind at its own distance rule: no empty place is left for a
+    larger motif, so the large kinds come only by displacing a few of the small (whose window
+    holds more than its area share of them)."""
+    from svgtile.core.arrangement import Arrangement
+
+    ex, stats, region, arr, (w, h) = holed
+    areas = np.array([p.area for p in ex.prototypes])
+    small = int(np.argmin(areas))
+    r = ex.prototypes[small].radius
+    g = 2 * r + float(stats.distance[small, small]) + 0.05
+    gx, gy = np.meshgrid(np.arange(g / 2, w, g), np.arange(g / 2, h, g))
+    cell = np.stack([gx.ravel(), gy.ravel()], -1)
+    dots = np.concatenate([cell + np.array([w, h]), cell + np.array([2 * w, 0.0])])
+    # keep only the dots clear of the texture (the holes' edges meet copies of the tile)
+    packed = Arrangement(np.full(len(dots), small), dots, np.zeros(len(dots)), np.ones(len(dots)))
+    packed = packed.take(~cross_conflicts(packed, arr, ex.prototypes, stats.distance))
+    start = Arrangement.concat([arr, packed])
+    assert len(find_conflicts(start, ex.prototypes, stats.distance).i) == 0
+    out = fill_holes(start, ex, stats, region, "clip", key=7, tolerance=0.1)
+    kept = (start.xy[:, None, :] == out.xy[None, :, :]).all(axis=2).any(axis=1)
+    assert 0 < (~kept).sum() <= 0.5 * len(packed)  # some dots went, not most
+    assert (~kept[len(arr):]).sum() > (~kept[: len(arr)]).sum()  # mostly the packed dots go
+    new = out.take(np.arange(int(kept.sum()), len(out)))
+    assert (areas[new.kind] > areas[small]).any()
+    assert len(find_conflicts(out, ex.prototypes, stats.distance).i) == 0
