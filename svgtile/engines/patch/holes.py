@@ -207,8 +207,14 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     cost = np.zeros(len(new))
     hit_a = hit_b = np.zeros(0, dtype=np.int64)
     if tree is not None and len(new):
-        hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree)
         surplus = have - kind_targets(exemplar)[None, :] * area[:, None]  # (w, k), > 0: too much
+        # a shortcut that changes nothing: proposals whose inscribed disc already overlaps that
+        # of more than DISPLACE_MAX motifs, of one the window cannot spare, or of motifs of half
+        # its area cannot be kept, and are dropped before the exact (costly) pairs are found
+        surely = _surely_blocked(new, a, arr, tree, protos, win, surplus)
+        new, w_new, gi_n, gj_n, c_n, a = (new.take(~surely), w_new[~surely], gi_n[~surely], gj_n[~surely],
+                                          c_n[~surely], a[~surely])  # fmt: skip
+        hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree)
         spare = (win[hit_b] >= 0) & (surplus[np.maximum(win[hit_b], 0), arr.kind[hit_b]] > 0)
         count = np.bincount(hit_a, minlength=len(new))
         cost = np.bincount(hit_a, weights=footprint_areas(arr, protos)[hit_b], minlength=len(new))
@@ -241,6 +247,22 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     removed = none.copy()
     removed[hit_b[taken[hit_a]]] = True
     return new.take(np.flatnonzero(taken)), removed
+
+
+def _surely_blocked(new, a, arr, tree, protos, win, surplus) -> np.ndarray:
+    """(m,) bool: proposals that step 4 of :func:`fill_holes` would surely reject, by inscribed
+    discs alone (two overlapping inscribed discs are two overlapping footprints)."""
+    k = min(DISPLACE_MAX + 1, len(arr))
+    d, idx = tree.query(new.xy, k=k, workers=-1)
+    d, idx = d.reshape(len(new), k), idx.reshape(len(new), k)
+    inner_new = motif_radius(new, protos, inner=True)
+    inner_old = motif_radius(arr, protos, inner=True)
+    hit = (d < inner_new[:, None] + inner_old[idx]) & (inner_new[:, None] > 0) & (inner_old[idx] > 0)
+    spare = (win[idx] >= 0) & (surplus[np.maximum(win[idx], 0), arr.kind[idx]] > 0)
+    many = hit.sum(axis=1) > DISPLACE_MAX
+    unspared = (hit & ~spare).any(axis=1)
+    costly = (hit * footprint_areas(arr, protos)[idx]).sum(axis=1) >= DISPLACE_SHARE * a
+    return many | unspared | costly
 
 
 def _cumsum_within(values: np.ndarray, labels: np.ndarray) -> np.ndarray:
