@@ -9,7 +9,10 @@ Start from a Tiling of the exemplar and remove the order that betrays it:
    violators (§3.3), and the distance rule of §3.1 is then enforced;
 4. :func:`adjust_density` — windows the size of the input region are brought to the exemplar's
    density ρ by random removal or by pasting discs of the exemplar into the largest empty disc
-   (§3.4).
+   (§3.4);
+5. :func:`~svgtile.engines.patch.holes.fill_holes` — where a window wholly inside the region is
+   still below ρ(1 − tolerance), the kinds each light window lacks *by area* are dropped into its
+   empty places, largest first, displacing a few motifs of surplus kinds (not in the paper).
 
 The structure of the texture is the exemplar's inside each copy and is made where copies meet
 and where discs are pasted.  Three choices keep those junctions like the exemplar (issue 3,
