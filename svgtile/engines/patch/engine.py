@@ -9,7 +9,10 @@ Start from a Tiling of the exemplar and remove the order that betrays it:
    violators (§3.3), and the distance rule of §3.1 is then enforced;
 4. :func:`adjust_density` — windows the size of the input region are brought to the exemplar's
    density ρ by random removal or by pasting discs of the exemplar into the largest empty disc
-   (§3.4).
+   (§3.4);
+5. :func:`~svgtile.engines.patch.holes.fill_holes` — where a window wholly inside the region is
+   still below ρ(1 − tolerance), the kinds each light window lacks *by area* are dropped into its
+   empty places, largest first, displacing a few motifs of surplus kinds (not in the paper).
 
 The structure of the texture is the exemplar's inside each copy and is made where copies meet
 and where discs are pasted.  Three choices keep those junctions like the exemplar (issue 3,
@@ -61,6 +64,7 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.base import Context, EngineParams, param
 from svgtile.engines.patch.density import _ORIENT, _PRIORITY, _ROTATE, adjust_density, uniform_at
+from svgtile.engines.patch.holes import fill_holes
 from svgtile.engines.patch.lattice import lattice_pivot, lattice_steps, lattice_variation
 from svgtile.engines.patch.orientation import turn, vary_orientations
 from svgtile.errors import ParameterError
@@ -184,7 +188,10 @@ class PatchEngine:
         arr = arr.take(keep)
         if exact:
             return arr
-        return adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
+        arr = adjust_density(arr, exemplar, stats, region, p, ctx.boundary, key=key, progress=report, rules=rules)
+        if p.density_rounds == 0:  # no density adjustment at all (§3.4), hole filling included
+            return arr
+        return fill_holes(arr, exemplar, stats, region, ctx.boundary, key=key, tolerance=p.density_tolerance)
 
     def reach(self, exemplar: Exemplar, params: PatchParams) -> float:
         """Not tile-exact: density repair decides window by window from what earlier rounds left,
