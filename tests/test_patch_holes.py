@@ -121,3 +121,21 @@ def test_a_lacking_large_kind_displaces_a_few_surplus_small_ones(holed):
     new = out.take(np.arange(int(kept.sum()), len(out)))
     assert (areas[new.kind] > areas[small]).any()
     assert len(find_conflicts(out, ex.prototypes, stats.distance).i) == 0
+
+
+def test_a_region_with_no_window_at_the_first_offset_is_left_as_it_is():
+    """The gate is measured at the first offset: a region one exemplar wide placed half a window
+    off the world grid has no window there (each holds a quarter of it), so it is left alone —
+    the later rounds' shifted offsets, whose window fits it, must not fill it ungated."""
+    import shapely
+
+    ex = read_exemplar(EXEMPLARS / "till.svg")
+    stats = analyze(ex)
+    x0, y0, x1, y1 = ex.region.bounds
+    w, h = x1 - x0, y1 - y0
+    region = Region(shapely.box(0.5 * w, 0.5 * h, 1.5 * w, 1.5 * h))
+    full = synthesize(ex, region, "tile", seed=1, stats=stats).arrangement
+    light = full.take(np.arange(len(full)) % 2 == 0)  # half of ρ
+    assert sparse_windows(light, ex, stats, region, np.zeros(2)) is None
+    assert sparse_windows(light, ex, stats, region, 0.5 * np.array([w, h])) is not None
+    assert fill_holes(light, ex, stats, region, "clip", key=7, tolerance=0.1) is light

@@ -208,3 +208,37 @@ def _spy(start_block, handed):
         return block
 
     return spied
+
+
+class _BrokenPool(Executor):
+    """An executor whose worker died before it was asked anything more: it refuses new work."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        raise BrokenExecutor("a child process terminated abruptly")
+
+
+def test_score_with_a_worker_dead_before_it_is_asked_measures_everything_here(tmp_path, capsys, monkeypatch):
+    """A worker killed while the texture is read: the scan's half, the baselines and the
+    footprint figures are refused by the broken pool and measured in this process, the same
+    figures, exit 0 (it was an internal error, exit 70)."""
+    from contextlib import contextmanager
+
+    from svgtile.cli import score as score_cli
+
+    ex = read_exemplar(EXEMPLARS / "gravel.svg")
+    region = Region.rectangle(300, 300)
+    arr = arrange("patch", ex, region, rng=np.random.default_rng(5), stats=analyze(ex))
+    path = tmp_path / "t.svg"
+    path.write_text(svg_document(ex, arr, region, boundary="clip", params={"engine": "patch"}))
+    args = ["score", str(EXEMPLARS / "gravel.svg"), str(path), "--json"]
+    assert main([*args, "--jobs", "1"]) == 0
+    one = capsys.readouterr().out
+
+    @contextmanager
+    def broken(jobs):
+        yield _BrokenPool()
+
+    monkeypatch.setattr(score_cli, "_second_process", broken)
+    monkeypatch.setattr(uselines, "SPLIT_ABOVE", 100)
+    assert main([*args, "--jobs", "2"]) == 0
+    assert capsys.readouterr().out == one

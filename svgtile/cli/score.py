@@ -20,7 +20,7 @@ from svgtile.apps.compare import format_score
 from svgtile.cli.common import Ending, json_safe, load, warn_if_few
 from svgtile.metrics import score as measure
 from svgtile.metrics.likeness import baseline_distances
-from svgtile.metrics.scoring import ready_worker
+from svgtile.metrics.scoring import ready_worker, worker_submit
 from svgtile.svg.texture import start_reading
 
 #: prctl(2)'s option that has Linux signal a process when its parent ends.
@@ -72,13 +72,13 @@ def score(exemplar, texture, as_json, exact, jobs):
     """
     ex, stats = load(exemplar)
     with _no_cycle_collection(), _second_process(jobs) as pool:
-        if pool is not None:  # forked now: the worker starts while this process reads the file
-            pool.submit(ready_worker)
+        # forked now: the worker starts while this process reads the file
+        worker_submit(pool, ready_worker)
         # the worker scans the last 30 % of the texture's <use> lines, then measures the
         # baselines (they depend on the exemplar alone) while this process scans the rest
         # and measures the figures up to the texture's E
         reading = start_reading(texture, pool=pool)
-        baselines = pool.submit(baseline_distances, ex, stats) if pool is not None else None
+        baselines = worker_submit(pool, baseline_distances, ex, stats)
         arr, region = reading.finish(ex)
         del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
         result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)

@@ -290,7 +290,7 @@ def score(
     sampled = plan is not None
     geoms = None if sampled or pool is not None else world_footprints(arr, protos)
     apart = (exemplar, stats, arr, window, region.shape, inside, step, sampled)
-    far = pool.submit(_footprint_figures, *apart) if pool is not None else None
+    far = worker_submit(pool, _footprint_figures, *apart)
     trees = kind_trees(arr, len(protos))
     if not sampled:
         found = structure(exemplar, stats, arr, window, geoms=geoms, inside=inside, trees=trees)
@@ -379,6 +379,16 @@ def ready_worker() -> None:
     (scipy.ndimage, for the empty discs: ≈ 0.04 s), which the worker would otherwise import in
     the middle of them."""
     import scipy.ndimage  # noqa: F401
+
+
+def worker_submit(pool: Executor | None, fn, *args) -> Future | None:
+    """``pool.submit(fn, *args)``, or None if there is no pool or its worker has died (killed, out
+    of memory, before this task: a broken pool refuses new work); the caller then computes it
+    itself, as for :func:`worker_result`."""
+    try:
+        return pool.submit(fn, *args) if pool is not None else None
+    except BrokenExecutor:
+        return None
 
 
 def worker_result(future: Future | None) -> tuple | None:

@@ -166,8 +166,11 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
     cut, far = len(body) + 1, None
     middle = body.find("\n", int(len(body) * (1.0 - WORKER_SHARE)))
     if pool is not None and middle >= 0 and body.count("\n") >= split_above:
-        cut = middle + 1
-        far = pool.submit(scan, body[cut:])
+        try:
+            far = pool.submit(scan, body[middle + 1 :])
+            cut = middle + 1
+        except BrokenExecutor:  # the worker died before it was asked: all scanned here
+            pass
     return Block(opening.end(), end, body, cut, far)
 
 

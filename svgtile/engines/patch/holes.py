@@ -121,6 +121,8 @@ def fill_holes(
     for rnd in range(rounds):
         found = sparse_windows(arr, exemplar, stats, region, offsets[rnd % 4])
         if found is None:
+            if rnd == 0:  # no window at the first offset, none wholly inside: not sparse
+                return arr
             continue
         _, _, area, covered, _ = found
         whole = area >= (1 - 1e-9) * size.prod()
