@@ -81,9 +81,8 @@ def adjust_density(
     holes too small for one step are filled at the next.
     """
     rules = list(rules) or [stats.distance]
-    x0, y0, x1, y1 = exemplar.region.bounds
-    size = np.array([x1 - x0, y1 - y0])
-    offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
+    size = window_size(exemplar)
+    offsets = WINDOW_OFFSETS * size
     protos = exemplar.prototypes
     quiet = 0
     for rnd in range(p.density_rounds):
@@ -92,8 +91,7 @@ def adjust_density(
         if windows is None:
             break
         origin, ids, area = windows
-        win = _window_of(arr.xy, origin, size, ids)
-        covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+        win, covered = window_cover(arr, protos, origin, size, ids)
         density = covered / area
         dense = density > stats.density * (1 + p.density_tolerance)
         sparse = density < stats.density * (1 - p.density_tolerance)
@@ -106,8 +104,7 @@ def adjust_density(
         if dense.any():
             arr = arr.take(_thin(arr, win, dense, area * stats.density, stats, protos, key=key, rnd=rnd))
         if sparse.any():
-            win = _window_of(arr.xy, origin, size, ids)
-            covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, protos)[win >= 0], minlength=len(ids))
+            win, covered = window_cover(arr, protos, origin, size, ids)
             deficit = (stats.density * area - covered)[sparse]
             rule = rules[min(len(rules) - 1, len(rules) * rnd // p.density_rounds)]
             new, removed = _fill(
@@ -116,6 +113,29 @@ def adjust_density(
             )
             arr = Arrangement.concat([arr.take(~removed), new])
     return arr
+
+
+#: The windows' offsets, in window sizes: rounds take them in turn, so that what one round's
+#: window edges cut, the next round's windows hold whole.
+WINDOW_OFFSETS = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]])
+
+
+def window_size(exemplar: Exemplar) -> np.ndarray:
+    """(2,) float array, user units: the windows' width and height, the exemplar region's."""
+    x0, y0, x1, y1 = exemplar.region.bounds
+    return np.array([x1 - x0, y1 - y0])
+
+
+def window_cover(
+    arr: Arrangement, protos, origin: np.ndarray, size: np.ndarray, ids: np.ndarray, areas: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The (n,) window of each motif (index into ``ids``, -1: none of them) and the (w,)
+    footprint area the motifs of each window cover, square user units; ``areas`` the (n,)
+    :func:`~svgtile.analysis.stats.footprint_areas` of ``arr``, if known."""
+    win = _window_of(arr.xy, origin, size, ids)
+    if areas is None:
+        areas = footprint_areas(arr, protos)
+    return win, np.bincount(win[win >= 0], weights=areas[win >= 0], minlength=len(ids))
 
 
 def _windows(region: Region, size: np.ndarray, offset: np.ndarray):

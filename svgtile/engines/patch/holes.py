@@ -52,7 +52,13 @@ from svgtile.core.conflicts import cross_pairs, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
-from svgtile.engines.patch.density import _window_of, _windows
+from svgtile.engines.patch.density import (
+    WINDOW_OFFSETS,
+    _window_of,
+    _windows,
+    window_cover,
+    window_size,
+)
 
 # hash streams (after density.py's six)
 _JITTER, _KIND, _INSTANCE, _ORDER = range(6, 10)
@@ -76,21 +82,20 @@ STEP = 0.5
 
 
 def sparse_windows(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region,
-                   offset: np.ndarray) -> tuple | None:  # fmt: skip
-    """The exemplar-sized windows at ``offset`` (user units) and what their motifs cover.
+                   offset: np.ndarray, areas: np.ndarray | None = None) -> tuple | None:  # fmt: skip
+    """The exemplar-sized windows at ``offset`` (user units) and what their motifs cover
+    (``areas``: the (n,) footprint areas of ``arr``, if known).
 
     Returns None if no window lies mostly in the region, else ``(origin, ids, area, covered,
     win)``: the windows' origin, their (w, 2) integer ids and (w,) area inside the region, the
     (w,) footprint area their motifs cover and the (n,) window of each motif (-1: none of them).
     """
-    size = _size(exemplar)
+    size = window_size(exemplar)
     windows = _windows(region, size, offset)
     if windows is None:
         return None
     origin, ids, area = windows
-    win = _window_of(arr.xy, origin, size, ids)
-    covered = np.bincount(win[win >= 0], weights=footprint_areas(arr, exemplar.prototypes)[win >= 0],
-                          minlength=len(ids))  # fmt: skip
+    win, covered = window_cover(arr, exemplar.prototypes, origin, size, ids, areas)
     return origin, ids, area, covered, win
 
 
@@ -116,10 +121,11 @@ def fill_holes(
     Arrangement: the motifs of ``arr`` not displaced, in their order, then the motifs added
     (``arr`` itself when the texture is not sparse); no overlaps and no distance-rule violations.
     """
-    size = _size(exemplar)
-    offsets = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]]) * size
+    size = window_size(exemplar)
+    offsets = WINDOW_OFFSETS * size
     for rnd in range(rounds):
-        found = sparse_windows(arr, exemplar, stats, region, offsets[rnd % 4])
+        areas = footprint_areas(arr, exemplar.prototypes)
+        found = sparse_windows(arr, exemplar, stats, region, offsets[rnd % 4], areas)
         if found is None:
             if rnd == 0:  # no window at the first offset, none wholly inside: not sparse
                 return arr
@@ -128,7 +134,7 @@ def fill_holes(
         whole = area >= (1 - 1e-9) * size.prod()
         if rnd == 0 and not (whole & (covered < stats.density * (1 - tolerance) * area)).any():
             return arr  # density repair did its work: the texture as it left it
-        new, removed = _round(arr, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
+        new, removed = _round(arr, areas, exemplar, stats, region, boundary, found, key=key, rnd=rnd)
         if len(new):
             arr = Arrangement.concat([arr.take(~removed), new])
     return arr
@@ -141,24 +147,21 @@ def kind_targets(exemplar: Exemplar) -> np.ndarray:
     return per_kind / exemplar.region.area
 
 
-def _size(exemplar: Exemplar) -> np.ndarray:
-    x0, y0, x1, y1 = exemplar.region.bounds
-    return np.array([x1 - x0, y1 - y0])
-
-
-def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int) -> tuple[Arrangement, np.ndarray]:
+def _round(arr, areas, exemplar, stats, region, boundary, found, *, key: int, rnd: int) -> tuple[Arrangement, np.ndarray]:
     """One round of :func:`fill_holes` (steps 1–5 of the module's docstring): the motifs to add
-    and the (n,) bool mask of the motifs of ``arr`` they displace."""
+    and the (n,) bool mask of the motifs of ``arr`` they displace; ``areas`` the (n,) footprint
+    areas of ``arr``."""
     origin, ids, area, covered, win = found
     protos = exemplar.prototypes
     ex = exemplar.motifs
-    k, size = len(protos), _size(exemplar)
+    k, size = len(protos), window_size(exemplar)
     sparse = covered < stats.density * FILL_BELOW * area
     # 1. area deficits, (w, k) and (w,)
     mine = win >= 0
-    have = np.bincount(win[mine] * k + arr.kind[mine], weights=footprint_areas(arr, protos)[mine],
-                       minlength=len(ids) * k).reshape(len(ids), k)  # fmt: skip
-    lack = np.maximum(kind_targets(exemplar)[None, :] * area[:, None] - have, 0.0)
+    have = np.bincount(win[mine] * k + arr.kind[mine], weights=areas[mine], minlength=len(ids) * k).reshape(len(ids), k)
+    target = kind_targets(exemplar)[None, :] * area[:, None]
+    lack = np.maximum(target - have, 0.0)
+    surplus = have - target  # > 0: too much
     short = np.where(sparse, stats.density * area - covered, 0.0)
     if not sparse.any():
         return arr.take(np.zeros(0, dtype=np.int64)), np.zeros(len(arr), dtype=bool)
@@ -178,8 +181,9 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     ok &= shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
     if len(arr):
         tree = cKDTree(arr.xy, balanced_tree=False, compact_nodes=False)
+        inner = motif_radius(arr, protos, inner=True)
         d, m = tree.query(pts, k=1, workers=-1)
-        ok &= d >= motif_radius(arr, protos, inner=True)[m]  # not inside a motif
+        ok &= d >= inner[m]  # not inside a motif
     else:
         tree = None
     pts, w_of, gi, gj = pts[ok], w_of[ok], gi[ok], gj[ok]
@@ -209,17 +213,16 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     cost = np.zeros(len(new))
     hit_a = hit_b = np.zeros(0, dtype=np.int64)
     if tree is not None and len(new):
-        surplus = have - kind_targets(exemplar)[None, :] * area[:, None]  # (w, k), > 0: too much
         # a shortcut that changes nothing: proposals whose inscribed disc already overlaps that
         # of more than DISPLACE_MAX motifs, of one the window cannot spare, or of motifs of half
         # its area cannot be kept, and are dropped before the exact (costly) pairs are found
-        surely = _surely_blocked(new, a, arr, tree, protos, win, surplus)
+        surely = _surely_blocked(new, a, arr, areas, inner, tree, protos, win, surplus)
         new, w_new, gi_n, gj_n, c_n, a = (new.take(~surely), w_new[~surely], gi_n[~surely], gj_n[~surely],
                                           c_n[~surely], a[~surely])  # fmt: skip
         hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree)
         spare = (win[hit_b] >= 0) & (surplus[np.maximum(win[hit_b], 0), arr.kind[hit_b]] > 0)
         count = np.bincount(hit_a, minlength=len(new))
-        cost = np.bincount(hit_a, weights=footprint_areas(arr, protos)[hit_b], minlength=len(new))
+        cost = np.bincount(hit_a, weights=areas[hit_b], minlength=len(new))
         unspared = np.bincount(hit_a, weights=~spare, minlength=len(new))
         ok = (count == 0) | ((count <= DISPLACE_MAX) & (unspared == 0) & (cost < DISPLACE_SHARE * a))
         keep_at = np.flatnonzero(ok)
@@ -251,19 +254,19 @@ def _round(arr, exemplar, stats, region, boundary, found, *, key: int, rnd: int)
     return new.take(np.flatnonzero(taken)), removed
 
 
-def _surely_blocked(new, a, arr, tree, protos, win, surplus) -> np.ndarray:
+def _surely_blocked(new, a, arr, areas, inner_old, tree, protos, win, surplus) -> np.ndarray:
     """(m,) bool: proposals that step 4 of :func:`fill_holes` would surely reject, by inscribed
-    discs alone (two overlapping inscribed discs are two overlapping footprints)."""
+    discs alone (two overlapping inscribed discs are two overlapping footprints); ``areas`` and
+    ``inner_old`` the (n,) footprint areas and inscribed radii of ``arr``."""
     k = min(DISPLACE_MAX + 1, len(arr))
     d, idx = tree.query(new.xy, k=k, workers=-1)
     d, idx = d.reshape(len(new), k), idx.reshape(len(new), k)
     inner_new = motif_radius(new, protos, inner=True)
-    inner_old = motif_radius(arr, protos, inner=True)
     hit = (d < inner_new[:, None] + inner_old[idx]) & (inner_new[:, None] > 0) & (inner_old[idx] > 0)
     spare = (win[idx] >= 0) & (surplus[np.maximum(win[idx], 0), arr.kind[idx]] > 0)
     many = hit.sum(axis=1) > DISPLACE_MAX
     unspared = (hit & ~spare).any(axis=1)
-    costly = (hit * footprint_areas(arr, protos)[idx]).sum(axis=1) >= DISPLACE_SHARE * a
+    costly = (hit * areas[idx]).sum(axis=1) >= DISPLACE_SHARE * a
     return many | unspared | costly
 
 
