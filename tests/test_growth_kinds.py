@@ -1,5 +1,7 @@
-"""The final kind pass (:mod:`svgtile.engines.growth.kinds`): kinds re-chosen against each
-motif's complete ring (Ijiri et al. 2008, §5.2 eq. 1–3), per cell, on a drawn exemplar of rows."""
+"""The final kind passes: kinds re-chosen against each motif's complete ring (Ijiri et al. 2008,
+§5.2 eq. 1–3, :mod:`svgtile.engines.growth.kinds`), then against the exemplar's k-nearest
+neighbourhoods (Ma, Wei & Tong 2011, §3.2 eq. 1, :mod:`svgtile.engines.growth.patchkinds`), per
+cell, on a drawn exemplar of rows."""
 
 from __future__ import annotations
 
@@ -17,7 +19,9 @@ from svgtile.engines import synthesize
 from svgtile.engines.growth import GrowthParams, Weights
 from svgtile.engines.growth.connectivity import reference_rings
 from svgtile.engines.growth.kinds import repick
+from svgtile.engines.growth.patchkinds import neighbourhood_kinds
 from svgtile.errors import ParameterError
+from svgtile.metrics import score
 from svgtile.metrics.window import spacing
 
 REPO = Path(__file__).resolve().parents[1]
@@ -105,3 +109,60 @@ def test_the_pass_leaves_textures_without_row_lines_alone(name):
 def test_a_negative_number_of_sweeps_is_a_clear_error():
     with pytest.raises(ParameterError, match="kind_sweeps must be at least 0"):
         GrowthParams(kind_sweeps=-1)
+    with pytest.raises(ParameterError, match="neighbourhood_sweeps must be at least 0"):
+        GrowthParams(neighbourhood_sweeps=-1)
+
+
+def test_the_neighbourhood_pass_puts_wrong_kinds_in_a_copy_of_the_exemplar_right():
+    """On the exemplar itself every neighbourhood has an exact copy (E = 0): interior motifs
+    given the other kind, apart from each other, are given their own back; held motifs keep
+    theirs, and with nothing movable nothing changes."""
+    ex, st = loaded("marsh")
+    m, s = ex.motifs, spacing(st)
+    inner = np.flatnonzero((m.xy.min(1) > 12) & (m.xy.max(1) < 48))
+    wrong = inner[::5]
+    kind = m.kind.copy()
+    kind[wrong] = 1 - kind[wrong]
+    movable = np.zeros(len(m), bool)
+    movable[wrong] = True
+    new = neighbourhood_kinds(m.xy, kind, movable, m.xy, m.kind, s)
+    assert len(wrong) >= 3 and np.array_equal(new, m.kind), np.flatnonzero(new != m.kind)
+    assert np.array_equal(neighbourhood_kinds(m.xy, kind, np.zeros(len(m), bool), m.xy, m.kind, s), kind)
+
+
+@cache
+def marsh_figures(seed: int, sweeps: int | None = None):
+    ex, st = loaded("marsh")
+    region = Region.rectangle(300, 300)
+    params = None if sweeps is None else {"neighbourhood_sweeps": sweeps}
+    arr = synthesize(ex, region, "growth", seed=seed, stats=st, boundary="centroid", params=params).arrangement
+    return score(ex, st, arr, region)
+
+
+#: Issue 13's repetition gate not met on marsh (300 × 300, default growth): seed 2's rows repeat
+#: one run of ring copies 47.4 units along (0.255 before the neighbourhood pass).
+REPETITION_NOT_MET = {2: 0.264}
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_marsh_meets_issue_13s_likeness_on_seeds_1_to_3(seed):
+    """L ≥ 0.8 with 0 overlaps, 0 violators and density ratio in 0.9–1.1 at 300 × 300, scored as
+    tests/test_growth_auto.py scores it (ring pass alone: 0.821 / 0.798 / 0.772; with the
+    neighbourhood pass 0.838 / 0.860 / 0.848)."""
+    s = marsh_figures(seed)
+    assert s.likeness >= 0.8, s.likeness
+    assert s.overlaps_total == s.violators_total == 0
+    assert 0.9 <= s.density_ratio <= 1.1, s.density_ratio
+
+
+@pytest.mark.parametrize("seed", [
+    pytest.param(seed, marks=pytest.mark.xfail(strict=True, reason=f"repetition {REPETITION_NOT_MET[seed]:.3f}"))
+    if seed in REPETITION_NOT_MET else seed for seed in (1, 2, 3)])  # fmt: skip
+def test_marsh_repetition_on_seeds_1_to_3(seed):
+    assert marsh_figures(seed).repetition <= 0.2, marsh_figures(seed).repetition
+
+
+def test_the_neighbourhood_pass_is_what_lifts_marsh():
+    """Seed 3, the pass off (ring pass alone) against on: L rises by at least 0.04 (0.772 → 0.848)."""
+    off, on = marsh_figures(3, 0), marsh_figures(3)
+    assert on.likeness > off.likeness + 0.04, (off.likeness, on.likeness)

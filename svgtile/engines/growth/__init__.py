@@ -70,6 +70,9 @@ class GrowthParams(EngineParams):
     kind_sweeps : on a drawn exemplar of rows grown with rotation ``none``, sweeps of the final
         kind pass that re-chooses kinds against each motif's complete ring (library only, see
         :mod:`.kinds`); 0 = none
+    neighbourhood_sweeps : with the kind pass, at most this many sweeps of the pass after it that
+        re-chooses kinds against the exemplar's k-nearest neighbourhoods (ma2011 §3.2; library
+        only, see :mod:`.patchkinds`); 0 = none
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
 
@@ -87,6 +90,7 @@ class GrowthParams(EngineParams):
     rows: bool = True
     cell_widths: float = 1.0
     kind_sweeps: int = 4  # growth.kinds.SWEEPS (not imported: this module imports no engine module)
+    neighbourhood_sweeps: int = 8  # growth.patchkinds.SWEEPS
     weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:
@@ -96,6 +100,8 @@ class GrowthParams(EngineParams):
             raise ParameterError(f"relax_every must be at least 0, not {self.relax_every}")
         if self.kind_sweeps < 0:
             raise ParameterError(f"kind_sweeps must be at least 0, not {self.kind_sweeps}")
+        if self.neighbourhood_sweeps < 0:
+            raise ParameterError(f"neighbourhood_sweeps must be at least 0, not {self.neighbourhood_sweeps}")
         if not self.cell_widths > 0:
             raise ParameterError(f"cell_widths must be positive, not {self.cell_widths:g}")
         self.priorities()

@@ -51,6 +51,7 @@ are filled and growth never crosses one (a seed is made only inside its piece).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,10 +70,12 @@ from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
 from svgtile.engines.growth.kinds import repick
+from svgtile.engines.growth.patchkinds import neighbourhood_kinds
 from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
+from svgtile.metrics.window import spacing
 
 _START, _RING, _NOISE, _PRIORITY = range(4)
 #: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cells`).
@@ -343,9 +346,10 @@ class Growth:
         fixed = Arrangement.concat([w.before, *w.grown])
         fsub = np.concatenate([w.bsub, *w.gsub])
         f = len(fixed)
-        kind, ring = repick(self.rings, np.concatenate([fixed.xy, own.xy]), np.concatenate([fixed.kind, own.kind]),
+        xy = np.concatenate([fixed.xy, own.xy])
+        kind, ring = repick(self.rings, xy, np.concatenate([fixed.kind, own.kind]),
                             np.concatenate([fsub, osub]), np.arange(f + len(own)) >= f, weights=self.p.weights,
-                            sweeps=self.p.kind_sweeps)  # fmt: skip
+                            sweeps=self.p.kind_sweeps, then=self.neighbourhood_pass(np.arange(f + len(own)) >= f, xy))  # fmt: skip
         kind, ring = kind[f:], ring[f:]
         changed = (kind != own.kind) & (ring >= 0)
         turned = (self.rings.angle[ring] + 180.0) % 360.0 - 180.0
@@ -365,6 +369,15 @@ class Growth:
                 break
             changed[np.flatnonzero(changed)[bad]] = False  # these keep their old kinds; check again
         j.kept, j.ksub = [cand], [sub]
+
+    def neighbourhood_pass(self, movable: np.ndarray, xy: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+        """The pass over kinds that follows the ring pass (:mod:`.patchkinds`, ma2011 §3.2): the
+        kinds of ``movable`` motifs ((n,) bool) at ``xy`` ((n, 2), user units) re-chosen against the
+        exemplar's k-nearest neighbourhoods; None when ``neighbourhood_sweeps`` is 0."""
+        if not self.p.neighbourhood_sweeps:
+            return None
+        m, s, sweeps = self.ex.motifs, spacing(self.stats), self.p.neighbourhood_sweeps
+        return lambda kind: neighbourhood_kinds(xy, kind, movable, m.xy, m.kind, s, sweeps=sweeps)
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of

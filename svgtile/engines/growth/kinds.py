@@ -28,6 +28,8 @@ sweep reads the kinds the last one left — calling the matching kernel once per
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numba
 import numpy as np
 from scipy.spatial import cKDTree
@@ -162,7 +164,8 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
 
 
 def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, movable: np.ndarray, *,
-           weights: Weights, sweeps: int = SWEEPS) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+           weights: Weights, sweeps: int = SWEEPS,
+           then: Callable[[np.ndarray], np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The kinds of ``movable`` motifs re-chosen against their complete rings (§5.2, eq. 1–3).
 
     Parameters
@@ -174,6 +177,9 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     movable : (n,) bool array
     weights : eq. (2)'s weights
     sweeps : at most this many sweeps (fewer when one changes nothing)
+    then : a further pass over the kinds the sweeps leave ((n,) int → (n,) int, changing only
+        ``movable`` motifs: :func:`~svgtile.engines.growth.patchkinds.neighbourhood_kinds`), made
+        before each changed motif's reference ring is found
 
     Returns
     -------
@@ -198,6 +204,8 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
           int(max(rings.kind.max(), rings.nkind.max(), kind.max()) + 1), rings.rel, rings.size, rings.kind,
           rings.nkind, rings.nsub, rings.mean_length, np.array([weights.distance, weights.kind, weights.subid]),
           sweeps, out)  # fmt: skip
+    if then is not None:
+        new = np.asarray(then(new), np.int64)
     changed = new != before
     if changed.any():
         out[changed] = -2
