@@ -11,7 +11,7 @@ by default marsh, seeds 1,2,3, a 300 × 300 square, scored as tests/test_growth_
 3. the same texture grown as one cell five exemplar widths wide (``cell_widths=5``: no seam
    within 150 units of its start), E by the distance from the cell's start seed (near the cell's
    centre, ``(150, 150)``: :meth:`~svgtile.engines.growth.engine.Growth.start`);
-4. L, repetition and density of library variants of the engine (the final kind pass off, cell
+4. L, repetition and density of library variants of the engine (the final kind passes off, cell
    width, relaxation during growth, eq. 2's weights) on the same seeds.
 
 E per group is :func:`svgtile.analysis.neighbourhood.neighbourhood_distance` over that group's
@@ -42,7 +42,8 @@ EDGE_BINS = (0, 3, 6, 10, 15, 20, 31)
 SEED_BINS = (0, 20, 40, 70, 100, 150)
 VARIANTS = {
     "default": {},
-    "no kind pass (growth.kinds)": {"kind_sweeps": 0},
+    "no kind passes (growth.kinds, growth.patchkinds)": {"kind_sweeps": 0},
+    "ring pass alone (no growth.patchkinds)": {"neighbourhood_sweeps": 0},
     "cells 0.75 wide": {"cell_widths": 0.75},
     "cells 1.5 wide": {"cell_widths": 1.5},
     "cells 2 wide": {"cell_widths": 2.0},

@@ -56,30 +56,43 @@ def _tables(rel, pe, ke, alpha):  # pragma: no cover
     cost = np.zeros((c, m))
     pair = np.full((c, m, k), -1, np.int64)
     d = np.empty((k, kk))
+    low = np.empty(k)  # each texture neighbour's nearest free exemplar neighbour: distance, index
+    at = np.empty(k, np.int64)
     for a in range(c):
         for e in range(m):
             for i in range(k):
+                low[i], at[i] = np.inf, -1
                 for j in range(kk):
                     if np.isnan(pe[e, j, 0]):
                         d[i, j] = np.inf
                     else:
                         dx, dy = rel[a, i, 0] - pe[e, j, 0], rel[a, i, 1] - pe[e, j, 1]
                         d[i, j] = dx * dx + dy * dy
+                        if d[i, j] < low[i]:
+                            low[i], at[i] = d[i, j], j
             total = 0.0
+            # closest pair first, the first in row-major order on a tie (as _greedy_costs): the
+            # smallest row minimum, rows kept with their minima so each round reads k of them
             for _ in range(k):
-                bi, bj, bd = -1, -1, np.inf
+                bi, bd = -1, np.inf
                 for i in range(k):
-                    for j in range(kk):
-                        if d[i, j] < bd:
-                            bi, bj, bd = i, j, d[i, j]
+                    if low[i] < bd:
+                        bi, bd = i, low[i]
                 if bi < 0:
                     break
+                bj = at[bi]
                 total += bd
                 pair[a, e, bi] = ke[e, bj]
+                low[bi], at[bi] = np.inf, -1
                 for j in range(kk):
                     d[bi, j] = np.inf
                 for i in range(k):
                     d[i, bj] = np.inf
+                    if at[i] == bj:  # its nearest is taken: the next free one
+                        low[i], at[i] = np.inf, -1
+                        for j in range(kk):
+                            if d[i, j] < low[i]:
+                                low[i], at[i] = d[i, j], j
             for i in range(k):
                 if pair[a, e, i] < 0:
                     total += rel[a, i, 0] ** 2 + rel[a, i, 1] ** 2 + alpha
@@ -142,6 +155,37 @@ def _sweeps(
     return done
 
 
+def energies(xy: np.ndarray, kind: np.ndarray, centres: np.ndarray, exemplar_xy: np.ndarray,
+             exemplar_kind: np.ndarray, spacing: float) -> np.ndarray:  # fmt: skip
+    """E_c of each of ``centres`` — the energy the pass lowers, and the term
+    :func:`svgtile.analysis.neighbourhood.neighbourhood_distance` averages (α = :data:`ALPHA`,
+    k = :data:`K`, no turns).
+
+    Parameters
+    ----------
+    xy : (n, 2) float array, user units; kind : (n,) int array — the texture (n > K)
+    centres : (c,) int array — indices into ``xy``
+    exemplar_xy : (m, 2) float array, user units; exemplar_kind : (m,) int array
+    spacing : float, user units
+
+    Returns
+    -------
+    (c,) float array, squared spacings
+    """
+    xy, kind, centres = (
+        np.asarray(xy, float),
+        np.asarray(kind, np.int64),
+        np.asarray(centres, np.int64),
+    )
+    nb = cKDTree(xy).query(xy[centres], k=K + 1)[1][:, 1:].astype(np.int64)
+    pe, ke = neighbourhoods(exemplar_xy, exemplar_kind, EXEMPLAR_FACTOR * K)
+    cost, pair = _tables(
+        (xy[nb] - xy[centres][:, None, :]) / spacing, pe / spacing, ke.astype(np.int64), ALPHA
+    )
+    ce = np.asarray(exemplar_kind, np.int64)
+    return np.array([_energy(a, c, kind, nb, cost, pair, ce, ALPHA) for a, c in enumerate(centres)])
+
+
 def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, exemplar_xy: np.ndarray,
                         exemplar_kind: np.ndarray, spacing: float, *, sweeps: int = SWEEPS) -> np.ndarray:  # fmt: skip
     """The kinds of ``movable`` motifs re-chosen to lower ma2011's neighbourhood energy (§3.2 eq. 1).
@@ -189,4 +233,4 @@ def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, e
     return kind
 
 
-__all__ = ["ALPHA", "SWEEPS", "K", "neighbourhood_kinds"]
+__all__ = ["ALPHA", "SWEEPS", "K", "energies", "neighbourhood_kinds"]
