@@ -4,7 +4,8 @@ Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
 seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.rows` (a drawn exemplar's row lines, held by
 growth and relaxation), :mod:`.kinds` (the final kind pass on such rows, §5.2 over each motif's
-complete ring), :mod:`.gapfill` and :mod:`.phases` (a repeating tile's sites: its gaps filled, its
+complete ring) and :mod:`.patchkinds` (after it, kinds against the exemplar's k-nearest
+neighbourhoods, Ma, Wei & Tong 2011 §3.2), :mod:`.gapfill` and :mod:`.phases` (a repeating tile's sites: its gaps filled, its
 hand-phased rows at wandering world phases), :mod:`.engine` (world cells, the tools).
 
 This module is the engine's declaration — its parameters (:class:`GrowthParams`, from which the

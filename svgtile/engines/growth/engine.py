@@ -36,7 +36,9 @@ growth runs per *world cell*:
   out of step at the seams, and a fifth of its grown motifs were removed in conflicts); and
   after a piece has grown, its motifs' kinds are re-chosen against their complete rings, its
   earlier-phase neighbours held (:mod:`.kinds`: each growth step matched only the neighbours
-  placed then, and marsh's likeness fell with the distance from the cell's seed).
+  placed then, and marsh's likeness fell with the distance from the cell's seed), then against
+  the exemplar's k-nearest neighbourhoods (:mod:`.patchkinds`, ma2011 §3.2: the ring pass
+  stopped short of L 0.8 on two of marsh's first three seeds).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
