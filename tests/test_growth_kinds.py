@@ -127,7 +127,9 @@ def test_the_neighbourhood_pass_puts_wrong_kinds_in_a_copy_of_the_exemplar_right
     movable[wrong] = True
     new = neighbourhood_kinds(m.xy, kind, movable, m.xy, m.kind, s)
     assert len(wrong) >= 3 and np.array_equal(new, m.kind), np.flatnonzero(new != m.kind)
-    assert np.array_equal(neighbourhood_kinds(m.xy, kind, np.zeros(len(m), bool), m.xy, m.kind, s), kind)
+    assert np.array_equal(
+        neighbourhood_kinds(m.xy, kind, np.zeros(len(m), bool), m.xy, m.kind, s), kind
+    )
 
 
 def test_the_neighbourhood_pass_lowers_the_likeness_scores_own_distance():
@@ -155,7 +157,9 @@ def marsh_figures(seed: int, sweeps: int | None = None):
     ex, st = loaded("marsh")
     region = Region.rectangle(300, 300)
     params = None if sweeps is None else {"neighbourhood_sweeps": sweeps}
-    arr = synthesize(ex, region, "growth", seed=seed, stats=st, boundary="centroid", params=params).arrangement
+    arr = synthesize(
+        ex, region, "growth", seed=seed, stats=st, boundary="centroid", params=params
+    ).arrangement
     return score(ex, st, arr, region)
 
 
