@@ -42,8 +42,8 @@ EDGE_BINS = (0, 3, 6, 10, 15, 20, 31)
 SEED_BINS = (0, 20, 40, 70, 100, 150)
 VARIANTS = {
     "default": {},
-    "no kind passes (growth.kinds, growth.patchkinds)": {"kind_sweeps": 0},
-    "ring pass alone (no growth.patchkinds)": {"neighbourhood_sweeps": 0},
+    "no kind passes (growth.kinds, growth.neighbourkinds)": {"kind_sweeps": 0},
+    "ring pass alone (no growth.neighbourkinds)": {"neighbourhood_sweeps": 0},
     "cells 0.75 wide": {"cell_widths": 0.75},
     "cells 1.5 wide": {"cell_widths": 1.5},
     "cells 2 wide": {"cell_widths": 2.0},

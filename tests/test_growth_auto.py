@@ -81,7 +81,7 @@ def test_growth_keeps_the_order_better_than_patch(name):
 #: Issue 13's gates not met on the bundled drawn exemplars (seed 1): sand's rows repeat two steps
 #: along, as the exemplar's own do, more (test_sands_repetition_is_its_exemplars_own_rows).
 #: Marsh's likeness is met since the final kind passes (growth.kinds: 0.763 → 0.821 on seed 1;
-#: growth.patchkinds: 0.838, and seeds 2 and 3 0.860 and 0.848 — tests/test_growth_kinds.py;
+#: growth.neighbourkinds: 0.838, and seeds 2 and 3 0.860 and 0.848 — tests/test_growth_kinds.py;
 #: benchmarks/README.md, "Growth's kinds" and "marsh13").
 NOT_MET = {("sand", "repetition"): 0.224}
 GATES = {"likeness": lambda s: s.likeness >= 0.8, "repetition": lambda s: s.repetition <= 0.2,

@@ -1,6 +1,6 @@
 """The final kind passes: kinds re-chosen against each motif's complete ring (Ijiri et al. 2008,
 §5.2 eq. 1–3, :mod:`svgtile.engines.growth.kinds`), then against the exemplar's k-nearest
-neighbourhoods (Ma, Wei & Tong 2011, §3.2 eq. 1, :mod:`svgtile.engines.growth.patchkinds`), per
+neighbourhoods (Ma, Wei & Tong 2011, §3.2 eq. 1, :mod:`svgtile.engines.growth.neighbourkinds`), per
 cell, on a drawn exemplar of rows."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from svgtile.engines import synthesize
 from svgtile.engines.growth import GrowthParams, Weights
 from svgtile.engines.growth.connectivity import reference_rings
 from svgtile.engines.growth.kinds import repick
-from svgtile.engines.growth.patchkinds import energies, neighbourhood_kinds
+from svgtile.engines.growth.neighbourkinds import energies, neighbourhood_kinds
 from svgtile.errors import ParameterError
 from svgtile.metrics import score
 from svgtile.metrics.window import spacing

@@ -4,7 +4,7 @@ Read in pipeline order: :mod:`.connectivity` (§4, the exemplar's ring shapes),
 :mod:`.matching` (§5.2–5.3, the best-matching reference), :mod:`.grow` (§5.1, §5.4, growth from
 seeds), :mod:`.relax` (§5.5, relaxation), :mod:`.rows` (a drawn exemplar's row lines, held by
 growth and relaxation), :mod:`.kinds` (the final kind pass on such rows, §5.2 over each motif's
-complete ring) and :mod:`.patchkinds` (after it, kinds against the exemplar's k-nearest
+complete ring) and :mod:`.neighbourkinds` (after it, kinds against the exemplar's k-nearest
 neighbourhoods, Ma, Wei & Tong 2011 §3.2), :mod:`.gapfill` and :mod:`.phases` (a repeating tile's sites: its gaps filled, its
 hand-phased rows at wandering world phases), :mod:`.engine` (world cells, the tools).
 
@@ -73,7 +73,7 @@ class GrowthParams(EngineParams):
         :mod:`.kinds`); 0 = none
     neighbourhood_sweeps : with the kind pass, at most this many sweeps of the pass after it that
         re-chooses kinds against the exemplar's k-nearest neighbourhoods (ma2011 §3.2; library
-        only, see :mod:`.patchkinds`); 0 = none
+        only, see :mod:`.neighbourkinds`); 0 = none
     weights : eq. (2)'s w1, w2, w3 (library only, see :class:`Weights`)
     """
 
@@ -91,7 +91,7 @@ class GrowthParams(EngineParams):
     rows: bool = True
     cell_widths: float = 1.0
     kind_sweeps: int = 4  # growth.kinds.SWEEPS (not imported: this module imports no engine module)
-    neighbourhood_sweeps: int = 8  # growth.patchkinds.SWEEPS
+    neighbourhood_sweeps: int = 8  # growth.neighbourkinds.SWEEPS
     weights: Weights = dataclasses.field(default_factory=Weights)
 
     def __post_init__(self) -> None:

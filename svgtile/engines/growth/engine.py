@@ -37,7 +37,7 @@ growth runs per *world cell*:
   after a piece has grown, its motifs' kinds are re-chosen against their complete rings, its
   earlier-phase neighbours held (:mod:`.kinds`: each growth step matched only the neighbours
   placed then, and marsh's likeness fell with the distance from the cell's seed), then against
-  the exemplar's k-nearest neighbourhoods (:mod:`.patchkinds`, ma2011 §3.2: the ring pass
+  the exemplar's k-nearest neighbourhoods (:mod:`.neighbourkinds`, ma2011 §3.2: the ring pass
   stopped short of L 0.8 on two of marsh's first three seeds).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
@@ -72,7 +72,7 @@ from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
 from svgtile.engines.growth.kinds import repick
-from svgtile.engines.growth.patchkinds import neighbourhood_kinds
+from svgtile.engines.growth.neighbourkinds import neighbourhood_kinds
 from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
@@ -373,7 +373,7 @@ class Growth:
         j.kept, j.ksub = [cand], [sub]
 
     def neighbourhood_pass(self, movable: np.ndarray, xy: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
-        """The pass over kinds that follows the ring pass (:mod:`.patchkinds`, ma2011 §3.2): the
+        """The pass over kinds that follows the ring pass (:mod:`.neighbourkinds`, ma2011 §3.2): the
         kinds of ``movable`` motifs ((n,) bool) at ``xy`` ((n, 2), user units) re-chosen against the
         exemplar's k-nearest neighbourhoods; None when ``neighbourhood_sweeps`` is 0."""
         if not self.p.neighbourhood_sweeps:

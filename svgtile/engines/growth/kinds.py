@@ -25,7 +25,7 @@ Deterministic and world-anchored: it reads only positions, kinds and sub-ids, wi
 The sweeps are one compiled loop (:func:`sweep`) over the motifs — sequential by nature, each
 sweep reads the kinds the last one left — calling the matching kernel once per ring evaluated.
 
-The engine follows the sweeps with a second pass (``then``: :mod:`.patchkinds`, ma2011's
+The engine follows the sweeps with a second pass (``then``: :mod:`.neighbourkinds`, ma2011's
 k-nearest neighbourhoods) before the changed motifs' references are found: on marsh the sweeps
 stop at L 0.821 / 0.798 / 0.772 (seeds 1–3), the second pass takes them to 0.838 / 0.860 / 0.848.
 """
@@ -182,7 +182,7 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     weights : eq. (2)'s weights
     sweeps : at most this many sweeps (fewer when one changes nothing)
     then : a further pass over the kinds the sweeps leave ((n,) int → (n,) int, changing only
-        ``movable`` motifs: :func:`~svgtile.engines.growth.patchkinds.neighbourhood_kinds`), made
+        ``movable`` motifs: :func:`~svgtile.engines.growth.neighbourkinds.neighbourhood_kinds`), made
         before each changed motif's reference ring is found
 
     Returns
