@@ -125,15 +125,20 @@ def _sweeps(
 ):  # pragma: no cover
     """Iterated conditional modes over ``kind`` ((n,) int, changed in place); returns the sweeps
     made.  ``rows[i]`` is motif ``i``'s table row (−1: none); ``hidx[hptr[i]:hptr[i + 1]]`` the
-    table rows whose neighbourhood holds motif ``i``."""
+    table rows whose neighbourhood holds motif ``i``.  A motif is looked at again only when a
+    kind its choice reads has changed since it was last looked at (it would choose as before)."""
     n = kind.shape[0]
+    k = nb.shape[1]
+    dirty = movable.copy()
     done = 0
     for _ in range(sweeps):
+        if not dirty.any():
+            break
         done += 1
-        changed = False
         for i in range(n):
-            if not movable[i]:
+            if not dirty[i]:
                 continue
+            dirty[i] = False
             old = kind[i]
             base = _energy(rows[i], i, kind, nb, cost, pair, ce, alpha)
             for h in range(hptr[i], hptr[i + 1]):
@@ -151,9 +156,15 @@ def _sweeps(
                 if v < best - 1e-9:
                     best, pick = v, q
             kind[i] = pick
-            changed = changed or pick != old
-        if not changed:
-            break
+            if pick == old:
+                continue
+            # the energies that read i's kind: its own and its holders'; each is read by its
+            # centre and by the members of its neighbourhood
+            for h in range(hptr[i] - 1, hptr[i + 1]):
+                a = rows[i] if h < hptr[i] else hidx[h]
+                dirty[centre[a]] = movable[centre[a]]
+                for j in range(k):
+                    dirty[nb[a, j]] = movable[nb[a, j]]
     return done
 
 
