@@ -12,8 +12,8 @@ scipy and shapely are imported; ``from svgtile import analyze`` works as it alwa
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False  # typing's own constant, without importing typing (≈ 2 ms at start-up)
 if TYPE_CHECKING:
     from svgtile.analysis.stats import Stats, analyze
     from svgtile.core.arrangement import Arrangement

@@ -106,6 +106,13 @@ def test_ctrl_c_during_the_imports_is_one_line_and_exit_130():
         child.send_signal(signal.SIGINT)
         err = child.stderr.read()
         rc = child.wait(timeout=120)
+        if err.count('File "') == 1 and err.endswith(
+            'File "<string>", line 1, in <module>\nKeyboardInterrupt\n'
+        ):
+            # it landed in the script's own line before main() ran (a few ms: the entry point
+            # imports the standard library only), out of svgtile's reach: try a later moment
+            delays.append(delay * 2)
+            continue
         assert "Traceback" not in err, f"SIGINT {delay} s after start:\n{err}"
         if rc == 0:  # the command finished first: try an earlier moment again
             delays.append(delay / 4)
