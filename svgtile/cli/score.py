@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ctypes
 import gc
+import importlib
 import json
 import multiprocessing
 import os
@@ -67,6 +68,13 @@ def score(exemplar, texture, as_json, exact, jobs):
     --exact measures everything on every motif.
     """
     _check_order(exemplar, texture)
+    if _default_jobs() < 2:
+        # no idle core: a worker forked before the imports would import them again on a core
+        # someone else is using (measured: 0.6–1.5 s slower at load 10 on 2 cores), so it is
+        # forked after them and inherits them, as before score11
+        for module in ("svgtile.cli.common", "svgtile.metrics.scoring", "svgtile.svg.texture",
+                       "svgtile.apps.compare"):  # fmt: skip
+            importlib.import_module(module)
     with _no_cycle_collection(), _second_process(jobs) as pool:
         # forked before the analysis stage, scipy and shapely are imported (this module imports
         # none of them): the worker imports them, reads the exemplar and measures the baselines
