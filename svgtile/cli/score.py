@@ -68,28 +68,33 @@ def score(exemplar, texture, as_json, exact, jobs):
     --exact measures everything on every motif.
     """
     _check_order(exemplar, texture)
-    if _default_jobs() < 2:
+    early = _core_idle()
+    if not early:
         # no idle core: a worker forked before the imports would import them again on a core
         # someone else is using (measured: 0.6–1.5 s slower at load 10 on 2 cores), so it is
-        # forked after them and inherits them, as before score11
+        # forked after them and inherits them, and works as before score11
         for module in ("svgtile.cli.common", "svgtile.metrics.scoring", "svgtile.svg.texture",
                        "svgtile.apps.compare"):  # fmt: skip
             importlib.import_module(module)
     with _no_cycle_collection(), _second_process(jobs) as pool:
-        # forked before the analysis stage, scipy and shapely are imported (this module imports
-        # none of them): the worker imports them, reads the exemplar and measures the baselines
-        # (they depend on the exemplar alone) while this process imports them, reads the
-        # exemplar and reads the whole texture (the worker is busy: no split of the scan)
-        baselines = _submit(pool, worker_baselines, exemplar)
+        # where a core is idle, forked before the analysis stage, scipy and shapely are imported
+        # (this module imports none of them): the worker imports them, reads the exemplar and
+        # measures the baselines (they depend on the exemplar alone) while this process imports
+        # them, reads the exemplar and reads the whole texture (the worker is busy: no split)
+        baselines = _submit(pool, worker_baselines, exemplar) if early else None
         from svgtile.apps.compare import format_score
         from svgtile.cli.common import json_safe, load, warn_if_few
         from svgtile.metrics import score as measure
-        from svgtile.metrics.scoring import worker_submit
+        from svgtile.metrics.scoring import ready_worker, worker_submit
         from svgtile.svg.texture import start_reading
 
         ex, stats = load(exemplar)
+        if baselines is None:  # forked now, after the imports: it starts while the file is read
+            worker_submit(pool, ready_worker)
+        # without the baselines, the worker scans the last 30 % of the <use> lines first, then
+        # measures them while this process scans the rest and measures the figures up to E
         reading = start_reading(texture, pool=pool if baselines is None else None)
-        if baselines is None:  # no worker, or it died: the baselines are measured in the figures
+        if baselines is None:
             baselines = worker_submit(pool, _baselines_of, ex, stats)
         arr, region = reading.finish(ex)
         del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
@@ -209,6 +214,12 @@ def _stop_worker(pool: ProcessPoolExecutor) -> None:
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         if process.is_alive():
             process.kill()
+
+
+def _core_idle() -> bool:
+    """Whether a second core is idle (:func:`_default_jobs`): then the worker is forked before
+    the heavy imports and imports them there, at the same time as this process."""
+    return _default_jobs() >= 2
 
 
 def _default_jobs() -> int:
