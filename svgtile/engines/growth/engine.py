@@ -77,7 +77,6 @@ from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
 from svgtile.engines.growth.rows import row_lines, slide_apart
 from svgtile.errors import ParameterError
-from svgtile.metrics.window import spacing
 
 _START, _RING, _NOISE, _PRIORITY = range(4)
 #: Rounds of regrowth into the holes the conflict check leaves (see :meth:`Growth.grow_cells`).
@@ -378,7 +377,8 @@ class Growth:
         exemplar's k-nearest neighbourhoods; None when ``neighbourhood_sweeps`` is 0."""
         if not self.p.neighbourhood_sweeps:
             return None
-        m, s, sweeps = self.ex.motifs, spacing(self.stats), self.p.neighbourhood_sweeps
+        # the exemplar's mean spacing 1 / sqrt(λ) (metrics.window.spacing, a later stage's)
+        m, s, sweeps = self.ex.motifs, 1.0 / math.sqrt(self.stats.count_density), self.p.neighbourhood_sweeps
         return lambda kind: neighbourhood_kinds(xy, kind, movable, m.xy, m.kind, s, sweeps=sweeps)
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
