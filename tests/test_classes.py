@@ -10,7 +10,7 @@ import shapely
 from conftest import XLINK
 
 from svgtile.analysis.classes import RARE_BELOW, pooled_distance, shape_classes
-from svgtile.analysis.stats import GAP_MIN_SAMPLES, analyze
+from svgtile.analysis.stats import analyze
 from svgtile.core.footprint import Prototype
 from svgtile.svg.reader import parse_exemplar
 
@@ -49,10 +49,6 @@ def test_kinds_drawn_often_enough_are_their_own_classes(counts):
     assert [cls[0] == cls[2], cls[1] == cls[2]] == rare.tolist()
 
 
-def test_a_kind_is_rare_while_the_junction_rule_has_no_gap_distribution_of_it():
-    assert RARE_BELOW == GAP_MIN_SAMPLES
-
-
 def test_pooled_distance_takes_the_class_pairs_smallest_measured_distance():
     d = np.array([[9.0, 8.0, 1.0], [8.0, 7.0, 2.0], [1.0, 2.0, 0.5]])
     m = np.array([[False, True, True], [True, False, True], [True, True, True]])
@@ -82,7 +78,7 @@ def test_analyze_pools_fragments_drawn_once_so_they_may_come_close():
     assert np.allclose(sub, sub.min()) and sub.min() < 3.0  # all pairs: the nearest pair's gap
 
 
-@pytest.mark.parametrize("tile", ["681", "714", "715"])
+@pytest.mark.parametrize("tile", ["681", "685", "714", "715"])
 def test_fgdc_dash_fields_meet_their_rule_and_reach_their_density(tile):
     """FGDC till and dash fields draw most dash lengths two to four times: their distance rule,
     measured from those few pairs, kept dashes 10–30 units apart that the exemplar's other dashes
@@ -104,7 +100,7 @@ def test_fgdc_dash_fields_meet_their_rule_and_reach_their_density(tile):
     stats = analyze(ex)
     counts = np.bincount(ex.motifs.kind, minlength=len(ex.prototypes))
     # the case: many kinds drawn a few times
-    assert ((counts > 1) & (counts < RARE_BELOW)).sum() >= 10
+    assert ((counts > 1) & (counts < RARE_BELOW)).sum() >= 8
     own = find_conflicts(periodic_block(ex.motifs, ex.period), ex.prototypes, stats.distance)
     assert not own.violation.any() and not own.overlap.any()
     region = gate_region(t.box, len(ex.motifs))

@@ -24,9 +24,7 @@ from svgtile.core.footprint import (
 )
 
 #: An ordered kind pair (i, j) has a nearest-gap distribution only if at least this many exemplar
-#: motifs of kind i have a motif of kind j to measure to (each gives one sample of it).  Kinds
-#: with fewer instances take their shape class's distance rule
-#: (:data:`svgtile.analysis.classes.RARE_BELOW`, the same count).
+#: motifs of kind i have a motif of kind j to measure to (each gives one sample of it).
 GAP_MIN_SAMPLES = 5
 
 
@@ -82,7 +80,7 @@ def analyze(exemplar: Exemplar) -> Stats:
     else:
         distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
     counts = np.bincount(motifs.kind, minlength=k)
-    # rare kinds keep the distances of their shape class, not of their one to four instances
+    # rare kinds keep the distances of their shape class, not of their few instances
     distance, measured = pooled_distance(distance, measured, shape_classes(protos, counts))
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
