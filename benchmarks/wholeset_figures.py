@@ -41,15 +41,25 @@ def measure(tiles: list[str], tests: Path) -> None:
                           "s": round(time.perf_counter() - t0, 1)}), flush=True)  # fmt: skip
 
 
+#: The figures of the table, in its column order.
+FIGURES = ("density", "tv", "L", "rep")
+
+
+def _read(path: Path) -> dict[str, dict]:
+    """The measured tiles of one run (:func:`measure`'s lines), by tile."""
+    lines = map(json.loads, path.read_text().splitlines())
+    return {d["tile"]: d for d in lines if "density" in d}
+
+
 def compare(before: Path, after: Path) -> None:
-    runs = [{d["tile"]: d for d in map(json.loads, p.read_text().splitlines()) if "density" in d} for p in (before, after)]
+    runs = [_read(p) for p in (before, after)]
     print("| tile | density/ρ | kind-mix TV | L | repetition | overlaps/violators |")
     print("|---|---|---|---|---|---|")
     for tile in runs[0]:
         b, a = runs[0][tile], runs[1].get(tile)
         if a is None:
             continue
-        cells = [f"{b[k]:.3f} → {a[k]:.3f}" if b[k] != a[k] else f"{a[k]:.3f}" for k in ("density", "tv", "L", "rep")]
+        cells = [f"{b[k]:.3f} → {a[k]:.3f}" if b[k] != a[k] else f"{a[k]:.3f}" for k in FIGURES]
         print(f"| {tile} | {' | '.join(cells)} | {b['ov']}/{b['viol']} → {a['ov']}/{a['viol']} |")
     for name, r in zip(("before", "after"), runs, strict=True):
         v = [r[t] for t in runs[0] if t in runs[1]]
@@ -62,7 +72,12 @@ def compare(before: Path, after: Path) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("tiles", nargs="*", help="set/stem, as test_wholeset names them (fgdc/681)")
-    parser.add_argument("--tests", type=Path, default=HERE.parent / "tests", help="the tests folder to take the gates from")
+    parser.add_argument(
+        "--tests",
+        type=Path,
+        default=HERE.parent / "tests",
+        help="the tests folder to take the gates from",
+    )
     parser.add_argument("--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"))
     args = parser.parse_args()
     if args.compare:
