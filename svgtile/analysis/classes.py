@@ -1,4 +1,4 @@
-"""Kinds as classes: motifs drawn once each, grouped by shape (issue 12.3).
+"""Kinds as classes: motifs drawn once or a few times each, grouped by shape (issue 12.3).
 
 A hand-drawn breccia (FGDC 605) draws each angular fragment once; an exact-match classifier
 (:func:`svgtile.svg.kinds.match_kinds`) then makes every fragment its own kind, and the distance
@@ -6,13 +6,25 @@ rule of AlMeraj et al. 2013 §3.1 measures ``d_ij`` between *those two fragments
 exemplar happened to put them.  Two fragments 30 units apart in the exemplar may then never come
 closer than 30 units in the texture, and most fragments are culled (605: density / ρ 0.31).
 
-Here kinds with a single instance are grouped into classes by shape — size (area, by factors of
-two), elongation (the aspect of the minimum rotated rectangle) and angularity (the
-isoperimetric quotient 4πA/P² of the outline; :func:`shape_classes`) — and the distance rule is pooled per class pair:
-``d_ij`` becomes the smallest distance the exemplar shows between *any* member of i's class and
-any member of j's (:func:`pooled_distance`).  Kinds drawn more than once are classes of their
-own, so exemplars without single-instance kinds are unchanged.  Each motif keeps its own kind
-and symbol in the output.
+A kind drawn two to four times is no better measured: FGDC's dash fields (681, 714, 715: till,
+dashes of a few lengths amid dots) draw most dash lengths twice or three times, and ``d_ii`` is
+then the gap of one pair of dashes (26.6 units for a dash of 714 drawn twice, whose shape class
+keeps 1.1; 19.0 against 1.0 on average over its 23 rare kinds) and ``d_ij`` to another rare dash
+the gap of a handful of pairs.  The texture could then place those
+dashes only where the rule, wider than any gap the exemplar shows between dashes of that shape,
+left room: 714 came out at density / ρ 0.86 and 715 at 0.76, short of exactly those kinds.  The dash
+fields 684–686 draw dash lengths 5 to 14 times, and the rarer of those still kept 3.5–6.6 units
+where the common dashes keep 1–2.  A kind needs :data:`RARE_BELOW` instances before its own pairs
+stand for the rule.
+
+Here kinds with fewer than :data:`RARE_BELOW` instances are grouped into classes by shape — size
+(area, by factors of two), elongation (the aspect of the minimum rotated rectangle) and
+angularity (the isoperimetric quotient 4πA/P² of the outline; :func:`shape_classes`) — and the
+distance rule is pooled per class pair: ``d_ij`` becomes the smallest distance the exemplar shows
+between *any* member of i's class and any member of j's (:func:`pooled_distance`).  Pooling only
+lowers a distance, so the exemplar's own motifs still keep the rule.  Kinds drawn
+:data:`RARE_BELOW` times or more are classes of their own, so exemplars without rare kinds are
+unchanged.  Each motif keeps its own kind and symbol in the output.
 """
 
 from __future__ import annotations
@@ -26,6 +38,12 @@ from scipy.sparse.csgraph import connected_components
 
 from svgtile.core.footprint import Prototype
 
+#: Kinds drawn fewer times than this are pooled into shape classes (their own few pairs do not
+#: measure a distance rule).  Chosen on the whole set (FGDC, osm-carto, Equinor; benchmarks/README.md,
+#: "dens12"): below 5 (the junction rule's :data:`svgtile.analysis.stats.GAP_MIN_SAMPLES`) left the
+#: dash fields 684–686 at 0.72–0.75 ρ, short of kinds drawn 5–11 times; 13 brings them to 0.90 with
+#: the mean likeness unchanged; from 20 on the bundled breccia changes.
+RARE_BELOW = 13
 #: Two kinds are alike when their areas differ by less than this factor …
 SIZE_FACTOR = 2.0
 #: … their elongations (long / short side of the minimum rotated rectangle) by less than this …
@@ -51,9 +69,10 @@ def shape_features(protos: list[Prototype]) -> np.ndarray:
 
 
 def shape_classes(protos: list[Prototype], counts: np.ndarray) -> np.ndarray:
-    """(k,) int class of each kind: single-instance kinds share a class with those of like shape
-    (area within :data:`SIZE_FACTOR`, elongation within :data:`ELONGATION_FACTOR`, both angular
-    or both round), chained by single linkage; every other kind is its own class.
+    """(k,) int class of each kind: rare kinds (fewer than :data:`RARE_BELOW` instances) share a
+    class with rare kinds of like shape (area within :data:`SIZE_FACTOR`, elongation within
+    :data:`ELONGATION_FACTOR`, both angular or both round), chained by single linkage; every
+    other kind is its own class.
 
     Parameters
     ----------
@@ -62,7 +81,8 @@ def shape_classes(protos: list[Prototype], counts: np.ndarray) -> np.ndarray:
     """
     k = len(protos)
     cls = np.arange(k)
-    once = np.flatnonzero(np.asarray(counts) == 1)
+    counts = np.asarray(counts)
+    once = np.flatnonzero((counts >= 1) & (counts < RARE_BELOW))
     if len(once) < 2:
         return cls
     f = shape_features([protos[i] for i in once])

@@ -64,8 +64,9 @@ class Stats:
 def analyze(exemplar: Exemplar) -> Stats:
     """Compute :class:`Stats` for an exemplar.
 
-    Kinds drawn once each are pooled into shape classes for the distance rule
-    (:mod:`svgtile.analysis.classes`, issue 12.3).
+    Kinds drawn fewer than :data:`~svgtile.analysis.classes.RARE_BELOW` times are pooled into
+    shape classes for the distance rule (:mod:`svgtile.analysis.classes`, issue 12.3): their own
+    few pairs do not measure it.
 
     For a repeating tile (``exemplar.period`` set) distances and overlaps are measured across the
     tile's edges (:func:`periodic_distance_matrix`); the density needs no correction there, since
@@ -79,7 +80,7 @@ def analyze(exemplar: Exemplar) -> Stats:
     else:
         distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
     counts = np.bincount(motifs.kind, minlength=k)
-    # kinds drawn once each keep the distances of their shape class, not of their one instance
+    # rare kinds keep the distances of their shape class, not of their few instances
     distance, measured = pooled_distance(distance, measured, shape_classes(protos, counts))
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
