@@ -25,7 +25,15 @@ from svgtile.analysis.stats import GAP_MIN_SAMPLES, Stats, nearest_gaps
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
-from svgtile.metrics.order import BOX, explained, order_steps
+from svgtile.metrics.repeats import (  # noqa: F401  (re-exported: the figure lived here before issue 13)
+    REPEAT_BIN,
+    REPEAT_MIN,
+    REPEAT_REACH,
+    REPEAT_SAMPLES,
+    Repetition,
+    _mode_share,
+    repetition,
+)
 from svgtile.metrics.window import exemplar_size, finite_or_none, in_window, motif_sample, spacing
 
 #: At most this many texture motifs per kind are measured for nearest gaps.
@@ -41,14 +49,6 @@ PAIR_BINS = 12
 PAIR_MIN_PAIRS = 20
 #: At most this many texture motifs per kind are reference points of the pair correlation.
 PAIR_SAMPLES = 10_000
-#: Repetition: displacements are binned on a grid of this many mean spacings …
-REPEAT_BIN = 0.1
-#: … counted from this many mean spacings (or half the exemplar's size, if smaller) …
-REPEAT_MIN = 2.0
-#: … up to this many exemplar sizes (the larger side of the input region's bounding box) …
-REPEAT_REACH = 1.5
-#: … from at most this many reference motifs.
-REPEAT_SAMPLES = 4000
 
 
 @dataclass(frozen=True)
@@ -105,39 +105,6 @@ class Structure:
     gap_noise: float | None
     pair_correlation_distance: float | None
     kind_pairs: tuple[KindPair, ...]
-
-
-@dataclass(frozen=True)
-class Repetition:
-    """What :func:`repetition` finds.
-
-    Attributes
-    ----------
-    repetition : float or None
-        Excess over chance of motifs repeated at the most common displacement *that the
-        exemplar's order does not explain*, in [0, 1]: ≈ 1 for a tiling of irregular content,
-        ≈ 0 for random placement and for a faithful texture of a lattice; lower is less
-        repetitive.  The figure reported and gated.
-    repetition_raw : float or None
-        The same without the chance correction, in [0, 1].
-    repetition_vector : (float, float) or None
-        Its displacement ``(dx, dy)``, user units.
-    repetition_total : float or None
-        The figure over every displacement, the exemplar's own lattice steps included (what
-        ``repetition`` was before issue 12): ≈ 1 for any texture of a lattice.
-    repetition_total_vector : (float, float) or None
-        Its displacement, user units.
-    order_steps : tuple of (float, float)
-        The exemplar's steps whose lattice was left out (:func:`svgtile.metrics.order.order_steps`),
-        user units; empty when the exemplar has no exact order.
-    """
-
-    repetition: float | None
-    repetition_raw: float | None
-    repetition_vector: tuple[float, float] | None
-    repetition_total: float | None = None
-    repetition_total_vector: tuple[float, float] | None = None
-    order_steps: tuple[tuple[float, float], ...] = ()
 
 
 def kind_trees(arr: Arrangement, k: int) -> list[cKDTree]:
@@ -234,7 +201,9 @@ def structure(
         for j in range(k):
             ge = nearest_gaps(ex, protos, src_ex, j, geoms=ex_geoms)
             ge = ge[np.isfinite(ge)]
-            gt = nearest_gaps(arr, protos, src_tex, j, geoms=geoms, tree=trees[j] if trees else None)
+            gt = nearest_gaps(
+                arr, protos, src_tex, j, geoms=geoms, tree=trees[j] if trees else None
+            )
             gt = gt[np.isfinite(gt)]
             d_gap = noise = None
             if len(ge) >= GAP_MIN_SAMPLES and ge.mean() > 0 and len(gt):
@@ -382,7 +351,9 @@ def _set_covariance(window: shapely.Geometry, d: np.ndarray, reach: float = math
     box = (x1 - x0) * (y1 - y0)
     parts = _apart_rectangles(window, reach) if window.geom_type == "MultiPolygon" else None
     if window.geom_type == "Polygon" and abs(window.area - box) <= 1e-9 * box:
-        gamma = np.maximum(x1 - x0 - np.abs(d[:, 0]), 0.0) * np.maximum(y1 - y0 - np.abs(d[:, 1]), 0.0)
+        gamma = np.maximum(x1 - x0 - np.abs(d[:, 0]), 0.0) * np.maximum(
+            y1 - y0 - np.abs(d[:, 1]), 0.0
+        )
     elif parts is not None:
         w, h = parts[:, 2] - parts[:, 0], parts[:, 3] - parts[:, 1]
         # np.maximum, not np.clip(…, 0, None): the same values, and clip's slow path took ten times
@@ -417,129 +388,12 @@ def _apart_rectangles(window: shapely.Geometry, reach: float) -> np.ndarray | No
     boxes = (bounds[:, 2] - bounds[:, 0]) * (bounds[:, 3] - bounds[:, 1])
     if not np.allclose(shapely.area(parts), boxes, rtol=1e-9, atol=0) or not math.isfinite(reach):
         return None
-    gap_x = np.maximum(bounds[:, None, 0] - bounds[None, :, 2], bounds[None, :, 0] - bounds[:, None, 2])
-    gap_y = np.maximum(bounds[:, None, 1] - bounds[None, :, 3], bounds[None, :, 1] - bounds[:, None, 3])
+    gap_x = np.maximum(
+        bounds[:, None, 0] - bounds[None, :, 2], bounds[None, :, 0] - bounds[:, None, 2]
+    )
+    gap_y = np.maximum(
+        bounds[:, None, 1] - bounds[None, :, 3], bounds[None, :, 1] - bounds[:, None, 3]
+    )
     apart = np.maximum(gap_x, gap_y) >= reach
     np.fill_diagonal(apart, True)
     return bounds if apart.all() else None
-
-
-# ----------------------------------------------------------------------------- repetition
-
-
-def repetition(
-    arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None,
-    trees: list[cKDTree] | None = None,
-) -> Repetition:  # fmt: skip
-    """How strongly the arrangement repeats itself where the exemplar's order does not.
-
-    ≈ 1 for a tiling of irregular content, ≈ 0 for random placement and for a faithful texture
-    of a lattice.  With ``s`` the mean spacing and ``L`` the exemplar's size (larger side of the
-    input region's bounding box):
-
-    1. Reference motifs: those in ``window`` (at most :data:`REPEAT_SAMPLES`, see
-       :func:`~svgtile.metrics.window.motif_sample`).  For each reference a, every *same-kind*
-       motif b of the texture with ``r0 ≤ |x_b − x_a| < R`` gives the displacement ``x_b − x_a``, where
-       ``r0 = min(REPEAT_MIN · s, L / 2)`` (beyond local packing) and
-       ``R = max(REPEAT_REACH · L, 2 r0)`` (reaching past the exemplar's own period).
-    2. **The exemplar's order is left out**: displacements within ±1.5 bins (per axis) of the
-       lattice generated by the exemplar's exact steps are dropped
-       (:mod:`svgtile.metrics.order` states the rule and why: a true lattice tile's period is
-       such a step combination, an irregular tile's period and a jittered lattice's are not).
-    3. The remaining displacements are binned on a square grid of step ``q = REPEAT_BIN · s``
-       (``⌊d / q⌋`` per axis); ``v`` is the bin holding the most displacements among the bins
-       of the half-plane ``dx > 0`` (or ``dx = 0, dy ≥ 0``) — the histogram is symmetric, ``v``
-       and ``−v`` tie — and the first in row-major order on a tie.
-    4. ``repetition_raw`` ``P`` is the fraction of references with at least one same-kind
-       partner whose (remaining) displacement falls in ``v`` or one of its 8 neighbouring bins
-       (a ``3q × 3q`` square, so rounding at bin edges does not matter); ``repetition_vector``
-       is the mean of those displacements.
-    5. At random, a reference of kind c has such a partner with probability
-       ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
-       ``window``); with ``P0`` the mean of ``p_c`` over the references,
-       ``repetition = max(0, (P − P0) / (1 − P0))`` — the excess over chance, as in Cohen's κ.
-
-    In a tiling of period t every motif in the interior has a partner at exactly t, so P = 1
-    and ``repetition`` = 1 — unless t belongs to the exemplar's own lattice.  For random
-    placement P ≈ P0 (≈ 0.09 Σ f_c² with these constants) and ``repetition`` ≈ 0.
-    ``repetition_total`` is steps 3–5 without step 2 (the figure before issue 12, which scored
-    every texture of a lattice exemplar ≈ 1 whatever the engine: it measures repetition, not
-    its cause); it is kept so that nothing is lost.
-
-    ``inside`` : (n,) bool, the motifs in ``window``, if known; ``trees`` : :func:`kind_trees`
-    of ``arr``, if built.
-
-    Returns
-    -------
-    Repetition: the figures are None if no motif is in ``window``, the vectors if no
-    displacement was found.
-    """
-    if inside is None:
-        inside = in_window(arr, window)
-    if not inside.any() or not stats.count_density > 0:
-        return Repetition(None, None, None)
-    s = spacing(stats)
-    size = max(exemplar_size(exemplar))
-    q = REPEAT_BIN * s
-    r0 = min(REPEAT_MIN * s, size / 2)
-    reach = max(REPEAT_REACH * size, 2 * r0)
-    steps = order_steps(exemplar, s, REPEAT_MIN * s)
-    own = tuple((float(x), float(y)) for x, y in steps)
-    ref = motif_sample(arr, np.flatnonzero(inside), REPEAT_SAMPLES)
-    lam = np.bincount(arr.kind[inside], minlength=len(stats.frequency)) / window.area
-    chance = float(np.mean(-np.expm1(-lam[arr.kind[ref]] * 9 * q * q)))
-
-    who, disp = [], []
-    for c in np.unique(arr.kind[ref]):
-        mine = ref[arr.kind[ref] == c]
-        peers = np.flatnonzero(arr.kind == c)
-        tree = trees[c] if trees else cKDTree(arr.xy[peers])
-        found = cKDTree(arr.xy[mine]).sparse_distance_matrix(tree, reach, output_type="ndarray")
-        keep = (found["v"] >= r0) & (found["v"] < reach)
-        a, b = mine[found["i"][keep]], peers[found["j"][keep]]
-        who.append(a)
-        disp.append(arr.xy[b] - arr.xy[a])
-    who = np.concatenate(who) if who else np.zeros(0, np.int64)
-    if len(who) == 0:
-        return Repetition(0.0, 0.0, None, 0.0, None, own)
-    disp = np.concatenate(disp)
-    total, total_raw, total_vector = _mode_share(who, disp, ref, len(arr), q, reach, chance)
-    if len(steps) == 0:  # no order to leave out: the two figures are one
-        return Repetition(total, total_raw, total_vector, total, total_vector, own)
-    mine = ~explained(disp, steps, BOX * q)
-    corrected, raw, vector = _mode_share(who[mine], disp[mine], ref, len(arr), q, reach, chance)
-    return Repetition(corrected, raw, vector, total, total_vector, own)
-
-
-def _mode_share(
-    who: np.ndarray, disp: np.ndarray, ref: np.ndarray, n: int, q: float, reach: float, chance: float,
-) -> tuple[float, float, tuple[float, float] | None]:  # fmt: skip
-    """Steps 3–5 of :func:`repetition`: (corrected, raw, vector) of the displacements given.
-
-    ``who`` (p,) the reference of each displacement ``disp`` (p, 2); ``ref`` the references;
-    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0.
-    """
-    if len(who) == 0:
-        return 0.0, 0.0, None
-    cell = np.floor(disp / q).astype(np.int64)
-    half = math.ceil(reach / q) + 1
-    side = 2 * half + 1
-    key = (cell[:, 0] + half) * side + (cell[:, 1] + half)
-    # v and −v are equally common: the mode is taken in the half-plane dx > 0 (or dx = 0, dy ≥ 0)
-    upper = (cell[:, 0] > 0) | ((cell[:, 0] == 0) & (cell[:, 1] >= 0))
-    if side * side <= 1 << 24:
-        count = np.bincount(key[upper], minlength=side * side)
-        mode = int(np.argmax(count))
-    else:
-        values, count = np.unique(key[upper], return_counts=True)
-        mode = int(values[np.argmax(count)])
-    mx, my = mode // side - half, mode % side - half
-    near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
-    has = np.zeros(n, dtype=bool)
-    has[who[near]] = True
-    raw = float(has[ref].mean())
-    corrected = max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0
-    if not near.any():
-        return corrected, raw, None
-    vector = disp[near].mean(axis=0)
-    return corrected, raw, (float(vector[0]), float(vector[1]))
