@@ -20,7 +20,11 @@ from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.metrics import repetition, score
 
-FGDC = Path(os.environ.get("SVGTILE_DATA") or "../shared/data") / "fgdc-geologic-patterns" / "lithology"
+FGDC = (
+    Path(os.environ.get("SVGTILE_DATA") or "../shared/data")
+    / "fgdc-geologic-patterns"
+    / "lithology"
+)
 
 
 def line(label, r):
@@ -46,7 +50,9 @@ if "grow" in which:
         st = analyze(ex)
         for seed in (1, 2, 3):
             region = Region.rectangle(300, 300)
-            arr = synthesize(ex, region, "growth", seed=seed, stats=st, boundary="centroid").arrangement
+            arr = synthesize(
+                ex, region, "growth", seed=seed, stats=st, boundary="centroid"
+            ).arrangement
             line(f"growth {name} seed {seed}", score(ex, st, arr, region))
     for name in ("619", "620", "670"):
         ex, st = fgdc(name)

@@ -2,8 +2,9 @@
 
 Second-order figures of the motifs as a marked point pattern (kinds are the marks), each defined
 in the docstring of the function that computes it: :func:`structure` (nearest footprint gaps
-and pair correlation per ordered kind pair) and :func:`repetition` (how strongly the
-arrangement repeats itself where the exemplar's own order does not, :mod:`svgtile.metrics.order`).  Distributions of large textures are measured on a sample of their
+and pair correlation per ordered kind pair); :func:`repetition` (how strongly the arrangement
+repeats itself beyond what the exemplar shows) lives in :mod:`svgtile.metrics.repeats` and is
+re-exported here.  Distributions of large textures are measured on a sample of their
 motifs (:func:`svgtile.metrics.window.motif_sample`).
 
 References
@@ -201,9 +202,7 @@ def structure(
         for j in range(k):
             ge = nearest_gaps(ex, protos, src_ex, j, geoms=ex_geoms)
             ge = ge[np.isfinite(ge)]
-            gt = nearest_gaps(
-                arr, protos, src_tex, j, geoms=geoms, tree=trees[j] if trees else None
-            )
+            gt = nearest_gaps(arr, protos, src_tex, j, geoms=geoms, tree=trees[j] if trees else None)
             gt = gt[np.isfinite(gt)]
             d_gap = noise = None
             if len(ge) >= GAP_MIN_SAMPLES and ge.mean() > 0 and len(gt):
@@ -351,9 +350,7 @@ def _set_covariance(window: shapely.Geometry, d: np.ndarray, reach: float = math
     box = (x1 - x0) * (y1 - y0)
     parts = _apart_rectangles(window, reach) if window.geom_type == "MultiPolygon" else None
     if window.geom_type == "Polygon" and abs(window.area - box) <= 1e-9 * box:
-        gamma = np.maximum(x1 - x0 - np.abs(d[:, 0]), 0.0) * np.maximum(
-            y1 - y0 - np.abs(d[:, 1]), 0.0
-        )
+        gamma = np.maximum(x1 - x0 - np.abs(d[:, 0]), 0.0) * np.maximum(y1 - y0 - np.abs(d[:, 1]), 0.0)
     elif parts is not None:
         w, h = parts[:, 2] - parts[:, 0], parts[:, 3] - parts[:, 1]
         # np.maximum, not np.clip(…, 0, None): the same values, and clip's slow path took ten times
@@ -388,12 +385,8 @@ def _apart_rectangles(window: shapely.Geometry, reach: float) -> np.ndarray | No
     boxes = (bounds[:, 2] - bounds[:, 0]) * (bounds[:, 3] - bounds[:, 1])
     if not np.allclose(shapely.area(parts), boxes, rtol=1e-9, atol=0) or not math.isfinite(reach):
         return None
-    gap_x = np.maximum(
-        bounds[:, None, 0] - bounds[None, :, 2], bounds[None, :, 0] - bounds[:, None, 2]
-    )
-    gap_y = np.maximum(
-        bounds[:, None, 1] - bounds[None, :, 3], bounds[None, :, 1] - bounds[:, None, 3]
-    )
+    gap_x = np.maximum(bounds[:, None, 0] - bounds[None, :, 2], bounds[None, :, 0] - bounds[:, None, 2])
+    gap_y = np.maximum(bounds[:, None, 1] - bounds[None, :, 3], bounds[None, :, 1] - bounds[:, None, 3])
     apart = np.maximum(gap_x, gap_y) >= reach
     np.fill_diagonal(apart, True)
     return bounds if apart.all() else None

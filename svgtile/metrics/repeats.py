@@ -39,6 +39,11 @@ REPEAT_PEAKS = 4
 #: The exemplar shows a displacement when at least this many of its motifs, shifted by it, stay
 #: inside its input region (a share of fewer cannot be told from noise: it counts as not shown).
 REPEAT_EX_MIN = 10
+#: The exemplar shows a displacement v also when it repeats at v / m to within 1 / m of the
+#: square (rows: m steps along a row), for whole m with |v| / m at least this many mean spacings …
+REPEAT_DIVIDE = 0.5
+#: … and m at most this.
+REPEAT_DIVIDE_MAX = 64
 
 
 @dataclass(frozen=True)
@@ -186,7 +191,7 @@ def repetition(
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     cell = np.floor(disp / q).astype(np.int64)
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
-    shown = _exemplar_shares(exemplar, (peaks + 0.5) * q, BOX * q)
+    shown = _exemplar_shares(exemplar, (peaks + 0.5) * q, BOX * q, REPEAT_DIVIDE * s)
     best = None
     for k, (mx, my) in enumerate(peaks):
         near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
@@ -234,32 +239,49 @@ def _peaks(cell: np.ndarray, half: int, most: int) -> np.ndarray:
     return np.array(taken, dtype=np.int64).reshape(-1, 2)
 
 
-def _exemplar_shares(exemplar: Exemplar, shifts: np.ndarray, half: float) -> np.ndarray:
+def _exemplar_shares(
+    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float
+) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift, step 5 of :func:`repetition`.
 
-    The share of the exemplar's motifs (unwrapped) with a same-kind motif within ``half`` (per
-    axis) of ``x + v``, among those whose square ``x + v ± half`` lies inside the exemplar's
-    input region's bounding box; 0 where fewer than :data:`REPEAT_EX_MIN` do.
+    ``P_ex(v) = max_m S(v / m, half / m)`` over the whole divisors ``m ≥ 1`` with
+    ``|v| / m ≥ shortest`` (at most :data:`REPEAT_DIVIDE_MAX`), where ``S(u, e)`` is the share of
+    the exemplar's motifs (unwrapped) with a same-kind motif within ``e`` (per axis) of
+    ``x + u``, among those whose square ``x + u ± e`` lies inside the exemplar's input region's
+    bounding box (0 where fewer than :data:`REPEAT_EX_MIN` do).  An exemplar that repeats at
+    ``u`` to within ``e / m`` shows its order at ``m u`` to within ``e``: rows exact along x
+    excuse the texture's partners 2, 3, … steps along a row, out to the tile's width and beyond,
+    while a jittered or irregular tile stamped at its period is not excused (its content does
+    not repeat at a fraction of the period to that precision).
 
-    ``shifts`` (k, 2) float, user units, the squares' centres ``v``; ``half`` user units.
+    ``shifts`` (k, 2) float, user units, the squares' centres ``v``; ``half`` and ``shortest``
+    user units.
     """
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     out = np.zeros(len(shifts))
     if len(xy) == 0 or len(shifts) == 0:
         return out
     x0, y0, x1, y1 = exemplar.region.bounds
+    length = np.hypot(shifts[:, 0], shifts[:, 1])
+    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
+    peak = np.repeat(np.arange(len(shifts)), most)
+    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    u, e = shifts[peak] / m[:, None], half / m
+    # every (divisor, motif) pair at once: the shifted square, and whether it lies inside
+    tx, ty = xy[None, :, 0] + u[:, 0, None], xy[None, :, 1] + u[:, 1, None]
+    ee = e[:, None]
+    seen = (tx - ee >= x0) & (tx + ee <= x1) & (ty - ee >= y0) & (ty + ee <= y1)
+    row, col = np.nonzero(seen)
     # one tree over every kind: each kind's motifs moved apart along x by more than any reach
     apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
     tree = cKDTree(np.c_[xy[:, 0] + kind * apart, xy[:, 1]])
-    for k, (vx, vy) in enumerate(shifts):
-        tx, ty = xy[:, 0] + vx, xy[:, 1] + vy
-        seen = (tx - half >= x0) & (tx + half <= x1) & (ty - half >= y0) & (ty + half <= y1)
-        if seen.sum() < REPEAT_EX_MIN:
-            continue
-        found = tree.query_ball_point(
-            np.c_[tx[seen] + kind[seen] * apart, ty[seen]], half, p=np.inf, return_length=True
-        )
-        out[k] = float(np.mean(found > 0))
+    found = tree.query_ball_point(
+        np.c_[tx[row, col] + kind[col] * apart, ty[row, col]], e[row], p=np.inf, return_length=True
+    )
+    eligible = np.bincount(row, minlength=len(m))
+    hits = np.bincount(row, weights=found > 0, minlength=len(m))
+    share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
+    np.maximum.at(out, peak, share)
     return out
 
 
