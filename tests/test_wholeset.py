@@ -75,6 +75,7 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/605", "repetition"): "0.283",
     ("fgdc/605", "likeness"): "L -0.05",
     ("fgdc/606", "kind mix"): "TV 0.074 (2026-12-02, patch hole filling)",
+    ("fgdc/606", "repetition"): "0.203 (2026-12-03, issue 13's figure, the max over the 4 largest peaks against what the exemplar shows; 0.053 at the single mode)",
     ("fgdc/606", "likeness"): "L 0.11",
     ("fgdc/607", "likeness"): "L 0.41",
     ("fgdc/608", "repetition"): "0.310",
