@@ -64,7 +64,10 @@ LOW_LIKENESS: dict[str, float] = {}
 #: (:func:`test_the_tiles_row_relations_repeat_beyond_a_fifth`; benchmarks/README.md,
 #: "Why growth on FGDC 619, 620 and 670 cannot meet the repetition gate").
 #: (FGDC 660 and 668, bedded rows of marks imported as cells, measured 1.000 the same way when grown.)
-REPEATS = {"619": 1.000, "620": 1.000, "670": 1.000}
+#: Issue 13's figure excuses what the exemplar shows inside itself (a row's exact step, and m
+#: steps of it to within 1/m of the box): 619 and 620 pass since (0.000); 670 does not (its
+#: shuffled rows still score ≥ 0.8 by it, test_the_tiles_own_rows_repeat_by_the_figure).
+REPEATS = {"670": 1.000}
 
 
 @cache
@@ -148,21 +151,24 @@ def region_of(name: str):
 
 
 @needs_data
-@pytest.mark.parametrize("name", sorted(REPEATS))
+@pytest.mark.parametrize("name", sorted(ROWS))
 def test_the_tiles_own_rows_repeat_by_the_figure(name):
     """Why :data:`REPEATS` are xfails whatever growth does: the tile's rows, each row copy moved
     along x by its own random shift (nothing repeats across rows at the period), still repeat
     ≥ 0.8 by the figure, at a displacement along a row.  When the figure learns to leave a
-    row's exact step out this fails: measure the three again."""
+    row's exact step out this fails: measure the three again.  Issue 13's figure does (it
+    excuses what the exemplar shows): 619 and 620's shuffled rows score ≤ 0.2 by it, and the
+    figure before (``repetition_order``) is kept here; 670 still repeats ≥ 0.8."""
     ex, st, region = region_of(name)
     per_row = np.bincount(tile_rows(ex, 0.5 * spacing(st)))
     assert len(per_row) == ROWS[name] and per_row.min() >= 5
     arr = shuffled_rows(ex, st, region, rng=np.random.default_rng(1))
     assert at_step(arr, (0.0, ex.period[1]), 0.01 * spacing(st)) < 0.3  # the probe broke the period
     s = score(ex, st, arr, region)
-    assert s.repetition >= 0.8, s.repetition
-    vx, vy = s.repetition_vector
-    assert abs(vy) < 0.1 * spacing(st) < abs(vx), s.repetition_vector  # along a row
+    assert s.repetition_order >= 0.8, s.repetition_order
+    vx, vy = s.repetition_order_vector
+    assert abs(vy) < 0.1 * spacing(st) < abs(vx), s.repetition_order_vector  # along a row
+    assert (s.repetition >= 0.8) if name in REPEATS else (s.repetition <= 0.2), s.repetition
 
 
 @needs_data

@@ -48,8 +48,8 @@ def score(exemplar, texture, as_json, exact, jobs):
       structure: nearest-gap W1    gaps to the nearest neighbour of each kind   0 (below its noise:
                                    against the exemplar's                       as good as can be told)
       structure: pair correlation  neighbour distances up to 3 spacings         0
-      repetition                   motifs repeating at one displacement that    0 (tile of
-                                   the exemplar's own lattice does not explain  irregular content: 1)
+      repetition                   motifs repeating at one displacement more    0 (tile of
+                                   often than the exemplar itself does there    irregular content: 1)
         incl. exemplar's lattice   the same at every displacement               1 for a lattice
       coverage                     largest empty disc over the exemplar's       1
       neighbourhood distance       each motif's 6 nearest neighbours (where,    0

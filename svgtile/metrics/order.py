@@ -37,8 +37,9 @@ round, when most motifs do share the steps (support ≥ 0.6), the whole lattice 
 minority kind's irregular placement repeated at the tile's period goes with it (Equinor 41000
 and 61000, 70 % support: the tile engine scores 0.19 there).  Rows (one
 step) excuse the multiples of the row step only: rows at a fixed spacing but a free phase put
-same-kind partners at a row offset ~3 times as often as the Poisson chance the figure corrects
-for (≈ 0.3 for rows of 0.1-spacing bins), so a faithful texture of such rows is not at 0.
+same-kind partners at a row offset ~3 times as often as the Poisson chance; since issue 13 the
+figure compares that with the exemplar's own share at the same displacement
+(:mod:`svgtile.metrics.repeats`), which such rows show, so it is excused there instead.
 """
 
 from __future__ import annotations

@@ -2,8 +2,9 @@
 
 Second-order figures of the motifs as a marked point pattern (kinds are the marks), each defined
 in the docstring of the function that computes it: :func:`structure` (nearest footprint gaps
-and pair correlation per ordered kind pair) and :func:`repetition` (how strongly the
-arrangement repeats itself where the exemplar's own order does not, :mod:`svgtile.metrics.order`).  Distributions of large textures are measured on a sample of their
+and pair correlation per ordered kind pair); :func:`repetition` (how strongly the arrangement
+repeats itself beyond what the exemplar shows) lives in :mod:`svgtile.metrics.repeats` and is
+re-exported here.  Distributions of large textures are measured on a sample of their
 motifs (:func:`svgtile.metrics.window.motif_sample`).
 
 References
@@ -25,7 +26,15 @@ from svgtile.analysis.stats import GAP_MIN_SAMPLES, Stats, nearest_gaps
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
-from svgtile.metrics.order import BOX, explained, order_steps
+from svgtile.metrics.repeats import (  # noqa: F401  (re-exported: the figure lived here before issue 13)
+    REPEAT_BIN,
+    REPEAT_MIN,
+    REPEAT_REACH,
+    REPEAT_SAMPLES,
+    Repetition,
+    _mode_share,
+    repetition,
+)
 from svgtile.metrics.window import exemplar_size, finite_or_none, in_window, motif_sample, spacing
 
 #: At most this many texture motifs per kind are measured for nearest gaps.
@@ -41,14 +50,6 @@ PAIR_BINS = 12
 PAIR_MIN_PAIRS = 20
 #: At most this many texture motifs per kind are reference points of the pair correlation.
 PAIR_SAMPLES = 10_000
-#: Repetition: displacements are binned on a grid of this many mean spacings …
-REPEAT_BIN = 0.1
-#: … counted from this many mean spacings (or half the exemplar's size, if smaller) …
-REPEAT_MIN = 2.0
-#: … up to this many exemplar sizes (the larger side of the input region's bounding box) …
-REPEAT_REACH = 1.5
-#: … from at most this many reference motifs.
-REPEAT_SAMPLES = 4000
 
 
 @dataclass(frozen=True)
@@ -105,39 +106,6 @@ class Structure:
     gap_noise: float | None
     pair_correlation_distance: float | None
     kind_pairs: tuple[KindPair, ...]
-
-
-@dataclass(frozen=True)
-class Repetition:
-    """What :func:`repetition` finds.
-
-    Attributes
-    ----------
-    repetition : float or None
-        Excess over chance of motifs repeated at the most common displacement *that the
-        exemplar's order does not explain*, in [0, 1]: ≈ 1 for a tiling of irregular content,
-        ≈ 0 for random placement and for a faithful texture of a lattice; lower is less
-        repetitive.  The figure reported and gated.
-    repetition_raw : float or None
-        The same without the chance correction, in [0, 1].
-    repetition_vector : (float, float) or None
-        Its displacement ``(dx, dy)``, user units.
-    repetition_total : float or None
-        The figure over every displacement, the exemplar's own lattice steps included (what
-        ``repetition`` was before issue 12): ≈ 1 for any texture of a lattice.
-    repetition_total_vector : (float, float) or None
-        Its displacement, user units.
-    order_steps : tuple of (float, float)
-        The exemplar's steps whose lattice was left out (:func:`svgtile.metrics.order.order_steps`),
-        user units; empty when the exemplar has no exact order.
-    """
-
-    repetition: float | None
-    repetition_raw: float | None
-    repetition_vector: tuple[float, float] | None
-    repetition_total: float | None = None
-    repetition_total_vector: tuple[float, float] | None = None
-    order_steps: tuple[tuple[float, float], ...] = ()
 
 
 def kind_trees(arr: Arrangement, k: int) -> list[cKDTree]:
@@ -422,124 +390,3 @@ def _apart_rectangles(window: shapely.Geometry, reach: float) -> np.ndarray | No
     apart = np.maximum(gap_x, gap_y) >= reach
     np.fill_diagonal(apart, True)
     return bounds if apart.all() else None
-
-
-# ----------------------------------------------------------------------------- repetition
-
-
-def repetition(
-    arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None,
-    trees: list[cKDTree] | None = None,
-) -> Repetition:  # fmt: skip
-    """How strongly the arrangement repeats itself where the exemplar's order does not.
-
-    ≈ 1 for a tiling of irregular content, ≈ 0 for random placement and for a faithful texture
-    of a lattice.  With ``s`` the mean spacing and ``L`` the exemplar's size (larger side of the
-    input region's bounding box):
-
-    1. Reference motifs: those in ``window`` (at most :data:`REPEAT_SAMPLES`, see
-       :func:`~svgtile.metrics.window.motif_sample`).  For each reference a, every *same-kind*
-       motif b of the texture with ``r0 ≤ |x_b − x_a| < R`` gives the displacement ``x_b − x_a``, where
-       ``r0 = min(REPEAT_MIN · s, L / 2)`` (beyond local packing) and
-       ``R = max(REPEAT_REACH · L, 2 r0)`` (reaching past the exemplar's own period).
-    2. **The exemplar's order is left out**: displacements within ±1.5 bins (per axis) of the
-       lattice generated by the exemplar's exact steps are dropped
-       (:mod:`svgtile.metrics.order` states the rule and why: a true lattice tile's period is
-       such a step combination, an irregular tile's period and a jittered lattice's are not).
-    3. The remaining displacements are binned on a square grid of step ``q = REPEAT_BIN · s``
-       (``⌊d / q⌋`` per axis); ``v`` is the bin holding the most displacements among the bins
-       of the half-plane ``dx > 0`` (or ``dx = 0, dy ≥ 0``) — the histogram is symmetric, ``v``
-       and ``−v`` tie — and the first in row-major order on a tie.
-    4. ``repetition_raw`` ``P`` is the fraction of references with at least one same-kind
-       partner whose (remaining) displacement falls in ``v`` or one of its 8 neighbouring bins
-       (a ``3q × 3q`` square, so rounding at bin edges does not matter); ``repetition_vector``
-       is the mean of those displacements.
-    5. At random, a reference of kind c has such a partner with probability
-       ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
-       ``window``); with ``P0`` the mean of ``p_c`` over the references,
-       ``repetition = max(0, (P − P0) / (1 − P0))`` — the excess over chance, as in Cohen's κ.
-
-    In a tiling of period t every motif in the interior has a partner at exactly t, so P = 1
-    and ``repetition`` = 1 — unless t belongs to the exemplar's own lattice.  For random
-    placement P ≈ P0 (≈ 0.09 Σ f_c² with these constants) and ``repetition`` ≈ 0.
-    ``repetition_total`` is steps 3–5 without step 2 (the figure before issue 12, which scored
-    every texture of a lattice exemplar ≈ 1 whatever the engine: it measures repetition, not
-    its cause); it is kept so that nothing is lost.
-
-    ``inside`` : (n,) bool, the motifs in ``window``, if known; ``trees`` : :func:`kind_trees`
-    of ``arr``, if built.
-
-    Returns
-    -------
-    Repetition: the figures are None if no motif is in ``window``, the vectors if no
-    displacement was found.
-    """
-    if inside is None:
-        inside = in_window(arr, window)
-    if not inside.any() or not stats.count_density > 0:
-        return Repetition(None, None, None)
-    s = spacing(stats)
-    size = max(exemplar_size(exemplar))
-    q = REPEAT_BIN * s
-    r0 = min(REPEAT_MIN * s, size / 2)
-    reach = max(REPEAT_REACH * size, 2 * r0)
-    steps = order_steps(exemplar, s, REPEAT_MIN * s)
-    own = tuple((float(x), float(y)) for x, y in steps)
-    ref = motif_sample(arr, np.flatnonzero(inside), REPEAT_SAMPLES)
-    lam = np.bincount(arr.kind[inside], minlength=len(stats.frequency)) / window.area
-    chance = float(np.mean(-np.expm1(-lam[arr.kind[ref]] * 9 * q * q)))
-
-    who, disp = [], []
-    for c in np.unique(arr.kind[ref]):
-        mine = ref[arr.kind[ref] == c]
-        peers = np.flatnonzero(arr.kind == c)
-        tree = trees[c] if trees else cKDTree(arr.xy[peers])
-        found = cKDTree(arr.xy[mine]).sparse_distance_matrix(tree, reach, output_type="ndarray")
-        keep = (found["v"] >= r0) & (found["v"] < reach)
-        a, b = mine[found["i"][keep]], peers[found["j"][keep]]
-        who.append(a)
-        disp.append(arr.xy[b] - arr.xy[a])
-    who = np.concatenate(who) if who else np.zeros(0, np.int64)
-    if len(who) == 0:
-        return Repetition(0.0, 0.0, None, 0.0, None, own)
-    disp = np.concatenate(disp)
-    total, total_raw, total_vector = _mode_share(who, disp, ref, len(arr), q, reach, chance)
-    if len(steps) == 0:  # no order to leave out: the two figures are one
-        return Repetition(total, total_raw, total_vector, total, total_vector, own)
-    mine = ~explained(disp, steps, BOX * q)
-    corrected, raw, vector = _mode_share(who[mine], disp[mine], ref, len(arr), q, reach, chance)
-    return Repetition(corrected, raw, vector, total, total_vector, own)
-
-
-def _mode_share(
-    who: np.ndarray, disp: np.ndarray, ref: np.ndarray, n: int, q: float, reach: float, chance: float,
-) -> tuple[float, float, tuple[float, float] | None]:  # fmt: skip
-    """Steps 3–5 of :func:`repetition`: (corrected, raw, vector) of the displacements given.
-
-    ``who`` (p,) the reference of each displacement ``disp`` (p, 2); ``ref`` the references;
-    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0.
-    """
-    if len(who) == 0:
-        return 0.0, 0.0, None
-    cell = np.floor(disp / q).astype(np.int64)
-    half = math.ceil(reach / q) + 1
-    side = 2 * half + 1
-    key = (cell[:, 0] + half) * side + (cell[:, 1] + half)
-    # v and −v are equally common: the mode is taken in the half-plane dx > 0 (or dx = 0, dy ≥ 0)
-    upper = (cell[:, 0] > 0) | ((cell[:, 0] == 0) & (cell[:, 1] >= 0))
-    if side * side <= 1 << 24:
-        count = np.bincount(key[upper], minlength=side * side)
-        mode = int(np.argmax(count))
-    else:
-        values, count = np.unique(key[upper], return_counts=True)
-        mode = int(values[np.argmax(count)])
-    mx, my = mode // side - half, mode % side - half
-    near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
-    has = np.zeros(n, dtype=bool)
-    has[who[near]] = True
-    raw = float(has[ref].mean())
-    corrected = max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0
-    if not near.any():
-        return corrected, raw, None
-    vector = disp[near].mean(axis=0)
-    return corrected, raw, (float(vector[0]), float(vector[1]))

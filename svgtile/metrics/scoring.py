@@ -150,13 +150,21 @@ class Score:
     kind_pairs : tuple of KindPair
         Per ordered kind pair, the details of the structure figures.
     repetition : float or None
-        Excess over chance of motifs repeated at the most common displacement the exemplar's
-        order does not explain, in [0, 1]: ≈ 1 for a tiling of irregular content, ≈ 0 for
-        random placement or a faithful texture of a lattice; lower is better.
+        Excess of motifs repeated at one of the texture's most common displacements over what
+        the exemplar itself shows there (or chance, if more), in [0, 1]: ≈ 1 for a tiling of
+        irregular content, ≈ 0 for random placement, a faithful texture of a lattice or of
+        rows, or the exemplar itself; lower is better.
     repetition_raw : float or None
-        ``repetition`` without the chance correction.
+        The texture's share of motifs repeated at that displacement.
     repetition_vector : (float, float) or None
         That displacement, user units.
+    repetition_exemplar : float or None
+        The exemplar's own share there (0: the exemplar cannot show that displacement).
+    repetition_order : float or None
+        Excess over chance at the single most common displacement the exemplar's exact order
+        does not explain (``repetition`` before issue 13, blind to what the exemplar shows).
+    repetition_order_vector : (float, float) or None
+        Its displacement, user units.
     repetition_total : float or None
         The same over every displacement, the exemplar's own lattice included (``repetition``
         before issue 12): ≈ 1 for any texture of a lattice.
@@ -213,6 +221,9 @@ class Score:
     repetition: float | None
     repetition_raw: float | None
     repetition_vector: tuple[float, float] | None
+    repetition_exemplar: float | None
+    repetition_order: float | None
+    repetition_order_vector: tuple[float, float] | None
     repetition_total: float | None
     repetition_total_vector: tuple[float, float] | None
     repetition_order_steps: tuple[tuple[float, float], ...]
@@ -330,6 +341,9 @@ def score(
         repetition=rep.repetition,
         repetition_raw=rep.repetition_raw,
         repetition_vector=rep.repetition_vector,
+        repetition_exemplar=rep.repetition_exemplar,
+        repetition_order=rep.repetition_order,
+        repetition_order_vector=rep.repetition_order_vector,
         repetition_total=rep.repetition_total,
         repetition_total_vector=rep.repetition_total_vector,
         repetition_order_steps=rep.order_steps,

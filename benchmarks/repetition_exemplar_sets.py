@@ -1,0 +1,47 @@
+"""Issue 13 (rep13): repetition (new: over what the exemplar shows) and repetition_order (the
+figure before) of the auto, tile and random engines on every accepted tile of the whole sets,
+with tests/test_wholeset.py's regions (gate_region), window (the interior) and seed 1.
+
+Run from the repository root: ``SVGTILE_DATA=… python benchmarks/repetition_exemplar_sets.py
+[engines] [-- prefixes]``; one line per tile and engine: ``engine new/old``.
+"""
+
+from __future__ import annotations
+
+import sys
+
+sys.path.insert(0, "tests")
+from test_wholeset import SETS, TILES, gate_region
+
+from svgtile.analysis.stats import analyze
+from svgtile.engines import synthesize
+from svgtile.metrics import interior, repetition
+from svgtile.svg.reader import parse_exemplar
+from svgtile.tiles.importer import TileRefused, import_tile
+
+args = sys.argv[1:]
+engines = args[: args.index("--")] if "--" in args else args
+only = args[args.index("--") + 1 :] if "--" in args else []
+engines = engines or ["auto", "tile", "random"]
+for tile in TILES:
+    if only and not any(tile.startswith(o) for o in only):
+        continue
+    folder, stem = tile.split("/")
+    try:
+        t = import_tile(SETS[folder] / f"{stem}.svg")
+    except TileRefused:
+        continue
+    if t.cellular is not None:
+        continue
+    ex = parse_exemplar(t.text, source=stem)
+    stats = analyze(ex)
+    region = gate_region(t.box, len(ex.motifs))
+    win = interior(ex, region)
+    if win.is_empty or win.area <= 0:
+        win = region.shape
+    out = []
+    for eng in engines:
+        arr = synthesize(ex, region, eng, seed=1, stats=stats).arrangement
+        s = repetition(arr, ex, stats, win)
+        out.append(f"{eng} {s.repetition:.3f}/{s.repetition_order:.3f}")
+    print(f"{tile:36s} " + "  ".join(out), flush=True)

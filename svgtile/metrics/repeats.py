@@ -1,0 +1,319 @@
+"""Repetition: how strongly a texture repeats itself beyond what its exemplar shows.
+
+:func:`repetition` finds the texture's most populated same-kind displacements and compares the
+share of motifs repeated at each with the exemplar's own share at the same displacement (issue
+13): repetition the exemplar contains inside itself — rows at a free phase, a kind's clustering,
+the exemplar against itself — is not counted; repetition at a displacement the exemplar cannot
+show (its tile's period stamped over irregular content, a patch copied) is.  Displacements on
+the exemplar's exact lattice (:mod:`svgtile.metrics.order`) are left out first, so that a
+texture of an exact lattice tile — stamping it is faithful — is not charged for its period.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from svgtile.analysis.stats import Stats
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.exemplar import Exemplar
+from svgtile.metrics.order import BOX, explained, order_steps
+from svgtile.metrics.window import exemplar_size, in_window, motif_sample, spacing
+
+#: Repetition: displacements are binned on a grid of this many mean spacings …
+REPEAT_BIN = 0.1
+#: … counted from this many mean spacings (or half the exemplar's size, if smaller) …
+REPEAT_MIN = 2.0
+#: … up to this many exemplar sizes (the larger side of the input region's bounding box) …
+REPEAT_REACH = 1.5
+#: … from at most this many reference motifs.
+REPEAT_SAMPLES = 4000
+#: The texture's this many most populated displacement peaks are compared with the exemplar's
+#: share (few: the figure is a maximum over them, and a maximum over many peaks of noise rises
+#: above the chance level of one).
+REPEAT_PEAKS = 4
+#: The exemplar shows a displacement when at least this many of its motifs, shifted by it, stay
+#: inside its input region (a share of fewer cannot be told from noise: it counts as not shown).
+REPEAT_EX_MIN = 10
+#: The exemplar shows a displacement v also when it repeats at v / m to within 1 / m of the
+#: square (rows: m steps along a row), for whole m with |v| / m at least this many mean spacings …
+REPEAT_DIVIDE = 0.5
+#: … and m at most this.
+REPEAT_DIVIDE_MAX = 64
+
+
+@dataclass(frozen=True)
+class Repetition:
+    """What :func:`repetition` finds.
+
+    Attributes
+    ----------
+    repetition : float or None
+        Excess of motifs repeated at one of the texture's most common displacements over what
+        the exemplar itself shows there (or chance, if more), in [0, 1]: ≈ 1 for a tiling of
+        irregular content, ≈ 0 for random placement, for a faithful texture of a lattice and
+        for the exemplar scored against itself; lower is less repetitive.  The figure reported
+        and gated.
+    repetition_raw : float or None
+        The texture's share ``P_tex(v)`` at that displacement, in [0, 1].
+    repetition_vector : (float, float) or None
+        Its displacement ``v = (dx, dy)``, user units.
+    repetition_exemplar : float or None
+        The exemplar's own share ``P_ex(v)`` there, in [0, 1] (0: the exemplar cannot show v).
+    repetition_order : float or None
+        The figure before issue 13: excess over chance at the single most common displacement
+        the exemplar's exact order does not explain, blind to repetition the exemplar shows
+        inside itself (rows at a free phase, the exemplar against itself: 0.28 for sand).
+    repetition_order_vector : (float, float) or None
+        Its displacement, user units.
+    repetition_total : float or None
+        The figure over every displacement, the exemplar's own lattice steps included (what
+        ``repetition`` was before issue 12): ≈ 1 for any texture of a lattice.
+    repetition_total_vector : (float, float) or None
+        Its displacement, user units.
+    order_steps : tuple of (float, float)
+        The exemplar's steps whose lattice was left out (:func:`svgtile.metrics.order.order_steps`),
+        user units; empty when the exemplar has no exact order.
+    """
+
+    repetition: float | None
+    repetition_raw: float | None
+    repetition_vector: tuple[float, float] | None
+    repetition_total: float | None = None
+    repetition_total_vector: tuple[float, float] | None = None
+    order_steps: tuple[tuple[float, float], ...] = ()
+    repetition_exemplar: float | None = None
+    repetition_order: float | None = None
+    repetition_order_vector: tuple[float, float] | None = None
+
+
+def repetition(
+    arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None,
+    trees: list[cKDTree] | None = None,
+) -> Repetition:  # fmt: skip
+    """How strongly the arrangement repeats itself beyond what the exemplar shows inside itself.
+
+    ≈ 1 for a tiling of irregular content, ≈ 0 for random placement, for a faithful texture of
+    a lattice or of rows, and for the exemplar against itself.  With ``s`` the mean spacing and
+    ``L`` the exemplar's size (larger side of the input region's bounding box):
+
+    1. Reference motifs: those in ``window`` (at most :data:`REPEAT_SAMPLES`, see
+       :func:`~svgtile.metrics.window.motif_sample`).  For each reference a, every *same-kind*
+       motif b of the texture with ``r0 ≤ |x_b − x_a| < R`` gives the displacement ``x_b − x_a``, where
+       ``r0 = min(REPEAT_MIN · s, L / 2)`` (beyond local packing) and
+       ``R = max(REPEAT_REACH · L, 2 r0)`` (reaching past the exemplar's own period).
+    2. **The exemplar's exact order is left out**: displacements within ±1.5 bins (per axis) of
+       the lattice generated by the exemplar's exact steps are dropped
+       (:mod:`svgtile.metrics.order` states the rule and why: a true lattice tile's period is
+       such a step combination — stamping an exact lattice is faithful — an irregular tile's
+       period and a jittered lattice's are not).
+    3. The remaining displacements are binned on a square grid of step ``q = REPEAT_BIN · s``
+       (``⌊d / q⌋`` per axis), in the half-plane ``dx > 0`` (or ``dx = 0, dy ≥ 0``: the histogram
+       is symmetric).  The peaks ``v_1 … v_K`` are the :data:`REPEAT_PEAKS` most populated bins,
+       each at least 3 bins (per axis) from the ones before (greedy, row-major on a tie), so that
+       one peak split over neighbouring bins is one peak.
+    4. ``P_tex(v)``: the fraction of references with at least one same-kind partner whose
+       (remaining) displacement falls in ``v`` or one of its 8 neighbouring bins (a ``3q × 3q``
+       square, so rounding at bin edges does not matter).
+    5. ``P_ex(v)``: the same share in the exemplar's own motifs, unwrapped (a repeating tile is
+       not continued across its edges), over the motifs whose ``3q × 3q`` square at ``v`` lies
+       inside the exemplar's input region — the part of the exemplar that overlaps itself when
+       shifted by ``v``.  With fewer than :data:`REPEAT_EX_MIN` such motifs the exemplar cannot
+       show ``v`` and ``P_ex = 0``: a displacement as long as the tile (its period stamped) is
+       never excused.
+    6. At random, a reference of kind c has a partner in a square with probability
+       ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
+       ``window``); ``P0`` is the mean of ``p_c`` over the references.  With
+       ``b(v) = max(P0, P_ex(v))``,
+       ``repetition = max_k max(0, (P_tex(v_k) − b(v_k)) / (1 − b(v_k)))`` — the excess over
+       what the exemplar shows (or chance), as in Cohen's κ; ``repetition_vector`` is the mean
+       displacement in the square of the peak that gives it, ``repetition_raw`` its ``P_tex``,
+       ``repetition_exemplar`` its ``P_ex``.
+
+    In a tiling of irregular content of period t every interior motif has a partner at exactly
+    t, which the exemplar cannot show: ``repetition`` = 1.  Rows the exemplar draws at a free
+    phase, a kind's clusters, any repetition inside the exemplar are excused where the texture
+    repeats no more often than the exemplar does.  For random placement ``P_tex ≈ P0`` and
+    ``repetition`` ≈ 0 (a maximum over K peaks of noise: K is kept small).
+    ``repetition_order`` is step 6 at the single mode ``v_1`` against ``P0`` alone (the figure
+    of issue 12, before issue 13); ``repetition_total`` the same without step 2 (the figure
+    before issue 12, ≈ 1 for any texture of a lattice).  Both are kept so that nothing is lost.
+
+    ``inside`` : (n,) bool, the motifs in ``window``, if known; ``trees`` : :func:`kind_trees`
+    of ``arr``, if built.
+
+    Returns
+    -------
+    Repetition: the figures are None if no motif is in ``window``, the vectors if no
+    displacement was found.
+    """
+    if inside is None:
+        inside = in_window(arr, window)
+    if not inside.any() or not stats.count_density > 0:
+        return Repetition(None, None, None)
+    s = spacing(stats)
+    size = max(exemplar_size(exemplar))
+    q = REPEAT_BIN * s
+    r0 = min(REPEAT_MIN * s, size / 2)
+    reach = max(REPEAT_REACH * size, 2 * r0)
+    steps = order_steps(exemplar, s, REPEAT_MIN * s)
+    own = tuple((float(x), float(y)) for x, y in steps)
+    ref = motif_sample(arr, np.flatnonzero(inside), REPEAT_SAMPLES)
+    lam = np.bincount(arr.kind[inside], minlength=len(stats.frequency)) / window.area
+    chance = float(np.mean(-np.expm1(-lam[arr.kind[ref]] * 9 * q * q)))
+
+    who, disp = [], []
+    for c in np.unique(arr.kind[ref]):
+        mine = ref[arr.kind[ref] == c]
+        peers = np.flatnonzero(arr.kind == c)
+        tree = trees[c] if trees else cKDTree(arr.xy[peers])
+        found = cKDTree(arr.xy[mine]).sparse_distance_matrix(tree, reach, output_type="ndarray")
+        keep = (found["v"] >= r0) & (found["v"] < reach)
+        a, b = mine[found["i"][keep]], peers[found["j"][keep]]
+        who.append(a)
+        disp.append(arr.xy[b] - arr.xy[a])
+    who = np.concatenate(who) if who else np.zeros(0, np.int64)
+    if len(who) == 0:
+        return Repetition(0.0, 0.0, None, 0.0, None, own, 0.0, 0.0, None)
+    disp = np.concatenate(disp)
+    if len(steps) == 0:  # no order to leave out
+        total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+        mine = slice(None)
+    else:
+        total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+        mine = ~explained(disp, steps, BOX * q)
+    who, disp = who[mine], disp[mine]
+    if len(who) == 0:
+        return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
+    cell = np.floor(disp / q).astype(np.int64)
+    peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
+    shown = _exemplar_shares(exemplar, (peaks + 0.5) * q, BOX * q, REPEAT_DIVIDE * s)
+    best = None
+    for k, (mx, my) in enumerate(peaks):
+        near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
+        has = np.zeros(len(arr), dtype=bool)
+        has[who[near]] = True
+        raw = float(has[ref].mean())
+        vector = disp[near].mean(axis=0)
+        vector = (float(vector[0]), float(vector[1]))
+        if k == 0:  # the single mode against chance alone: the figure of issue 12
+            order = (max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0, vector)
+        base = max(chance, float(shown[k]))
+        excess = max(0.0, (raw - base) / (1.0 - base)) if base < 1 else 0.0
+        if best is None or excess > best[0]:
+            best = (excess, raw, vector, float(shown[k]))
+    return Repetition(
+        best[0], best[1], best[2], total[0], total[2], own, best[3], order[0], order[1]
+    )
+
+
+def _peaks(cell: np.ndarray, half: int, most: int) -> np.ndarray:
+    """(k, 2) int: the ``most`` most populated bins of ``cell`` in the half-plane, each > 2 bins apart.
+
+    ``cell`` (p, 2) int, the bin of each displacement, ``|cell| < half`` per axis.  Greedy: the
+    most populated bin, then the most populated at least 3 bins (per axis) from those taken, …;
+    row-major order on a tie.  Step 3 of :func:`repetition`.
+    """
+    side = 2 * half + 1
+    upper = (cell[:, 0] > 0) | ((cell[:, 0] == 0) & (cell[:, 1] >= 0))
+    key = (cell[upper, 0] + half) * side + (cell[upper, 1] + half)
+    if side * side <= 1 << 24:
+        count = np.bincount(key, minlength=side * side)
+        values = np.flatnonzero(count)
+        count = count[values]
+    else:
+        values, count = np.unique(key, return_counts=True)
+    # a peak suppresses at most 24 bins around it: the `most` peaks are among the top 25·most
+    top = np.argsort(-count, kind="stable")[: 25 * most]
+    taken: list[tuple[int, int]] = []
+    for key in values[top]:
+        x, y = int(key) // side - half, int(key) % side - half
+        if all(abs(x - tx) > 2 or abs(y - ty) > 2 for tx, ty in taken):
+            taken.append((x, y))
+            if len(taken) == most:
+                break
+    return np.array(taken, dtype=np.int64).reshape(-1, 2)
+
+
+def _exemplar_shares(
+    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float
+) -> np.ndarray:
+    """(k,) float: ``P_ex`` of each shift, step 5 of :func:`repetition`.
+
+    ``P_ex(v) = max_m S(v / m, half / m)`` over the whole divisors ``m ≥ 1`` with
+    ``|v| / m ≥ shortest`` (at most :data:`REPEAT_DIVIDE_MAX`), where ``S(u, e)`` is the share of
+    the exemplar's motifs (unwrapped) with a same-kind motif within ``e`` (per axis) of
+    ``x + u``, among those whose square ``x + u ± e`` lies inside the exemplar's input region's
+    bounding box (0 where fewer than :data:`REPEAT_EX_MIN` do).  An exemplar that repeats at
+    ``u`` to within ``e / m`` shows its order at ``m u`` to within ``e``: rows exact along x
+    excuse the texture's partners 2, 3, … steps along a row, out to the tile's width and beyond,
+    while a jittered or irregular tile stamped at its period is not excused (its content does
+    not repeat at a fraction of the period to that precision).
+
+    ``shifts`` (k, 2) float, user units, the squares' centres ``v``; ``half`` and ``shortest``
+    user units.
+    """
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    out = np.zeros(len(shifts))
+    if len(xy) == 0 or len(shifts) == 0:
+        return out
+    x0, y0, x1, y1 = exemplar.region.bounds
+    length = np.hypot(shifts[:, 0], shifts[:, 1])
+    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
+    peak = np.repeat(np.arange(len(shifts)), most)
+    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    u, e = shifts[peak] / m[:, None], half / m
+    # every (divisor, motif) pair at once: the shifted square, and whether it lies inside
+    tx, ty = xy[None, :, 0] + u[:, 0, None], xy[None, :, 1] + u[:, 1, None]
+    ee = e[:, None]
+    seen = (tx - ee >= x0) & (tx + ee <= x1) & (ty - ee >= y0) & (ty + ee <= y1)
+    row, col = np.nonzero(seen)
+    # one tree over every kind: each kind's motifs moved apart along x by more than any reach
+    apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
+    tree = cKDTree(np.c_[xy[:, 0] + kind * apart, xy[:, 1]])
+    found = tree.query_ball_point(
+        np.c_[tx[row, col] + kind[col] * apart, ty[row, col]], e[row], p=np.inf, return_length=True
+    )
+    eligible = np.bincount(row, minlength=len(m))
+    hits = np.bincount(row, weights=found > 0, minlength=len(m))
+    share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
+    np.maximum.at(out, peak, share)
+    return out
+
+
+def _mode_share(
+    who: np.ndarray, disp: np.ndarray, ref: np.ndarray, n: int, q: float, reach: float, chance: float,
+) -> tuple[float, float, tuple[float, float] | None]:  # fmt: skip
+    """Steps 3–5 of :func:`repetition`: (corrected, raw, vector) of the displacements given.
+
+    ``who`` (p,) the reference of each displacement ``disp`` (p, 2); ``ref`` the references;
+    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0.
+    """
+    if len(who) == 0:
+        return 0.0, 0.0, None
+    cell = np.floor(disp / q).astype(np.int64)
+    half = math.ceil(reach / q) + 1
+    side = 2 * half + 1
+    key = (cell[:, 0] + half) * side + (cell[:, 1] + half)
+    # v and −v are equally common: the mode is taken in the half-plane dx > 0 (or dx = 0, dy ≥ 0)
+    upper = (cell[:, 0] > 0) | ((cell[:, 0] == 0) & (cell[:, 1] >= 0))
+    if side * side <= 1 << 24:
+        count = np.bincount(key[upper], minlength=side * side)
+        mode = int(np.argmax(count))
+    else:
+        values, count = np.unique(key[upper], return_counts=True)
+        mode = int(values[np.argmax(count)])
+    mx, my = mode // side - half, mode % side - half
+    near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
+    has = np.zeros(n, dtype=bool)
+    has[who[near]] = True
+    raw = float(has[ref].mean())
+    corrected = max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0
+    if not near.any():
+        return corrected, raw, None
+    vector = disp[near].mean(axis=0)
+    return corrected, raw, (float(vector[0]), float(vector[1]))

@@ -1,0 +1,114 @@
+"""The repetition figure counts only what the exemplar does not show inside itself (issue 13).
+
+Known answers: an exemplar scored against itself ≈ 0; a tile of irregular content stamped ≈ 1;
+random placement ≈ 0; a drawn exemplar of rows at hand-drawn phases, stamped at its period, is
+still caught; growth on FGDC 619 / 620 (rows exact along x, grown at fresh phases) passes the
+gate; and ``P_ex`` follows its definition on hand-made exemplars.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+from conftest import stamp
+from test_growth_phases import phased_tile
+from test_growth_regular import FGDC, needs_data
+from test_repetition_order import exemplar, grid
+
+from svgtile import Region, analyze, metrics, read_exemplar
+from svgtile.apps.load import load_exemplar
+from svgtile.engines import synthesize
+from svgtile.metrics.repeats import _exemplar_shares
+from svgtile.svg.reader import parse_exemplar
+
+BUNDLED = ("sand", "marsh", "boulders", "till", "gravel")
+IRREGULAR = ("603", "605", "607", "626")
+
+
+@cache
+def fgdc(name: str):
+    return load_exemplar(str(FGDC / f"{name}.svg"), as_tile=True, warn=lambda m: None)
+
+
+def on_tiles(ex, st, engine: str, tiles: int = 5):
+    """repetition of ``engine`` on ``tiles × tiles`` of the exemplar's period, in the interior."""
+    w, h = ex.period
+    region = Region.rectangle(tiles * w, tiles * h)
+    arr = synthesize(ex, region, engine, seed=1, stats=st, boundary="centroid").arrangement
+    return metrics.repetition(arr, ex, st, metrics.interior(ex, region))
+
+
+@pytest.mark.parametrize("name", BUNDLED)
+def test_a_bundled_exemplar_against_itself_is_not_repetition(name):
+    ex = read_exemplar(f"exemplars/{name}.svg")
+    rep = metrics.repetition(ex.motifs, ex, analyze(ex), ex.region)
+    assert rep.repetition <= 0.05
+    assert rep.repetition_exemplar >= rep.repetition_raw  # what it shows is what excuses it
+
+
+def test_sand_against_itself_was_repetition_before():
+    # the figure this replaces (kept as repetition_order) charged sand's own rows to it
+    ex = read_exemplar("exemplars/sand.svg")
+    rep = metrics.repetition(ex.motifs, ex, analyze(ex), ex.region)
+    assert rep.repetition_order > 0.2 and rep.repetition <= 0.05
+
+
+@needs_data
+@pytest.mark.parametrize("name", ["603", "605", "607", "611", "619", "620", "670"])
+def test_an_fgdc_tile_against_itself_is_not_repetition(name):
+    ex, st = fgdc(name)
+    assert metrics.repetition(ex.motifs, ex, st, ex.region).repetition <= 0.05
+
+
+@needs_data
+@pytest.mark.parametrize("name", IRREGULAR)
+def test_stamping_an_irregular_tile_is_repetition(name):
+    ex, st = fgdc(name)
+    rep = on_tiles(ex, st, "tile")
+    assert rep.repetition >= 0.8
+    # a displacement of a whole period: the tile cannot show it (only its divisors, by chance)
+    assert rep.repetition_exemplar <= 0.1
+
+
+@needs_data
+def test_random_placement_is_not_repetition_on_average():
+    figures = [on_tiles(*fgdc(name), "random").repetition for name in (*IRREGULAR, "619", "620")]
+    assert np.mean(figures) <= 0.05
+    assert max(figures) <= 0.1
+
+
+def test_a_drawn_tile_of_rows_at_hand_drawn_phases_stamped_is_still_caught():
+    ex = parse_exemplar(phased_tile())  # rows exact along x; the phases repeat at the height only
+    st = analyze(ex)
+    assert metrics.repetition(ex.motifs, ex, st, ex.region).repetition <= 0.05
+    arr, region = stamp(ex, 8)
+    rep = metrics.repetition(arr, ex, st, metrics.interior(ex, region))
+    assert rep.repetition >= 0.8
+    assert abs(rep.repetition_vector[1]) > 1.0  # across the rows, where the phases repeat
+
+
+@needs_data
+@pytest.mark.parametrize("name", ["619", "620"])
+def test_growth_on_rows_at_fresh_phases_passes_the_gate(name):
+    ex, st = fgdc(name)
+    rep = on_tiles(ex, st, "growth")
+    assert rep.repetition <= 0.2
+    assert rep.repetition_order > 0.9  # the figure before: the exact along-row step, charged
+
+
+def test_exact_rows_show_their_multiples_and_a_jittered_tile_does_not_show_its_period():
+    rows = [
+        (x + 0.5 * (r % 2), y)
+        for r, y in enumerate(np.arange(2.5, 20, 5.0))
+        for x in np.arange(0.5, 20, 2.0)
+    ]
+    ex = exemplar(rows)
+    # 2, 3 and 5 steps along a row; 10 steps (20 units) is the region's width: shown by the step
+    shifts = np.array([[4.0, 0.0], [6.0, 0.0], [10.0, 0.0], [20.0, 0.0], [0.0, 5.0]])
+    share = _exemplar_shares(ex, shifts, 0.15, 1.0)
+    assert np.all(share[:4] == 1.0)
+    assert share[4] == 0.0  # the rows' half-step offset: no partner straight above
+    jit = exemplar(grid(4, jitter=0.6, seed=3))
+    assert _exemplar_shares(jit, np.array([[20.0, 0.0], [5.0, 0.0]]), 0.15, 1.0)[0] == 0.0
