@@ -72,7 +72,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/603", "likeness"): "L 0.46",
     ("fgdc/605", "repetition"): "0.282 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/605", "likeness"): "L 0.15 (2026-12-03, rare kinds pooled by shape)",
-    ("fgdc/606", "repetition"): "0.203 (2026-12-03, issue 13's figure, the max over the 4 largest peaks against what the exemplar shows; 0.053 at the single mode)",
     ("fgdc/606", "likeness"): "L -0.02 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/607", "likeness"): "L 0.41",
     ("fgdc/608", "repetition"): "0.310",
