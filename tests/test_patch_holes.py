@@ -1,4 +1,4 @@
-"""Hole filling after the patch engine's density repair (:mod:`svgtile.engines.patch.holes`):
+"""Hole filling after the patch engine's density repair (:mod:`svgtile.engines.holes`):
 windows left light get the kinds they lack by area, largest first, without a conflict."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from svgtile import Region, analyze, read_exemplar
 from svgtile.analysis.stats import footprint_areas
 from svgtile.core.conflicts import cross_conflicts, find_conflicts
 from svgtile.engines import synthesize
-from svgtile.engines.patch.holes import _cumsum_within, fill_holes, kind_targets, sparse_windows
+from svgtile.engines.holes import _cumsum_within, fill_holes, kind_targets, sparse_windows
 
 EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
 

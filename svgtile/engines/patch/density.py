@@ -6,7 +6,6 @@ See :mod:`svgtile.engines.patch.engine` for the engine and the deviations from t
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -25,6 +24,13 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.base import Progress
 from svgtile.engines.patch.orientation import turn, vary_orientations
+from svgtile.engines.windows import (
+    WINDOW_OFFSETS,
+    region_windows,
+    window_cover,
+    window_of,
+    window_size,
+)
 
 # hash streams: one per independent random choice of the engine
 _ROTATE, _PRIORITY, _ORIENT, _DISC, _DISC_ROTATE, _REMOVE = range(6)
@@ -87,7 +93,7 @@ def adjust_density(
     quiet = 0
     for rnd in range(p.density_rounds):
         progress("density", 0.3 + 0.7 * rnd / p.density_rounds)
-        windows = _windows(region, size, offsets[rnd % 4])
+        windows = region_windows(region, size, offsets[rnd % 4])
         if windows is None:
             break
         origin, ids, area = windows
@@ -113,59 +119,6 @@ def adjust_density(
             )
             arr = Arrangement.concat([arr.take(~removed), new])
     return arr
-
-
-#: The windows' offsets, in window sizes: rounds take them in turn, so that what one round's
-#: window edges cut, the next round's windows hold whole.
-WINDOW_OFFSETS = np.array([[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]])
-
-
-def window_size(exemplar: Exemplar) -> np.ndarray:
-    """(2,) float array, user units: the windows' width and height, the exemplar region's."""
-    x0, y0, x1, y1 = exemplar.region.bounds
-    return np.array([x1 - x0, y1 - y0])
-
-
-def window_cover(
-    arr: Arrangement, protos, origin: np.ndarray, size: np.ndarray, ids: np.ndarray, areas: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """The (n,) window of each motif (index into ``ids``, -1: none of them) and the (w,)
-    footprint area the motifs of each window cover, square user units; ``areas`` the (n,)
-    :func:`~svgtile.analysis.stats.footprint_areas` of ``arr``, if known."""
-    win = _window_of(arr.xy, origin, size, ids)
-    if areas is None:
-        areas = footprint_areas(arr, protos)
-    return win, np.bincount(win[win >= 0], weights=areas[win >= 0], minlength=len(ids))
-
-
-def _windows(region: Region, size: np.ndarray, offset: np.ndarray):
-    """Windows meeting the region: (origin, (w, 2) integer ids, (w,) area inside the region)."""
-    X0, Y0, X1, Y1 = region.bounds
-    ia = np.arange(math.floor((X0 - offset[0]) / size[0]), math.ceil((X1 - offset[0]) / size[0]))
-    ib = np.arange(math.floor((Y0 - offset[1]) / size[1]), math.ceil((Y1 - offset[1]) / size[1]))
-    IA, IB = (v.ravel() for v in np.meshgrid(ia, ib))
-    lo = offset + np.stack([IA, IB], -1) * size
-    boxes = shapely.box(lo[:, 0], lo[:, 1], lo[:, 0] + size[0], lo[:, 1] + size[1])
-    area = shapely.area(shapely.intersection(boxes, region.shape))
-    # a window mostly outside the region measures its border, not its density
-    full = area >= 0.5 * size[0] * size[1]
-    if not full.any():
-        return None
-    return offset, np.stack([IA, IB], -1)[full], area[full]
-
-
-def _window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.ndarray) -> np.ndarray:
-    """(n,) index into ``ids`` of the window holding each point, or -1."""
-    cell = np.floor((xy - origin) / size).astype(np.int64)
-    lo = ids.min(axis=0)
-    span = ids.max(axis=0) - lo + 1
-    table = np.full(span[0] * span[1], -1, dtype=np.int64)
-    table[(ids[:, 0] - lo[0]) * span[1] + (ids[:, 1] - lo[1])] = np.arange(len(ids))
-    rel = cell - lo
-    ok = (rel >= 0).all(axis=1) & (rel < span).all(axis=1)
-    out = np.full(len(xy), -1, dtype=np.int64)
-    out[ok] = table[rel[ok, 0] * span[1] + rel[ok, 1]]
-    return out
 
 
 def _thin(arr, win, dense, target, stats, protos, *, key: int, rnd: int) -> np.ndarray:
@@ -240,7 +193,7 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     # where that kind has the most room (usually the largest kind, the hardest to place); each
     # window counts its own kinds, so a far edit does not change its choice
     k = len(protos)
-    mine = _window_of(arr.xy, origin, size, ids)
+    mine = window_of(arr.xy, origin, size, ids)
     have = np.bincount(mine[mine >= 0] * k + arr.kind[mine >= 0], minlength=wins * k).reshape(wins, k)
     freq = (have + stats.frequency) / (have.sum(axis=1, keepdims=True) + 1.0)  # one motif of prior
     lack = np.log(np.maximum(freq, 1e-6) / np.maximum(stats.frequency, 1e-6))  # (windows, k)

@@ -10,7 +10,7 @@ Start from a Tiling of the exemplar and remove the order that betrays it:
 4. :func:`adjust_density` — windows the size of the input region are brought to the exemplar's
    density ρ by random removal or by pasting discs of the exemplar into the largest empty disc
    (§3.4);
-5. :func:`~svgtile.engines.patch.holes.fill_holes` — where a window wholly inside the region is
+5. :func:`~svgtile.engines.holes.fill_holes` — where a window wholly inside the region is
    still below ρ(1 − tolerance), the kinds each light window lacks *by area* are dropped into its
    empty places, largest first, displacing a few motifs of surplus kinds (not in the paper).
 
@@ -63,8 +63,8 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.base import Context, EngineParams, param
+from svgtile.engines.holes import fill_holes
 from svgtile.engines.patch.density import _ORIENT, _PRIORITY, _ROTATE, adjust_density, uniform_at
-from svgtile.engines.patch.holes import fill_holes
 from svgtile.engines.patch.lattice import lattice_pivot, lattice_steps, lattice_variation
 from svgtile.engines.patch.orientation import turn, vary_orientations
 from svgtile.errors import ParameterError

@@ -1,5 +1,11 @@
-"""Hole filling after the patch engine's density repair: the kinds a window lacks *by area*,
-largest first, dropped into its empty places (issues 12 and 14).
+"""Hole filling after the patch engine's density repair, and after the optimize engine's solver
+on a refilled start: the kinds a window lacks *by area*, largest first, dropped into its empty
+places (issues 12 and 14).
+
+The optimize engine (Ma, Wei & Tong 2011; :mod:`svgtile.engines.optimize.engine`) loses the same
+large kinds at its start's seams and in its kind step, and its insertion (:mod:`.optimize.insert`)
+puts back what a neighbourhood predicts and fits, mostly dots; this module is then its last step
+too, with the same windows (:mod:`svgtile.engines.windows`).
 
 Density repair (almeraj2013 §3.4, :func:`svgtile.engines.patch.density.adjust_density`) pastes
 discs of the exemplar: an exemplar motif lands where the disc puts it or not at all.  On FGDC
@@ -52,11 +58,11 @@ from svgtile.core.conflicts import cross_pairs, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
-from svgtile.engines.patch.density import (
+from svgtile.engines.windows import (
     WINDOW_OFFSETS,
-    _window_of,
-    _windows,
+    region_windows,
     window_cover,
+    window_of,
     window_size,
 )
 
@@ -91,7 +97,7 @@ def sparse_windows(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: R
     (w,) footprint area their motifs cover and the (n,) window of each motif (-1: none of them).
     """
     size = window_size(exemplar)
-    windows = _windows(region, size, offset)
+    windows = region_windows(region, size, offset)
     if windows is None:
         return None
     origin, ids, area = windows
@@ -175,7 +181,7 @@ def _round(arr, areas, exemplar, stats, region, boundary, found, *, key: int, rn
     gi, gj = cells[:, 0], cells[:, 1]
     u = cellrng.uniform(key, _JITTER, gi[:, None], gj[:, None], rnd, np.arange(2)[None, :])
     pts = (cells + u) * step
-    w_of = _window_of(pts, origin, size, ids)
+    w_of = window_of(pts, origin, size, ids)
     ok = w_of >= 0
     ok[ok] = sparse[w_of[ok]] & (lack[w_of[ok]].sum(axis=1) > 0)
     ok &= shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
