@@ -28,6 +28,8 @@ from svgtile.engines.optimize.samples import Samples
 #: Samples tried per element by the first search (§4.1's initial assignment).
 FIRST_CANDIDATES = 48
 _FIRST = 71  # hash stream of the first candidates
+#: Neighbours asked for past the k + 1 nearest, so that ties at the k-th go by position.
+TIES = 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,8 +64,14 @@ def output_neighbourhoods(xy: np.ndarray, kind: np.ndarray, k: int, spacing: flo
     rel = np.full((n, k, 2), np.nan)
     if n > 1:
         q = min(k + 1, n)
-        _, nb = cKDTree(xy).query(xy, k=q)
-        nb = np.asarray(nb, dtype=np.int64).reshape(n, q)
+        # equidistant neighbours (copies of a repeating tile) come from the tree in an order
+        # that depends on every point of it, so an edit anywhere changed which of them made
+        # the k: a few more are asked for and ties go by position, then the k + 1 first kept
+        extra = min(k + 1 + TIES, n)
+        dist, nb = cKDTree(xy).query(xy, k=extra)
+        dist, nb = dist.reshape(n, extra), np.asarray(nb, dtype=np.int64).reshape(n, extra)
+        order = np.lexsort((xy[nb, 1], xy[nb, 0], dist), axis=-1)[:, :q]
+        nb = np.take_along_axis(nb, order, axis=1)
         # drop the element itself (not merely the first hit: a coincident element may come first)
         is_self = nb == np.arange(n)[:, None]
         drop = np.where(is_self.any(axis=1), is_self.argmax(axis=1), q - 1)
