@@ -141,3 +141,26 @@ def test_kind_changes_keep_the_exemplar_mix_in_every_window():
         hi = np.maximum(np.ceil((share + MIX) * at.sum()), before)
         # no kind's count leaves the exemplar's share ± MIX (or goes further than it already was)
         assert ((lo <= after) & (after <= hi)).all(), (w, share * at.sum(), before, after)
+
+
+def test_tied_neighbours_do_not_depend_on_points_elsewhere():
+    """On a square lattice the 5th to 8th neighbours are tied (the diagonals); which of them
+    make the k = 6 must not depend on points far away (the tree's shape), or an edit of the
+    region changes neighbourhoods, matches and positions far from it (FGDC 601's edit
+    stability was 0.68)."""
+    g = np.arange(30, dtype=float)
+    lattice = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+    rng = np.random.default_rng(4)
+    far = rng.uniform(0, 30, (400, 2)) + np.array([100.0, 0.0])
+    inner = ((lattice > 2) & (lattice < 27)).all(axis=1)
+
+    def sets(xy):
+        h = output_neighbourhoods(xy, np.zeros(len(xy), int), 6, 1.0, np.zeros(len(xy)))
+        return np.sort((xy[h.index[: len(lattice)]] @ [1000.0, 1.0]), axis=1)[inner]
+
+    alone = sets(lattice)
+    centre = (lattice @ [1000.0, 1.0])[inner][:, None]
+    axial = centre + np.array([-1000.0, -1.0, 1.0, 1000.0])  # the four nearest, untied, are always in
+    assert all(np.isin(axial[i], alone[i]).all() for i in range(len(alone)))
+    for extra in (far[:1], far[:50], far):
+        assert np.array_equal(sets(np.r_[lattice, extra]), alone)
