@@ -11,13 +11,10 @@ from __future__ import annotations
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import SETS, TILES, gate_region
+from test_wholeset import TILES, gate_region, motif_tile
 
-from svgtile.analysis.stats import analyze
 from svgtile.engines import synthesize
 from svgtile.metrics import interior, repetition
-from svgtile.svg.reader import parse_exemplar
-from svgtile.tiles.importer import TileRefused, import_tile
 
 args = sys.argv[1:]
 engines = args[: args.index("--")] if "--" in args else args
@@ -26,15 +23,10 @@ engines = engines or ["auto", "tile", "random"]
 for tile in TILES:
     if only and not any(tile.startswith(o) for o in only):
         continue
-    folder, stem = tile.split("/")
-    try:
-        t = import_tile(SETS[folder] / f"{stem}.svg")
-    except TileRefused:
+    loaded = motif_tile(tile)
+    if not isinstance(loaded, tuple):  # refused, or imported as cells
         continue
-    if t.cellular is not None:
-        continue
-    ex = parse_exemplar(t.text, source=stem)
-    stats = analyze(ex)
+    t, ex, stats = loaded
     region = gate_region(t.box, len(ex.motifs))
     win = interior(ex, region)
     if win.is_empty or win.area <= 0:

@@ -12,28 +12,20 @@ import math
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import SETS, TILES
+from test_wholeset import TILES, motif_tile
 
-from svgtile.analysis.stats import analyze
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.metrics import interior, repetition
-from svgtile.svg.reader import parse_exemplar
-from svgtile.tiles.importer import TileRefused, import_tile
 
 only = sys.argv[1:]
 for tile in TILES:
     if only and not any(tile.startswith(o) for o in only):
         continue
-    folder, stem = tile.split("/")
-    try:
-        t = import_tile(SETS[folder] / f"{stem}.svg")
-    except TileRefused:
+    loaded = motif_tile(tile)
+    if not isinstance(loaded, tuple):  # refused, or imported as cells
         continue
-    if t.cellular is not None:
-        continue
-    ex = parse_exemplar(t.text, source=stem)
-    stats = analyze(ex)
+    t, ex, stats = loaded
     x0, y0, w, h = t.box
     k = max(3.0, math.sqrt(600 / len(ex.motifs)))
     region = Region.rectangle(k * w, k * h * 0.75, x0, y0)

@@ -185,9 +185,9 @@ def gate_region(box: tuple[float, float, float, float], motifs: int) -> Region:
     return Region.rectangle(2 * m + a * w, 2 * m + a * h, x0, y0)
 
 
-@cache
-def figures(tile: str):
-    """(score, exemplar overlaps, L) of the default engine on ``tile``; None if it is refused."""
+def motif_tile(tile: str):
+    """(imported tile, exemplar, stats) of ``tile`` ("set/stem"); None if the importer refuses
+    it, "cellular" if it is imported as cells (the benchmarks over the whole sets use it too)."""
     folder, stem = tile.split("/")
     try:
         t = import_tile(SETS[folder] / f"{stem}.svg")
@@ -196,7 +196,16 @@ def figures(tile: str):
     if t.cellular is not None:
         return "cellular"
     ex = parse_exemplar(t.text, source=stem)
-    stats = analyze(ex)
+    return t, ex, analyze(ex)
+
+
+@cache
+def figures(tile: str):
+    """(score, exemplar overlaps, L) of the default engine on ``tile``; None if it is refused."""
+    loaded = motif_tile(tile)
+    if not isinstance(loaded, tuple):
+        return loaded
+    t, ex, stats = loaded
     region = gate_region(t.box, len(ex.motifs))
     result = synthesize(ex, region, "auto", seed=1, stats=stats)
     s = spacing(stats)
