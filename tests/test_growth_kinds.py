@@ -164,8 +164,10 @@ def marsh_figures(seed: int, sweeps: int | None = None):
 
 
 #: Issue 13's repetition gate not met on marsh (300 × 300, default growth): seed 2's rows repeat
-#: one run of ring copies 47.4 units along (0.255 before the neighbourhood pass).
-REPETITION_NOT_MET = {2: 0.264}
+#: one run of ring copies 47.4 units along (0.255 before the neighbourhood pass, 0.264 after it by
+#: the single-mode figure); by issue 13's figure (the 4 largest peaks against what the exemplar
+#: shows) seeds 2 and 3 read 0.216 and 0.212 (seed 1 0.186).
+REPETITION_NOT_MET = {2: 0.216, 3: 0.212}
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
