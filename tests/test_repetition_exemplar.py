@@ -8,20 +8,24 @@ gate; and ``P_ex`` follows its definition on hand-made exemplars.
 
 from __future__ import annotations
 
+import dataclasses
 from functools import cache
 
 import numpy as np
 import pytest
 from conftest import stamp
+from scipy.spatial import cKDTree
 from test_growth_phases import phased_tile
-from test_growth_regular import FGDC, needs_data
+from test_growth_regular import FGDC, SHARED, needs_data
 from test_repetition_order import exemplar, grid
+from test_wholeset import gate_region
 
 from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.apps.load import load_exemplar
 from svgtile.engines import synthesize
 from svgtile.metrics.repeats import _exemplar_shares
 from svgtile.svg.reader import parse_exemplar
+from svgtile.tiles.importer import import_tile
 
 BUNDLED = ("sand", "marsh", "boulders", "till", "gravel")
 IRREGULAR = ("603", "605", "607", "626")
@@ -112,3 +116,49 @@ def test_exact_rows_show_their_multiples_and_a_jittered_tile_does_not_show_its_p
     assert share[4] == 0.0  # the rows' half-step offset: no partner straight above
     jit = exemplar(grid(4, jitter=0.6, seed=3))
     assert _exemplar_shares(jit, np.array([[20.0, 0.0], [5.0, 0.0]]), 0.15, 1.0)[0] == 0.0
+
+
+@cache
+def equinor_50090():
+    """Equinor lithology 50090, imported as tests/test_wholeset.py does: (exemplar, box)."""
+    t = import_tile(SHARED / "equinor-lithology" / "svg" / "50090.svg")
+    return parse_exemplar(t.text, source="50090"), t.box
+
+
+def stamped(ex, box):
+    """repetition of the tile engine on ``ex`` on the whole-set gate's region (seed 1)."""
+    st = analyze(ex)
+    region = gate_region(box, len(ex.motifs))
+    arr = synthesize(ex, region, "tile", seed=1, stats=st).arrangement
+    return metrics.repetition(arr, ex, st, metrics.interior(ex, region))
+
+
+@needs_data
+def test_equinor_50090_is_a_4_by_4_stamp_of_an_exact_tile_so_stamping_it_is_faithful():
+    # its 64 motifs repeat at (16, 0) and (0, 16) to 5e-4 (the bin is 0.8): the divisor rule
+    # excuses its period (0, 64) = 4 · (0, 16) because the exemplar shows it, not by a loose
+    # tolerance
+    ex, box = equinor_50090()
+    xy, kind = ex.motifs.xy, ex.motifs.kind
+    for step in ((16.0, 0.0), (0.0, 16.0)):
+        for c in np.unique(kind):
+            mine = xy[kind == c]
+            moved = mine + step
+            moved = moved[(moved[:, 0] < box[0] + box[2]) & (moved[:, 1] < box[1] + box[3])]
+            assert cKDTree(mine).query(moved)[0].max() < 1e-3
+    rep = stamped(ex, box)
+    assert rep.repetition <= 0.05
+    assert rep.repetition_exemplar >= 0.95
+
+
+@needs_data
+@pytest.mark.parametrize("jitter", [0.4, 0.8])
+def test_equinor_50090_jittered_by_half_a_bin_or_more_and_stamped_is_repetition(jitter):
+    # the same tile with every motif moved by up to ± jitter (the bin is 0.8): no longer a stamp
+    # of a smaller tile, its period is not excused
+    ex, box = equinor_50090()
+    rng = np.random.default_rng(0)
+    xy = ex.motifs.xy + rng.uniform(-jitter, jitter, ex.motifs.xy.shape)
+    jittered = dataclasses.replace(ex, motifs=dataclasses.replace(ex.motifs, xy=xy))
+    rep = stamped(jittered, box)
+    assert rep.repetition >= 0.8
