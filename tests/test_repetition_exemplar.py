@@ -162,3 +162,18 @@ def test_equinor_50090_jittered_by_half_a_bin_or_more_and_stamped_is_repetition(
     jittered = dataclasses.replace(ex, motifs=dataclasses.replace(ex.motifs, xy=xy))
     rep = stamped(jittered, box)
     assert rep.repetition >= 0.8
+
+
+def test_a_reference_whose_partners_all_lie_behind_it_scores_zero_not_an_error():
+    """Peaks are taken in the half-plane dx > 0 (or dx = 0, dy ≥ 0): a texture whose only same-kind
+    displacements from motifs in the window point the other way has no peak, and scores 0 (the
+    reviewer's case: `svgtile score` ended in an internal TypeError; 0.000 before issue 13's figure)."""
+    from svgtile.core.arrangement import Arrangement
+
+    ex = read_exemplar("exemplars/gravel.svg")
+    stats = analyze(ex)
+    kind = ex.motifs.kind[:1].repeat(2)
+    arr = Arrangement(kind, np.array([[100.0, 100.0], [40.0, 100.0]]), np.zeros(2), np.ones(2))
+    window = Region.rectangle(40, 40, 80, 80).shape
+    got = metrics.repetition(arr, ex, stats, window)
+    assert got.repetition == 0.0 and got.repetition_vector is None

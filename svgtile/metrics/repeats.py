@@ -180,17 +180,13 @@ def repetition(
     if len(who) == 0:
         return Repetition(0.0, 0.0, None, 0.0, None, own, 0.0, 0.0, None)
     disp = np.concatenate(disp)
-    if len(steps) == 0:  # no order to leave out
-        total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
-        mine = slice(None)
-    else:
-        total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
-        mine = ~explained(disp, steps, BOX * q)
+    total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+    mine = ~explained(disp, steps, BOX * q) if len(steps) else slice(None)  # no order: nothing to leave out
     who, disp = who[mine], disp[mine]
-    if len(who) == 0:
-        return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     cell = np.floor(disp / q).astype(np.int64)
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
+    if len(peaks) == 0:  # no displacement left, or none in the half-plane the peaks are taken in
+        return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     shown = _exemplar_shares(exemplar, (peaks + 0.5) * q, BOX * q, REPEAT_DIVIDE * s)
     best = None
     for k, (mx, my) in enumerate(peaks):
