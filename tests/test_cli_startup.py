@@ -183,3 +183,18 @@ def test_the_workers_baselines_from_the_exemplar_file_are_this_process_ones():
     ).stdout
     here = baseline_distances(*load_exemplar(path))
     assert there.strip() == repr(here) and all(v == v for v in here)
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+@pytest.mark.parametrize("which", ["exemplar", "texture"])
+def test_score_refuses_a_named_pipe_at_once_instead_of_waiting_on_it(tmp_path, which):
+    """The order check reads the head of both files: on a named pipe with no writer, opening it
+    blocks forever (the reviewer's case: the command hung); the readers' one-line refusal comes
+    first instead."""
+    fifo = tmp_path / "pipe.svg"
+    os.mkfifo(fifo)
+    args = [str(EXEMPLARS / "gravel.svg"), str(fifo)] if which == "texture" else [str(fifo), str(fifo)]
+    done = subprocess.run([sys.executable, "-m", "svgtile", "score", *args, "--jobs", "1"],
+                          capture_output=True, text=True, timeout=60)  # fmt: skip
+    assert done.returncode != 0
+    assert done.stderr.count("\n") == 1 and "named pipe" in done.stderr and "Traceback" not in done.stderr

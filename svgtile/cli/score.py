@@ -10,6 +10,7 @@ import multiprocessing
 import os
 import re
 import signal
+import stat
 import sys
 from collections.abc import Iterator
 from concurrent.futures import BrokenExecutor, Executor, Future, ProcessPoolExecutor
@@ -159,10 +160,12 @@ def _check_order(exemplar: str, texture: str) -> None:
     (its run record, in the file's first 64 KiB) of more than :data:`SWAPPED_ABOVE` motifs and
     TEXTURE has no run record.  Both textures (a texture scored against itself, or made from a
     texture) and large drawn exemplars (no run record) go on; unreadable files are left to
-    their readers."""
+    their readers (which also refuse what is not a regular file)."""
     heads = []
     for path in (exemplar, texture):
         try:
+            if not stat.S_ISREG(os.stat(path).st_mode):  # a pipe or a device would block here
+                return
             with open(path, "rb") as f:
                 heads.append(f.read(_HEAD))
         except OSError:
