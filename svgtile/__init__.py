@@ -12,6 +12,7 @@ scipy and shapely are imported; ``from svgtile import analyze`` works as it alwa
 from __future__ import annotations
 
 import importlib
+import importlib.util
 
 TYPE_CHECKING = False  # typing's own constant, without importing typing (≈ 2 ms at start-up)
 if TYPE_CHECKING:
@@ -39,8 +40,11 @@ __version__ = "0.1.0"
 
 def __getattr__(name: str):
     module = _LAZY.get(name)
-    # a subpackage not imported yet (``svgtile.metrics``) is found by the import system
     if module is None:
+        # a subpackage or module not imported yet (``svgtile.errors.SvgtileError`` after a plain
+        # ``import svgtile``: the eager package imported them all as a side effect, and code used it)
+        if not name.startswith("_") and importlib.util.find_spec(f"{__name__}.{name}") is not None:
+            return importlib.import_module(f"{__name__}.{name}")
         raise AttributeError(f"module 'svgtile' has no attribute {name!r}")
     value = getattr(importlib.import_module(module), name)
     globals()[name] = value

@@ -198,3 +198,16 @@ def test_score_refuses_a_named_pipe_at_once_instead_of_waiting_on_it(tmp_path, w
                           capture_output=True, text=True, timeout=60)  # fmt: skip
     assert done.returncode != 0
     assert done.stderr.count("\n") == 1 and "named pipe" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_subpackages_are_attributes_of_the_package_after_a_plain_import():
+    """``import svgtile`` then ``svgtile.errors.SvgtileError`` (or ``svgtile.svg``, …) worked while
+    the package imported its stages eagerly, and code relied on it; the lazy package imports a
+    subpackage on first access (in a fresh interpreter: this one has imported them already)."""
+    code = ("import svgtile\n"
+            "names = ['errors', 'svg', 'core', 'analysis', 'files', 'metrics']\n"
+            "print(all(getattr(svgtile, n).__name__ == 'svgtile.' + n for n in names),"
+            " svgtile.errors.SvgtileError.__name__)\n"
+            "try:\n    svgtile.no_such_module\nexcept AttributeError:\n    print('refused')\n")  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["True", "SvgtileError", "refused"]
