@@ -28,7 +28,8 @@ from svgtile.engines.optimize.samples import Samples
 #: Samples tried per element by the first search (§4.1's initial assignment).
 FIRST_CANDIDATES = 48
 _FIRST = 71  # hash stream of the first candidates
-#: Neighbours asked for past the k + 1 nearest, so that ties at the k-th go by position.
+#: Neighbours first asked for, as a multiple of the k + 1 nearest, so that a tie group at the
+#: k-th is whole and goes by position (rows where it may not be are asked again for more).
 TIES = 2
 
 
@@ -64,14 +65,7 @@ def output_neighbourhoods(xy: np.ndarray, kind: np.ndarray, k: int, spacing: flo
     rel = np.full((n, k, 2), np.nan)
     if n > 1:
         q = min(k + 1, n)
-        # equidistant neighbours (copies of a repeating tile) come from the tree in an order
-        # that depends on every point of it, so an edit anywhere changed which of them made
-        # the k: a few more are asked for and ties go by position, then the k + 1 first kept
-        extra = min(k + 1 + TIES, n)
-        dist, nb = cKDTree(xy).query(xy, k=extra)
-        dist, nb = dist.reshape(n, extra), np.asarray(nb, dtype=np.int64).reshape(n, extra)
-        order = np.lexsort((xy[nb, 1], xy[nb, 0], dist), axis=-1)[:, :q]
-        nb = np.take_along_axis(nb, order, axis=1)
+        nb = _nearest_by_position(xy, q)
         # drop the element itself (not merely the first hit: a coincident element may come first)
         is_self = nb == np.arange(n)[:, None]
         drop = np.where(is_self.any(axis=1), is_self.argmax(axis=1), q - 1)
@@ -84,6 +78,31 @@ def output_neighbourhoods(xy: np.ndarray, kind: np.ndarray, k: int, spacing: flo
         rel[:, : q - 1] = np.einsum("nij,nkj->nki", back, d)
     kinds = np.where(index >= 0, kind[np.maximum(index, 0)], -1)
     return Neighbourhoods(index, rel, kinds, turn)
+
+
+def _nearest_by_position(xy: np.ndarray, q: int) -> np.ndarray:
+    """(n, q) int: each point's ``q`` nearest points (itself among them), equidistant ones by
+    position (x, then y).
+
+    Equidistant neighbours (the copies of a repeating tile) come from the tree in an order that
+    depends on every point in it, so an edit anywhere changed which of them completed a far
+    element's k.  ``TIES · q`` are asked for; a row whose last one is still as near as its q-th
+    may have more of that tie group unseen, and is asked again for twice as many until its tie
+    group is whole (a square lattice at k = 14 has 8 points at its 15th distance).
+    """
+    n = len(xy)
+    tree = cKDTree(xy)
+    out = np.empty((n, q), dtype=np.int64)
+    rows, want = np.arange(n), min(TIES * q, n)
+    while len(rows):
+        dist, nb = tree.query(xy[rows], k=want)
+        dist, nb = dist.reshape(len(rows), want), np.asarray(nb, dtype=np.int64).reshape(len(rows), want)
+        order = np.lexsort((xy[nb, 1], xy[nb, 0], dist), axis=-1)[:, :q]
+        out[rows] = np.take_along_axis(nb, order, axis=1)
+        if want == n:
+            break
+        rows, want = rows[dist[:, -1] <= dist[:, q - 1]], min(2 * want, n)
+    return out
 
 
 def first_candidates(samples: Samples, xy: np.ndarray, kind: np.ndarray, *, key: int) -> np.ndarray:
