@@ -1,11 +1,9 @@
-"""Hole filling after the patch engine's density repair, and after the optimize engine's solver
-on a refilled start: the kinds a window lacks *by area*, largest first, dropped into its empty
-places (issues 12 and 14).
-
-The optimize engine (Ma, Wei & Tong 2011; :mod:`svgtile.engines.optimize.engine`) loses the same
-large kinds at its start's seams and in its kind step, and its insertion (:mod:`.optimize.insert`)
-puts back what a neighbourhood predicts and fits, mostly dots; this module is then its last step
-too, with the same windows (:mod:`svgtile.engines.windows`).
+"""Hole filling after the patch engine's density repair: the kinds a window lacks *by area*,
+largest first, dropped into its empty places (issue 12).  Shared with the density windows
+(:mod:`svgtile.engines.windows`) outside the patch engine so that another engine can use the same
+implementation: the optimize engine (Ma, Wei & Tong 2011) loses the same large kinds at its
+start's seams, but filling after its solver lowered its likeness too much to be its default
+(measured, not merged: benchmarks/README.md, "optdens14").
 
 Density repair (almeraj2013 §3.4, :func:`svgtile.engines.patch.density.adjust_density`) pastes
 discs of the exemplar: an exemplar motif lands where the disc puts it or not at all.  On FGDC

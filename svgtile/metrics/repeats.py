@@ -121,7 +121,7 @@ def repetition(
        square, so rounding at bin edges does not matter).
     5. ``P_ex(v)``: the same share in the exemplar's own motifs, unwrapped (a repeating tile is
        not continued across its edges), over the motifs whose ``3q × 3q`` square at ``v`` lies
-       inside the exemplar's input region — the part of the exemplar that overlaps itself when
+       inside the bounding box of the exemplar's input region — the part of the exemplar that overlaps itself when
        shifted by ``v``.  With fewer than :data:`REPEAT_EX_MIN` such motifs the exemplar cannot
        show ``v`` and ``P_ex = 0``: a displacement as long as the tile (its period stamped) is
        never excused.
