@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import TILES, gate_region, motif_tile
+from test_wholeset import gate_region, motif_tiles
 
 from svgtile.engines import synthesize
 from svgtile.metrics import interior, repetition
@@ -20,13 +20,7 @@ args = sys.argv[1:]
 engines = args[: args.index("--")] if "--" in args else args
 only = args[args.index("--") + 1 :] if "--" in args else []
 engines = engines or ["auto", "tile", "random"]
-for tile in TILES:
-    if only and not any(tile.startswith(o) for o in only):
-        continue
-    loaded = motif_tile(tile)
-    if not isinstance(loaded, tuple):  # refused, or imported as cells
-        continue
-    t, ex, stats = loaded
+for tile, t, ex, stats in motif_tiles(only):
     region = gate_region(t.box, len(ex.motifs))
     win = interior(ex, region)
     if win.is_empty or win.area <= 0:

@@ -12,20 +12,14 @@ import math
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import TILES, motif_tile
+from test_wholeset import motif_tiles
 
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.metrics import interior, repetition
 
 only = sys.argv[1:]
-for tile in TILES:
-    if only and not any(tile.startswith(o) for o in only):
-        continue
-    loaded = motif_tile(tile)
-    if not isinstance(loaded, tuple):  # refused, or imported as cells
-        continue
-    t, ex, stats = loaded
+for tile, t, ex, stats in motif_tiles(only):
     x0, y0, w, h = t.box
     k = max(3.0, math.sqrt(600 / len(ex.motifs)))
     region = Region.rectangle(k * w, k * h * 0.75, x0, y0)

@@ -199,6 +199,17 @@ def motif_tile(tile: str):
     return t, ex, analyze(ex)
 
 
+def motif_tiles(only: list[str] | tuple[str, ...] = ()):
+    """(tile, imported tile, exemplar, stats) of every gate tile of motifs whose name starts with
+    one of ``only`` (every one if empty): the whole-set benchmarks' loop."""
+    for tile in TILES:
+        if only and not any(tile.startswith(o) for o in only):
+            continue
+        loaded = motif_tile(tile)
+        if isinstance(loaded, tuple):  # not refused, not imported as cells
+            yield (tile, *loaded)
+
+
 @cache
 def figures(tile: str):
     """(score, exemplar overlaps, L) of the default engine on ``tile``; None if it is refused."""
