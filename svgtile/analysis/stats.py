@@ -6,6 +6,7 @@ density ρ of §3.4 and the smallest orientation arc per kind of §3.5.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -59,6 +60,12 @@ class Stats:
     arc_width: np.ndarray
     frequency: np.ndarray
     overlaps: int
+
+    @property
+    def spacing(self) -> float:
+        """The exemplar's mean spacing ``s = 1 / sqrt(λ)``, λ its motifs per unit area (user
+        units; inf without motifs)."""
+        return 1.0 / math.sqrt(self.count_density) if self.count_density > 0 else math.inf
 
 
 def analyze(exemplar: Exemplar) -> Stats:

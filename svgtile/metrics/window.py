@@ -33,8 +33,9 @@ def interior(exemplar: Exemplar, region: Region) -> shapely.Geometry:
 
 
 def spacing(stats: Stats) -> float:
-    """The exemplar's mean spacing ``s = 1 / sqrt(λ)``, λ its motifs per unit area (user units)."""
-    return 1.0 / math.sqrt(stats.count_density) if stats.count_density > 0 else math.inf
+    """The exemplar's mean spacing ``s = 1 / sqrt(λ)``, λ its motifs per unit area (user units):
+    :attr:`~svgtile.analysis.stats.Stats.spacing`."""
+    return stats.spacing
 
 
 def exemplar_size(exemplar: Exemplar) -> tuple[float, float]:

@@ -347,10 +347,10 @@ class Growth:
         fixed = Arrangement.concat([w.before, *w.grown])
         fsub = np.concatenate([w.bsub, *w.gsub])
         f = len(fixed)
-        xy = np.concatenate([fixed.xy, own.xy])
+        xy, movable = np.concatenate([fixed.xy, own.xy]), np.arange(f + len(own)) >= f
         kind, ring = repick(self.rings, xy, np.concatenate([fixed.kind, own.kind]),
-                            np.concatenate([fsub, osub]), np.arange(f + len(own)) >= f, weights=self.p.weights,
-                            sweeps=self.p.kind_sweeps, then=self.neighbourhood_pass(np.arange(f + len(own)) >= f, xy))  # fmt: skip
+                            np.concatenate([fsub, osub]), movable, weights=self.p.weights,
+                            sweeps=self.p.kind_sweeps, then=self.neighbourhood_pass(movable, xy))  # fmt: skip
         kind, ring = kind[f:], ring[f:]
         changed = (kind != own.kind) & (ring >= 0)
         turned = (self.rings.angle[ring] + 180.0) % 360.0 - 180.0
@@ -377,8 +377,7 @@ class Growth:
         exemplar's k-nearest neighbourhoods; None when ``neighbourhood_sweeps`` is 0."""
         if not self.p.neighbourhood_sweeps:
             return None
-        # the exemplar's mean spacing 1 / sqrt(λ) (metrics.window.spacing, a later stage's)
-        m, s, sweeps = self.ex.motifs, 1.0 / math.sqrt(self.stats.count_density), self.p.neighbourhood_sweeps
+        m, s, sweeps = self.ex.motifs, self.stats.spacing, self.p.neighbourhood_sweeps
         return lambda kind: neighbourhood_kinds(xy, kind, movable, m.xy, m.kind, s, sweeps=sweeps)
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
