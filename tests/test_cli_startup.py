@@ -167,24 +167,6 @@ def test_score_in_the_right_order_and_legitimate_texture_exemplars_go_on(tmp_pat
     assert main(["score", str(EXEMPLARS / "gravel.svg"), str(big), "--jobs", "1"]) == 0
 
 
-def test_the_workers_baselines_from_the_exemplar_file_are_this_process_ones():
-    """The worker reads the exemplar itself (it is forked before anything is read): its
-    ``(E_tile, E_random)``, measured in a fresh interpreter as in the worker, must be this
-    process's for the same file, bit for bit (in one process both would come from caches)."""
-    from svgtile.apps.load import load_exemplar
-    from svgtile.metrics.likeness import baseline_distances
-
-    path = str(EXEMPLARS / "till.svg")
-    code = (
-        f"from svgtile.cli.score import worker_baselines; print(repr(worker_baselines({path!r})))"
-    )
-    there = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True
-    ).stdout
-    here = baseline_distances(*load_exemplar(path))
-    assert there.strip() == repr(here) and all(v == v for v in here)
-
-
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
 @pytest.mark.parametrize("which", ["exemplar", "texture"])
 def test_score_refuses_a_named_pipe_at_once_instead_of_waiting_on_it(tmp_path, which):

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import ctypes
 import gc
-import importlib
 import json
 import multiprocessing
 import os
@@ -13,13 +12,14 @@ import signal
 import stat
 import sys
 from collections.abc import Iterator
-from concurrent.futures import BrokenExecutor, Executor, Future, ProcessPoolExecutor
+from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from pathlib import Path
 
 import click
 
 from svgtile.cli.output import Ending
+from svgtile.core.worker import worker_submit
 
 #: prctl(2)'s option that has Linux signal a process when its parent ends.
 _PR_SET_PDEATHSIG = 1
@@ -69,34 +69,24 @@ def score(exemplar, texture, as_json, exact, jobs):
     --exact measures everything on every motif.
     """
     _check_order(exemplar, texture)
-    early = _core_idle()
-    if not early:
-        # no idle core: a worker forked before the imports would import them again on a core
-        # someone else is using (measured: 0.6–1.5 s slower at load 10 on 2 cores), so it is
-        # forked after them and inherits them, and works as before score11
-        for module in ("svgtile.cli.common", "svgtile.metrics.scoring", "svgtile.svg.texture",
-                       "svgtile.apps.compare"):  # fmt: skip
-            importlib.import_module(module)
-    with _no_cycle_collection(), _second_process(jobs) as pool:
-        # where a core is idle, forked before the analysis stage, scipy and shapely are imported
-        # (this module imports none of them): the worker imports them, reads the exemplar and
-        # measures the baselines (they depend on the exemplar alone) while this process imports
-        # them, reads the exemplar and reads the whole texture (the worker is busy: no split)
-        baselines = _submit(pool, worker_baselines, exemplar) if early else None
-        from svgtile.apps.compare import format_score
-        from svgtile.cli.common import json_safe, load, warn_if_few
-        from svgtile.metrics import score as measure
-        from svgtile.metrics.scoring import ready_worker, worker_submit
-        from svgtile.svg.texture import start_reading
+    # imported here, not at the module's head: the other commands do not load them; the worker
+    # is forked after them (at its first task) and inherits them (forked before them, it imported
+    # them again at the same time as this process: measured no faster where a core was idle and
+    # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
+    from svgtile.apps.compare import format_score
+    from svgtile.cli.common import json_safe, load, warn_if_few
+    from svgtile.metrics import score as measure
+    from svgtile.metrics.likeness import baseline_distances
+    from svgtile.metrics.scoring import ready_worker
+    from svgtile.svg.texture import start_reading
 
+    with _no_cycle_collection(), _second_process(jobs) as pool:
         ex, stats = load(exemplar)
-        if baselines is None:  # forked now, after the imports: it starts while the file is read
-            worker_submit(pool, ready_worker)
-        # without the baselines, the worker scans the last 30 % of the <use> lines first, then
-        # measures them while this process scans the rest and measures the figures up to E
-        reading = start_reading(texture, pool=pool if baselines is None else None)
-        if baselines is None:
-            baselines = worker_submit(pool, _baselines_of, ex, stats)
+        worker_submit(pool, ready_worker)  # forked now: it starts while the file is read
+        # the worker scans the last 30 % of the <use> lines first, then measures the baselines
+        # while this process scans the rest and measures the figures up to E
+        reading = start_reading(texture, pool=pool)
+        baselines = worker_submit(pool, baseline_distances, ex, stats)
         arr, region = reading.finish(ex)
         del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
         result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
@@ -113,36 +103,6 @@ def score(exemplar, texture, as_json, exact, jobs):
         click.echo(format_score(result))
     # all is printed and no file written: the interpreter's teardown would only free memory
     Ending.ask()
-
-
-def worker_baselines(exemplar: str) -> tuple[float, float]:
-    """``(E_tile, E_random)`` of the exemplar file ``exemplar``
-    (:func:`svgtile.metrics.likeness.baseline_distances`), for the worker of ``svgtile score``:
-    it reads and analyses the exemplar itself (its warnings are the command's to print), and
-    imports what the footprint figures need after them (scipy.ndimage, ≈ 0.04 s)."""
-    from svgtile.apps.load import load_exemplar
-    from svgtile.metrics.likeness import baseline_distances
-    from svgtile.metrics.scoring import ready_worker
-
-    ex, stats = load_exemplar(exemplar, warn=lambda message: None)
-    found = baseline_distances(ex, stats)
-    ready_worker()
-    return found
-
-
-def _baselines_of(ex, stats) -> tuple[float, float]:
-    from svgtile.metrics.likeness import baseline_distances
-
-    return baseline_distances(ex, stats)
-
-
-def _submit(pool: Executor | None, fn, *args) -> Future | None:
-    """``pool.submit(fn, *args)``, or None without a pool or with a dead worker
-    (:func:`svgtile.metrics.scoring.worker_submit`, which this module does not import yet)."""
-    try:
-        return pool.submit(fn, *args) if pool is not None else None
-    except BrokenExecutor:
-        return None
 
 
 #: An exemplar file that svgtile wrote as a texture with more motifs than this, scored against
@@ -183,11 +143,9 @@ def _check_order(exemplar: str, texture: str) -> None:
 def _second_process(jobs: int | None) -> Iterator[Executor | None]:
     """One worker process forked from this one, or None (``jobs`` 1, or not on Linux).
 
-    Forked at once, before this process imports the analysis stage, scipy and shapely (its
-    first task, :func:`worker_baselines`, imports them there while this process does here: the
-    imports were ≈ 0.6 s of one core's time before anything else could start); on Linux only,
-    where forking a process that has used numpy and GEOS is safe (macOS's system libraries are
-    not fork-safe, Windows cannot fork).
+    Forked at its first task, after this process imported the analysis stage, scipy and shapely
+    (the worker inherits them); on Linux only, where forking a process that has used numpy and
+    GEOS is safe (macOS's system libraries are not fork-safe, Windows cannot fork).
     A process, not a thread: most of the figures' time is Python and numpy calls that hold the
     GIL (benchmarks/README.md, "`svgtile score` on two cores").  Forked at the first
     ``submit``, before the executor starts its thread."""
@@ -217,12 +175,6 @@ def _stop_worker(pool: ProcessPoolExecutor) -> None:
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         if process.is_alive():
             process.kill()
-
-
-def _core_idle() -> bool:
-    """Whether a second core is idle (:func:`_default_jobs`): then the worker is forked before
-    the heavy imports and imports them there, at the same time as this process."""
-    return _default_jobs() >= 2
 
 
 def _default_jobs() -> int:

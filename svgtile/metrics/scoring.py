@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from concurrent.futures import BrokenExecutor, Executor, Future
+from concurrent.futures import Executor, Future
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,6 +60,7 @@ from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
+from svgtile.core.worker import worker_result, worker_submit
 from svgtile.metrics import window as _window
 from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
@@ -393,25 +394,6 @@ def ready_worker() -> None:
     (scipy.ndimage, for the empty discs: ≈ 0.04 s), which the worker would otherwise import in
     the middle of them."""
     import scipy.ndimage  # noqa: F401
-
-
-def worker_submit(pool: Executor | None, fn, *args) -> Future | None:
-    """``pool.submit(fn, *args)``, or None if there is no pool or its worker has died (killed, out
-    of memory, before this task: a broken pool refuses new work); the caller then computes it
-    itself, as for :func:`worker_result`."""
-    try:
-        return pool.submit(fn, *args) if pool is not None else None
-    except BrokenExecutor:
-        return None
-
-
-def worker_result(future: Future | None) -> tuple | None:
-    """What ``future`` computed (a tuple of figures), or None if there is none or its worker
-    died (killed, out of memory): the caller then computes them itself, the same a little later."""
-    try:
-        return future.result() if future is not None else None
-    except BrokenExecutor:
-        return None
 
 
 def _rarest_spacing(stats: Stats) -> float:

@@ -22,6 +22,8 @@ from operator import itemgetter
 
 import numpy as np
 
+from svgtile.core.worker import worker_submit
+
 #: A number as :func:`svgtile.svg.writer.fmt_array` writes it (no exponent, no leading ``+``).
 _FIXED = r"-?\d+(?:\.\d+)?"
 #: One motif's transform per line: x, y, angle, scale, the kind's suffix (with its leading space).
@@ -166,11 +168,8 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
     cut, far = len(body) + 1, None
     middle = body.find("\n", int(len(body) * (1.0 - WORKER_SHARE)))
     if pool is not None and middle >= 0 and body.count("\n") >= split_above:
-        try:
-            far = pool.submit(scan, body[middle + 1 :])
-            cut = middle + 1
-        except BrokenExecutor:  # the worker died before it was asked: all scanned here
-            pass
+        far = worker_submit(pool, scan, body[middle + 1 :])  # None: the worker died, all scanned here
+        cut = middle + 1 if far is not None else cut
     return Block(opening.end(), end, body, cut, far)
 
 
