@@ -183,6 +183,27 @@ def test_a_line_not_in_svgtiles_form_in_either_half_is_parsed_whole(tmp_path, wh
         _read_both(tmp_path / "e.svg", ex, pool)
 
 
+@pytest.mark.parametrize("where", ["first half", "second half"])
+def test_a_nested_group_among_the_lines_is_parsed_whole(tmp_path, where):
+    """The motif group's end is found as the document's last ``</g>`` (score11d: not searched
+    for over all the lines): a group nested among the lines puts a ``</g>`` before it, which
+    no ``<use>`` line matches, so the bulk read declines and the whole document is parsed —
+    the same motifs as the file without the nested group (it has no transform)."""
+    ex = _varied_texture(tmp_path / "t.svg")
+    lines = (tmp_path / "t.svg").read_text().split("\n")
+    uses = [i for i, line in enumerate(lines) if line.lstrip().startswith("<use ")]
+    at = uses[len(uses) // 4] if where == "first half" else uses[-3]
+    lines[at : at + 2] = ["    <g>", *lines[at : at + 2], "    </g>"]
+    (tmp_path / "e.svg").write_text("\n".join(lines))
+    assert _own_use_block((tmp_path / "e.svg").read_bytes()) is None
+    plain = read_texture(tmp_path / "t.svg", ex)
+    with ThreadPoolExecutor(1) as pool:
+        assert _own_use_block((tmp_path / "e.svg").read_bytes(), pool=pool, split_above=1) is None
+        nested, _ = _read_both(tmp_path / "e.svg", ex, pool)
+    for field in ("kind", "xy", "angle", "scale"):
+        assert _same(getattr(nested[0], field), getattr(plain[0], field)), field
+
+
 @pytest.mark.skipif(not FORK, reason="no fork on this system: svgtile score reads in one process")
 def test_score_with_two_jobs_prints_the_same_when_the_read_is_split(tmp_path, capsys, monkeypatch):
     """With two jobs the worker, forked after the imports, scans the last part of the lines

@@ -154,17 +154,24 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
     if before.count(b"<?") != (1 if before.startswith(b"<?xml ") else 0):
         return None
     opening = _OWN_GROUP.match(data, start)
-    end = data.find(b"</g>", opening.end()) if opening else -1
-    if end < 0 or re.fullmatch(rb"</g>[ \n]*</svg>[ \n]*", data[end:]) is None:
+    if opening is None:
+        return None
+    # the group's end is the document's last </g> (searched from the end, where it is: not over
+    # the 19 MB of lines); a </g> among the lines fails the scan (no line of it is a <use>)
+    end = data.rfind(b"</g>")
+    if end < opening.end() or re.fullmatch(rb"</g>[ \n]*</svg>[ \n]*", data[end:]) is None:
+        return None
+    # data[opening.end():end] is "\n" + one line per <use> + "\n" + the indent of </g>: the lines
+    # are decoded in one copy (spaces and newlines are single bytes in UTF-8)
+    stop = end
+    while stop > opening.end() and data[stop - 1] == 0x20:
+        stop -= 1
+    if stop - opening.end() < 3 or data[opening.end()] != 0x0A or data[stop - 1] != 0x0A:
         return None
     try:
-        block = data[opening.end() : end].decode("utf-8")
+        body = data[opening.end() + 1 : stop - 1].decode("utf-8")
     except UnicodeDecodeError:
         return None
-    inner = block.rstrip(" ")  # "\n" + one line per <use> + "\n" + the indent of </g>
-    if len(inner) < 3 or inner[0] != "\n" or inner[-1] != "\n":
-        return None
-    body = inner[1:-1]
     cut, far = len(body) + 1, None
     middle = body.find("\n", int(len(body) * (1.0 - WORKER_SHARE)))
     if pool is not None and middle >= 0 and body.count("\n") >= split_above:
