@@ -18,6 +18,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.discs import inscribed_discs, surely_close
 from svgtile.core.footprint import Prototype, motif_radius, near_pairs, world_footprints
 
 #: Slack on the distance rule, user units: positions are rounded to 1e-4 units for output, so
@@ -259,37 +260,67 @@ def cross_pairs(
     # (valid only when both centroids lie inside their footprints, i.e. both radii are positive)
     in_a, in_b = motif_radius(new, protos, inner=True)[a], motif_radius(old, protos, inner=True)[b]
     sure = (in_a > 0) & (in_b > 0) & (centre - in_a - in_b < np.maximum(d_rule, 0.0))
-    test = ~sure
-    if not complete:
-        known = np.zeros(len(new), dtype=bool)
-        known[a[sure]] = True
-        test &= ~known[a]
-    ta, tb = a[test], b[test]
-    hit = np.zeros(len(ta), dtype=bool)
-    if len(ta):
-        used_a, a_local = np.unique(ta, return_inverse=True)
-        geoms_a = world_footprints(new.take(used_a), protos)
-        if complete:
-            stages = [np.arange(len(ta))]
-        else:
-            # the nearest pair of each new motif first: a motif found in conflict needs no more
-            # GEOS tests (most candidates conflict with their nearest neighbour, if at all)
-            order = np.lexsort((centre[test], ta))
-            first = np.r_[True, ta[order][1:] != ta[order][:-1]]
-            stages = [order[first], order[~first]]
-        found = np.zeros(len(new), dtype=bool)
-        for at in stages:
-            at = at[~found[ta[at]]]
-            if not len(at):
-                continue
-            used_b, b_local = np.unique(tb[at], return_inverse=True)
-            close, share = _test_pairs(
-                geoms_a[a_local[at]], world_footprints(old.take(used_b), protos)[b_local], d_rule[test][at],
-                either=True,
+    known = np.zeros(len(new), dtype=bool)  # new motifs known to conflict
+    known[a[sure]] = True
+    todo = np.flatnonzero(~sure)
+    if complete:
+        stages = [todo]
+    else:
+        # the nearest pair of each new motif first: a motif found in conflict needs no more
+        # tests (most candidates conflict with their nearest neighbour, if at all)
+        todo = todo[~known[a[todo]]]
+        order = todo[np.lexsort((centre[todo], a[todo]))]
+        first = np.r_[True, a[order][1:] != a[order][:-1]][: len(order)]
+        stages = [order[first], order[~first]]
+    bad = sure.copy()
+    for at in stages:
+        if not complete:
+            at = at[~known[a[at]]]
+        # a few inscribed discs per kind decide most pairs of thin, concave motifs as surely bad
+        close = _discs_close(new, old, protos, a[at], b[at], np.maximum(d_rule[at], 0.0))
+        bad[at[close]] = True
+        known[a[at[close]]] = True
+        at = at[~known[a[at]]] if not complete else at[~close]
+        if not len(at):
+            continue
+        used_a, a_local = np.unique(a[at], return_inverse=True)
+        used_b, b_local = np.unique(b[at], return_inverse=True)
+        close, share = _test_pairs(
+            world_footprints(new.take(used_a), protos)[a_local], world_footprints(old.take(used_b), protos)[b_local],
+            d_rule[at], either=True,
+        )  # fmt: skip
+        bad[at] = close | share
+        known[a[at[bad[at]]]] = True
+    rest = ~sure & bad  # in the order of the candidates, as GEOS alone finds them
+    return np.r_[a[sure], a[rest]], np.r_[b[sure], b[rest]]
+
+
+#: Most disc-pair distances :func:`_discs_close` holds in memory at once.
+_DISC_CHUNK = 1 << 21
+
+
+def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
+    """(p,) bool: pairs ``(new[a], old[b])`` that two inscribed discs (:mod:`svgtile.core.discs`)
+    show closer than ``reach`` (p,) ≥ 0 — or sharing area, for ``reach`` 0 — surely."""
+    close = np.zeros(len(a), dtype=bool)
+    if not len(a):
+        return close
+    discs = [inscribed_discs(p) for p in protos]
+    margin = 1e-9 * (1.0 + float(max(np.abs(new.xy).max(), np.abs(old.xy).max())) + max(p.radius for p in protos))
+    k = len(protos)
+    pair_kind = new.kind[a] * k + old.kind[b]
+    order = np.argsort(pair_kind, kind="stable")
+    bounds = np.searchsorted(pair_kind[order], np.arange(k * k + 1))
+    for g in range(k * k):
+        da, db = discs[g // k], discs[g % k]
+        rows = max(1, _DISC_CHUNK // max(len(da[1]) * len(db[1]), 1))
+        for lo in range(bounds[g], bounds[g + 1], rows):
+            at = order[lo : min(lo + rows, bounds[g + 1])]
+            i, j = a[at], b[at]
+            close[at] = surely_close(
+                new.xy[i], new.angle[i], new.scale[i], da, old.xy[j], old.angle[j], old.scale[j], db, reach[at], margin
             )
-            hit[at] = close | share
-            found[ta[at[hit[at]]]] = True
-    return np.r_[a[sure], ta[hit]], np.r_[b[sure], tb[hit]]
+    return close
 
 
 def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray | None = None) -> np.ndarray:
