@@ -18,7 +18,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from svgtile.core.arrangement import Arrangement
-from svgtile.core.discs import inscribed_discs, surely_close
+from svgtile.core.discs import disc_gap, inscribed_discs
 from svgtile.core.footprint import Prototype, motif_radius, near_pairs, world_footprints
 
 #: Slack on the distance rule, user units: positions are rounded to 1e-4 units for output, so
@@ -131,14 +131,21 @@ def pair_conflicts(arr: Arrangement, protos: list[Prototype], distance: np.ndarr
     open_[open_] = ~_surely_apart(arr, protos, i[open_], j[open_], np.maximum(rule[open_], 0.0))
     held = sure | open_
     i, j, sure, discs, bound, rule = (x[held] for x in (i, j, sure, discs, bound, rule))
-    need = np.unique(np.concatenate([i[~sure], j[~sure]]))
+    # a few inscribed discs per kind (svgtile.core.discs): two that overlap show the footprints
+    # sharing area (violating a positive rule), two closer than the rule a violation
+    gap = np.full(len(i), np.inf)
+    gap[~sure], margin = _disc_gaps(arr, arr, protos, i[~sure], j[~sure])
+    shared = ~sure & (gap < -margin)
+    test = ~sure & ~shared
+    need = np.unique(np.concatenate([i[test], j[test]]))
     if geoms is None:
         geoms = np.empty(len(arr), dtype=object)
         geoms[need] = world_footprints(arr.take(need), protos)
     # pairs whose inscribed discs come closer than the rule surely violate it: only overlap is open
-    close, share = _test_pairs(geoms[i[~sure]], geoms[j[~sure]], rule[~sure], (discs & (bound < rule))[~sure])
-    violation, overlap = sure.copy(), sure.copy()
-    violation[~sure], overlap[~sure] = close, share
+    known = (discs & (bound < rule)) | (gap < rule - margin)
+    close, share = _test_pairs(geoms[i[test]], geoms[j[test]], rule[test], known[test])
+    violation, overlap = sure | (shared & (rule > 0)), sure | shared
+    violation[test], overlap[test] = close, share
     keep = violation | overlap
     return Conflicts(i[keep], j[keep], overlap[keep], violation[keep])
 
@@ -295,18 +302,19 @@ def cross_pairs(
     return np.r_[a[sure], a[rest]], np.r_[b[sure], b[rest]]
 
 
-#: Most disc-pair distances :func:`_discs_close` holds in memory at once.
+#: Most disc-pair distances :func:`_disc_gaps` holds in memory at once.
 _DISC_CHUNK = 1 << 21
 
 
-def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
-    """(p,) bool: pairs ``(new[a], old[b])`` that two inscribed discs (:mod:`svgtile.core.discs`)
-    show closer than ``reach`` (p,) ≥ 0 — or sharing area, for ``reach`` 0 — surely."""
-    close = np.zeros(len(a), dtype=bool)
+def _disc_gaps(new, old, protos, a, b) -> tuple[np.ndarray, float]:
+    """(p,) the least gap between inscribed discs (:func:`svgtile.core.discs.disc_gap`) of each
+    pair ``(new[a], old[b])``, and the margin (user units) a gap must stay below a distance to
+    show the footprints surely closer than it (the rounding of world coordinates)."""
+    gap = np.full(len(a), np.inf)
     if not len(a):
-        return close
-    discs = [inscribed_discs(p) for p in protos]
+        return gap, 0.0
     margin = 1e-9 * (1.0 + float(max(np.abs(new.xy).max(), np.abs(old.xy).max())) + max(p.radius for p in protos))
+    discs = [inscribed_discs(p) for p in protos]
     k = len(protos)
     pair_kind = new.kind[a] * k + old.kind[b]
     order = np.argsort(pair_kind, kind="stable")
@@ -317,10 +325,15 @@ def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
         for lo in range(bounds[g], bounds[g + 1], rows):
             at = order[lo : min(lo + rows, bounds[g + 1])]
             i, j = a[at], b[at]
-            close[at] = surely_close(
-                new.xy[i], new.angle[i], new.scale[i], da, old.xy[j], old.angle[j], old.scale[j], db, reach[at], margin
-            )
-    return close
+            gap[at] = disc_gap(new.xy[i], new.angle[i], new.scale[i], da, old.xy[j], old.angle[j], old.scale[j], db)
+    return gap, margin
+
+
+def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
+    """(p,) bool: pairs ``(new[a], old[b])`` that two inscribed discs (:mod:`svgtile.core.discs`)
+    show closer than ``reach`` (p,) ≥ 0 — or sharing area, for ``reach`` 0 — surely."""
+    gap, margin = _disc_gaps(new, old, protos, a, b)
+    return gap < reach - margin
 
 
 def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray | None = None) -> np.ndarray:

@@ -78,32 +78,31 @@ def inscribed_discs(proto: Prototype, most: int = MOST) -> tuple[np.ndarray, np.
     return c[chosen], r[chosen]
 
 
-def surely_close(
+def disc_gap(
     xy_a: np.ndarray, angle_a: np.ndarray, scale_a: np.ndarray, discs_a: tuple[np.ndarray, np.ndarray],
     xy_b: np.ndarray, angle_b: np.ndarray, scale_b: np.ndarray, discs_b: tuple[np.ndarray, np.ndarray],
-    reach: np.ndarray, margin: float,
 ) -> np.ndarray:  # fmt: skip
-    """(p,) bool: pairs of motifs (a of one kind, b of one kind) with two discs closer than ``reach``.
+    """(p,) float: the least gap ``|c_a − c_b| − r_a − r_b`` between a disc of motif a and one of
+    motif b (a of one kind, b of one kind), user units; +inf for a kind without discs.
 
-    Footprint distance ≤ ``|c_a − c_b| − r_a − r_b`` for any disc pair, so a pair whose discs come
-    closer than ``reach − margin`` is closer than ``reach`` (or shares area, for ``reach`` ≤ 0).
-    Of each motif's discs the :data:`PAIR` nearest to the other's centroid are tried, pairwise.
+    The footprint distance is at most this gap, so a pair whose gap is below ``reach`` (minus a
+    margin for the rounding of world coordinates) is surely closer than ``reach``, and one whose
+    gap is below minus that margin surely shares area.  Of each motif's discs the :data:`PAIR`
+    nearest to the other's centroid are tried, pairwise.
 
     Parameters
     ----------
     xy_*, angle_*, scale_* : (p, 2), (p,) degrees, (p,) the motifs' placements
     discs_* : their kind's :func:`inscribed_discs`
-    reach : (p,) float, user units
-    margin : float, user units (for the rounding of world coordinates)
     """
     (ca, ra), (cb, rb) = discs_a, discs_b
-    if not len(ra) or not len(rb) or not len(reach):
-        return np.zeros(len(reach), dtype=bool)
+    if not len(ra) or not len(rb):
+        return np.full(len(xy_a), np.inf)
     wa, sa = _nearest(_world(xy_a, angle_a, scale_a, ca), scale_a[:, None] * ra, xy_b)  # (p, m, 2), (p, m)
     wb, sb = _nearest(_world(xy_b, angle_b, scale_b, cb), scale_b[:, None] * rb, xy_a)
     d = np.hypot(wa[:, :, None, 0] - wb[:, None, :, 0], wa[:, :, None, 1] - wb[:, None, :, 1])
     d -= sa[:, :, None] + sb[:, None, :]
-    return d.reshape(len(reach), -1).min(axis=1) < reach - margin
+    return d.reshape(len(xy_a), -1).min(axis=1)
 
 
 def _nearest(centre: np.ndarray, radius: np.ndarray, to: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
