@@ -155,9 +155,12 @@ _SUPPORT_CHUNK = 1 << 22
 
 
 def _surely_apart(
-    arr: Arrangement, protos: list[Prototype], i: np.ndarray, j: np.ndarray, reach: np.ndarray
-) -> np.ndarray:
+    arr: Arrangement, protos: list[Prototype], i: np.ndarray, j: np.ndarray, reach: np.ndarray,
+    other: Arrangement | None = None,
+) -> np.ndarray:  # fmt: skip
     """(p,) bool: pairs whose footprint distance is surely more than ``reach`` (p,), user units.
+
+    ``i`` indexes ``arr``, ``j`` indexes ``other`` (default ``arr``).
 
     A footprint lies in the convex hull of its outline's vertices, so with ``u`` the unit vector
     from centroid i to centroid j and ``h(u)`` how far a footprint's vertices reach along ``u``,
@@ -168,26 +171,27 @@ def _surely_apart(
     apart = np.zeros(len(i), dtype=bool)
     if len(i) == 0:
         return apart
-    d = arr.xy[j] - arr.xy[i]
+    other = arr if other is None else other
+    d = other.xy[j] - arr.xy[i]
     length = np.hypot(d[:, 0], d[:, 1])
     with np.errstate(invalid="ignore", divide="ignore"):
         u = d / length[:, None]
     extent = np.zeros(len(i))
-    for ends, sign in ((i, 1.0), (j, -1.0)):
+    for ends, sign, side in ((i, 1.0, arr), (j, -1.0, other)):
         for k, proto in enumerate(protos):
-            at = np.flatnonzero(arr.kind[ends] == k)
+            at = np.flatnonzero(side.kind[ends] == k)
             local = np.concatenate(proto.rings)  # (v, 2)
             rows = max(1, _SUPPORT_CHUNK // len(local))
             for a in range(0, len(at), rows):
                 sel = at[a : a + rows]
-                turn = np.radians(arr.angle[ends[sel]])
+                turn = np.radians(side.angle[ends[sel]])
                 cos, sin = np.cos(turn), np.sin(turn)
                 wx, wy = sign * u[sel, 0], sign * u[sel, 1]
                 # (R u) · v = v · (Rᵀ u), R the motif's rotation (svgtile.core.footprint.rotation)
                 along = local[:, 0] * (cos * wx + sin * wy)[:, None] + local[:, 1] * (cos * wy - sin * wx)[:, None]
-                extent[sel] += arr.scale[ends[sel]] * along.max(axis=1)
+                extent[sel] += side.scale[ends[sel]] * along.max(axis=1)
     gap = length - extent
-    margin = 1e-9 * (1.0 + float(np.abs(arr.xy).max()) + float(motif_radius(arr, protos).max()))
+    margin = max(1e-9 * (1.0 + float(np.abs(x.xy).max()) + float(motif_radius(x, protos).max())) for x in (arr, other))
     apart = gap > reach * (1.0 + 1e-9) + margin
     return apart & (length > 0)
 
@@ -288,6 +292,8 @@ def cross_pairs(
         bad[at[close]] = True
         known[a[at[close]]] = True
         at = at[~known[a[at]]] if not complete else at[~close]
+        # outlines whose extents along the line of centroids leave more than the rule are apart
+        at = at[~_surely_apart(new, protos, a[at], b[at], np.maximum(d_rule[at], 0.0), old)]
         if not len(at):
             continue
         used_a, a_local = np.unique(a[at], return_inverse=True)

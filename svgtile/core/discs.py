@@ -24,7 +24,7 @@ from svgtile.core.footprint import Prototype
 MOST = 12
 
 #: Discs per motif tried against the other motif of a pair (those nearest to its centroid).
-PAIR = 3
+PAIR = 2
 
 #: Candidate disc centres per prototype part: a grid of about this many points over its box.
 GRID = 1500
@@ -98,30 +98,35 @@ def disc_gap(
     (ca, ra), (cb, rb) = discs_a, discs_b
     if not len(ra) or not len(rb):
         return np.full(len(xy_a), np.inf)
-    wa, sa = _nearest(_world(xy_a, angle_a, scale_a, ca), scale_a[:, None] * ra, xy_b)  # (p, m, 2), (p, m)
-    wb, sb = _nearest(_world(xy_b, angle_b, scale_b, cb), scale_b[:, None] * rb, xy_a)
+    wa, sa = _nearest(xy_a, angle_a, scale_a, ca, ra, xy_b)  # (p, m, 2), (p, m)
+    wb, sb = _nearest(xy_b, angle_b, scale_b, cb, rb, xy_a)
     d = np.hypot(wa[:, :, None, 0] - wb[:, None, :, 0], wa[:, :, None, 1] - wb[:, None, :, 1])
     d -= sa[:, :, None] + sb[:, None, :]
     return d.reshape(len(xy_a), -1).min(axis=1)
 
 
-def _nearest(centre: np.ndarray, radius: np.ndarray, to: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Of each motif's discs ((p, d, 2) centres, (p, d) radii), the :data:`PAIR` whose edge comes
-    nearest to the point ``to`` (p, 2): the discs worth trying against the other motif."""
-    if centre.shape[1] <= PAIR:
-        return centre, radius
-    gap = np.hypot(centre[:, :, 0] - to[:, None, 0], centre[:, :, 1] - to[:, None, 1]) - radius
-    pick = np.argpartition(gap, PAIR - 1, axis=1)[:, :PAIR]
-    rows = np.arange(len(centre))[:, None]
-    return centre[rows, pick], radius[rows, pick]
-
-
-def _world(xy: np.ndarray, angle: np.ndarray, scale: np.ndarray, local: np.ndarray) -> np.ndarray:
-    """(p, d, 2) world positions of local points ``local`` (d, 2) on p motifs, as
-    :func:`svgtile.core.footprint.world_footprints` places outline vertices."""
+def _nearest(xy, angle, scale, centre, radius, to) -> tuple[np.ndarray, np.ndarray]:
+    """World centres (p, m, 2) and radii (p, m) of the :data:`PAIR` discs (local ``centre`` (d, 2),
+    ``radius`` (d,)) of motifs at ``xy``, ``angle``, ``scale`` whose edges come nearest to the
+    points ``to`` (p, 2): the discs worth trying against the other motif.  Chosen in the local
+    frame (``to`` turned back), by repeated arg-minima."""
+    if len(radius) <= PAIR:
+        pick = np.broadcast_to(np.arange(len(radius)), (len(xy), len(radius)))
+    else:
+        a = np.radians(angle)
+        c, s = np.cos(a), np.sin(a)
+        dx, dy = to[:, 0] - xy[:, 0], to[:, 1] - xy[:, 1]
+        lx, ly = (c * dx + s * dy) / scale, (c * dy - s * dx) / scale  # Rᵀ (to − xy) / scale
+        gap = np.hypot(centre[None, :, 0] - lx[:, None], centre[None, :, 1] - ly[:, None]) - radius[None, :]
+        rows = np.arange(len(xy))
+        pick = np.empty((len(xy), PAIR), dtype=np.int64)
+        for n in range(PAIR):
+            pick[:, n] = gap.argmin(axis=1)
+            gap[rows, pick[:, n]] = np.inf
+    local = centre[pick]  # (p, m, 2)
     a = np.radians(angle)
     c, s = (np.cos(a) * scale)[:, None], (np.sin(a) * scale)[:, None]
-    out = np.empty((len(xy), len(local), 2))
-    out[:, :, 0] = c * local[:, 0] - s * local[:, 1] + xy[:, 0, None]
-    out[:, :, 1] = s * local[:, 0] + c * local[:, 1] + xy[:, 1, None]
-    return out
+    out = np.empty(local.shape)
+    out[:, :, 0] = c * local[:, :, 0] - s * local[:, :, 1] + xy[:, 0, None]
+    out[:, :, 1] = s * local[:, :, 0] + c * local[:, :, 1] + xy[:, 1, None]
+    return out, scale[:, None] * radius[pick]
