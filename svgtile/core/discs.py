@@ -98,35 +98,33 @@ def disc_gap(
     (ca, ra), (cb, rb) = discs_a, discs_b
     if not len(ra) or not len(rb):
         return np.full(len(xy_a), np.inf)
-    wa, sa = _nearest(xy_a, angle_a, scale_a, ca, ra, xy_b)  # (p, m, 2), (p, m)
-    wb, sb = _nearest(xy_b, angle_b, scale_b, cb, rb, xy_a)
-    d = np.hypot(wa[:, :, None, 0] - wb[:, None, :, 0], wa[:, :, None, 1] - wb[:, None, :, 1])
-    d -= sa[:, :, None] + sb[:, None, :]
+    ta, tb = np.radians(angle_a), np.radians(angle_b)
+    dx, dy = xy_b[:, 0] - xy_a[:, 0], xy_b[:, 1] - xy_a[:, 1]
+    ax, ay, ar = _nearest(np.cos(ta), np.sin(ta), scale_a, ca, ra, dx, dy, xy_a)  # (p, m) each
+    bx, by, br = _nearest(np.cos(tb), np.sin(tb), scale_b, cb, rb, -dx, -dy, xy_b)
+    d = np.hypot(ax[:, :, None] - bx[:, None, :], ay[:, :, None] - by[:, None, :])
+    d -= ar[:, :, None] + br[:, None, :]
     return d.reshape(len(xy_a), -1).min(axis=1)
 
 
-def _nearest(xy, angle, scale, centre, radius, to) -> tuple[np.ndarray, np.ndarray]:
-    """World centres (p, m, 2) and radii (p, m) of the :data:`PAIR` discs (local ``centre`` (d, 2),
-    ``radius`` (d,)) of motifs at ``xy``, ``angle``, ``scale`` whose edges come nearest to the
-    points ``to`` (p, 2): the discs worth trying against the other motif.  Chosen in the local
-    frame (``to`` turned back), by repeated arg-minima."""
+def _nearest(cos, sin, scale, centre, radius, dx, dy, xy):
+    """World centres (x and y, (p, m) each) and radii (p, m) of the :data:`PAIR` discs (local
+    ``centre`` (d, 2), ``radius`` (d,)) of p motifs at ``xy`` (p, 2), turned by ``cos``, ``sin``,
+    scaled by ``scale`` (p,) each, whose centres lie nearest to the other motif's centroid, at
+    ``(dx, dy)`` from ``xy``: the discs worth trying against it.  Chosen in the local frame (the
+    offset turned back), by repeated arg-minima of squared distances."""
     if len(radius) <= PAIR:
         pick = np.broadcast_to(np.arange(len(radius)), (len(xy), len(radius)))
     else:
-        a = np.radians(angle)
-        c, s = np.cos(a), np.sin(a)
-        dx, dy = to[:, 0] - xy[:, 0], to[:, 1] - xy[:, 1]
-        lx, ly = (c * dx + s * dy) / scale, (c * dy - s * dx) / scale  # Rᵀ (to − xy) / scale
-        gap = np.hypot(centre[None, :, 0] - lx[:, None], centre[None, :, 1] - ly[:, None]) - radius[None, :]
+        lx, ly = (cos * dx + sin * dy) / scale, (cos * dy - sin * dx) / scale  # Rᵀ (x_other − xy) / scale
+        q = (centre[None, :, 0] - lx[:, None]) ** 2 + (centre[None, :, 1] - ly[:, None]) ** 2
         rows = np.arange(len(xy))
         pick = np.empty((len(xy), PAIR), dtype=np.int64)
         for n in range(PAIR):
-            pick[:, n] = gap.argmin(axis=1)
-            gap[rows, pick[:, n]] = np.inf
+            pick[:, n] = q.argmin(axis=1)
+            q[rows, pick[:, n]] = np.inf
     local = centre[pick]  # (p, m, 2)
-    a = np.radians(angle)
-    c, s = (np.cos(a) * scale)[:, None], (np.sin(a) * scale)[:, None]
-    out = np.empty(local.shape)
-    out[:, :, 0] = c * local[:, :, 0] - s * local[:, :, 1] + xy[:, 0, None]
-    out[:, :, 1] = s * local[:, :, 0] + c * local[:, :, 1] + xy[:, 1, None]
-    return out, scale[:, None] * radius[pick]
+    c, s = (cos * scale)[:, None], (sin * scale)[:, None]
+    wx = c * local[:, :, 0] - s * local[:, :, 1] + xy[:, 0, None]
+    wy = s * local[:, :, 0] + c * local[:, :, 1] + xy[:, 1, None]
+    return wx, wy, scale[:, None] * radius[pick]
