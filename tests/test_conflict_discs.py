@@ -51,7 +51,9 @@ def _tufts():
     out = []
     for g in (vee, ell, bar):
         c = g.centroid
-        out.append(Prototype.from_geometry(shapely.affinity.translate(g, -c.x, -c.y), tolerance=0.0))
+        out.append(
+            Prototype.from_geometry(shapely.affinity.translate(g, -c.x, -c.y), tolerance=0.0)
+        )
     return out
 
 
@@ -80,7 +82,9 @@ def test_cross_pairs_with_discs_find_what_geos_finds(seed):
     rule = np.array([[1.0, 0.5, 0.8], [0.5, 0.3, 0.6], [0.8, 0.6, 0.0]])
     pa, pb = _plain_cross(new, old, protos, rule)
     a, b = cross_pairs(new, old, protos, rule, complete=True)
-    assert set(zip(a.tolist(), b.tolist(), strict=True)) == set(zip(pa.tolist(), pb.tolist(), strict=True))
+    assert set(zip(a.tolist(), b.tolist(), strict=True)) == set(
+        zip(pa.tolist(), pb.tolist(), strict=True)
+    )
     bad = np.zeros(len(new), dtype=bool)
     bad[pa] = True
     assert 0 < bad.sum() < len(new)

@@ -65,7 +65,10 @@ def inscribed_discs(proto: Prototype, most: int = MOST) -> tuple[np.ndarray, np.
         [shapely.get_coordinates(shapely.segmentize(shapely.linearrings(ring), proto.radius / 40)) for ring in proto.rings]
     )  # fmt: skip
     # (candidates, outline points): how far each outline point lies outside each candidate disc
-    outside = np.hypot(c[:, None, 0] - outline[None, :, 0], c[:, None, 1] - outline[None, :, 1]) - r[:, None]
+    outside = (
+        np.hypot(c[:, None, 0] - outline[None, :, 0], c[:, None, 1] - outline[None, :, 1])
+        - r[:, None]
+    )
     chosen: list[int] = []
     gap = np.full(len(outline), proto.radius)  # each outline point's distance to the chosen discs
     for _ in range(most):
@@ -116,7 +119,10 @@ def _nearest(cos, sin, scale, centre, radius, dx, dy, xy):
     if len(radius) <= PAIR:
         pick = np.broadcast_to(np.arange(len(radius)), (len(xy), len(radius)))
     else:
-        lx, ly = (cos * dx + sin * dy) / scale, (cos * dy - sin * dx) / scale  # Rᵀ (x_other − xy) / scale
+        lx, ly = (
+            (cos * dx + sin * dy) / scale,
+            (cos * dy - sin * dx) / scale,
+        )  # Rᵀ (x_other − xy) / scale
         q = (centre[None, :, 0] - lx[:, None]) ** 2 + (centre[None, :, 1] - ly[:, None]) ** 2
         rows = np.arange(len(xy))
         pick = np.empty((len(xy), PAIR), dtype=np.int64)
