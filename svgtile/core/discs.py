@@ -13,7 +13,7 @@ the discs do not decide goes to GEOS as before).
 
 from __future__ import annotations
 
-import functools
+import weakref
 
 import numpy as np
 import shapely
@@ -30,7 +30,11 @@ PAIR = 2
 GRID = 1500
 
 
-@functools.cache
+#: inscribed_discs' results, per prototype while it lives (kinds are few; a process may read many
+#: exemplars, so the prototypes are not kept alive by it).
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def inscribed_discs(proto: Prototype, most: int = MOST) -> tuple[np.ndarray, np.ndarray]:
     """Discs inside ``proto``'s outline (its rings filled, each part alone), local frame.
 
@@ -45,6 +49,15 @@ def inscribed_discs(proto: Prototype, most: int = MOST) -> tuple[np.ndarray, np.
     centre : (d, 2) float array, user units (local frame, scale 1)
     radius : (d,) float array, > 0
     """
+    key = (most,)
+    cached = _CACHE.get(proto)
+    if cached is None or key not in cached:
+        _CACHE.setdefault(proto, {})[key] = _discs(proto, most)
+    return _CACHE[proto][key]
+
+
+def _discs(proto: Prototype, most: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`inscribed_discs`, computed."""
     cands, radii = [], []
     for ring in proto.rings:
         poly = shapely.polygons(ring)
