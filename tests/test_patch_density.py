@@ -75,6 +75,24 @@ def test_roomiest_spot_is_the_same_with_the_empty_disc_search_s_neighbours(seed)
     assert (d.min(axis=1) >= radius - 1e-9).all() and (radius > 0).any()
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_roomiest_spot_measured_lazily_is_the_one_measured_everywhere(seed):
+    """_roomiest measures the room (a k-d tree query per kind) only where the nearest motif's
+    term can still reach the best kept: the same spots and clearances as measuring every sample."""
+    arr, protos = _scatter(seed)
+    if seed % 2:  # a cleared hole: few samples can win
+        arr = arr.take(np.hypot(*(arr.xy - 90).T) > 20)
+    tree = cKDTree(arr.xy)
+    region = Region(shapely.box(0, 0, 190, 170))
+    size, ids = np.array([50.0, 40.0]), np.array([[a, b] for a in range(-1, 4) for b in range(5)])
+    kind = np.arange(len(ids)) % 3
+    rule = np.array([[12.0, 3.0, 2.0], [3.0, 1.0, 0.5], [2.0, 0.5, 0.0]])
+    lazy = _roomiest(arr, tree, protos, region, np.zeros(2), size, ids, kind, rule, arr)
+    plain = _roomiest(arr, tree, protos, region, np.zeros(2), size, ids, kind, rule, arr, lazy=False)
+    assert np.array_equal(lazy[0], plain[0]) and np.array_equal(lazy[1], plain[1])
+    assert (plain[1] > 0).any()
+
+
 def test_patch_texture_is_full_and_clean_after_density_repair():
     """End to end on a bundled exemplar with kinds of very different sizes (till): density repair
     brings the texture near ρ without an overlap; with no repair rounds it stays light."""

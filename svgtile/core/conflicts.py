@@ -18,6 +18,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from svgtile.core.arrangement import Arrangement
+from svgtile.core.discs import disc_gap, inscribed_discs
 from svgtile.core.footprint import Prototype, motif_radius, near_pairs, world_footprints
 
 #: Slack on the distance rule, user units: positions are rounded to 1e-4 units for output, so
@@ -130,14 +131,21 @@ def pair_conflicts(arr: Arrangement, protos: list[Prototype], distance: np.ndarr
     open_[open_] = ~_surely_apart(arr, protos, i[open_], j[open_], np.maximum(rule[open_], 0.0))
     held = sure | open_
     i, j, sure, discs, bound, rule = (x[held] for x in (i, j, sure, discs, bound, rule))
-    need = np.unique(np.concatenate([i[~sure], j[~sure]]))
+    # a few inscribed discs per kind (svgtile.core.discs): two that overlap show the footprints
+    # sharing area (violating a positive rule), two closer than the rule a violation
+    gap = np.full(len(i), np.inf)
+    gap[~sure], margin = _disc_gaps(arr, arr, protos, i[~sure], j[~sure])
+    shared = ~sure & (gap < -margin)
+    test = ~sure & ~shared
+    need = np.unique(np.concatenate([i[test], j[test]]))
     if geoms is None:
         geoms = np.empty(len(arr), dtype=object)
         geoms[need] = world_footprints(arr.take(need), protos)
     # pairs whose inscribed discs come closer than the rule surely violate it: only overlap is open
-    close, share = _test_pairs(geoms[i[~sure]], geoms[j[~sure]], rule[~sure], (discs & (bound < rule))[~sure])
-    violation, overlap = sure.copy(), sure.copy()
-    violation[~sure], overlap[~sure] = close, share
+    known = (discs & (bound < rule)) | (gap < rule - margin)
+    close, share = _test_pairs(geoms[i[test]], geoms[j[test]], rule[test], known[test])
+    violation, overlap = sure | (shared & (rule > 0)), sure | shared
+    violation[test], overlap[test] = close, share
     keep = violation | overlap
     return Conflicts(i[keep], j[keep], overlap[keep], violation[keep])
 
@@ -147,9 +155,12 @@ _SUPPORT_CHUNK = 1 << 22
 
 
 def _surely_apart(
-    arr: Arrangement, protos: list[Prototype], i: np.ndarray, j: np.ndarray, reach: np.ndarray
-) -> np.ndarray:
+    arr: Arrangement, protos: list[Prototype], i: np.ndarray, j: np.ndarray, reach: np.ndarray,
+    other: Arrangement | None = None,
+) -> np.ndarray:  # fmt: skip
     """(p,) bool: pairs whose footprint distance is surely more than ``reach`` (p,), user units.
+
+    ``i`` indexes ``arr``, ``j`` indexes ``other`` (default ``arr``).
 
     A footprint lies in the convex hull of its outline's vertices, so with ``u`` the unit vector
     from centroid i to centroid j and ``h(u)`` how far a footprint's vertices reach along ``u``,
@@ -160,37 +171,41 @@ def _surely_apart(
     apart = np.zeros(len(i), dtype=bool)
     if len(i) == 0:
         return apart
-    d = arr.xy[j] - arr.xy[i]
+    other = arr if other is None else other
+    d = other.xy[j] - arr.xy[i]
     length = np.hypot(d[:, 0], d[:, 1])
     with np.errstate(invalid="ignore", divide="ignore"):
         u = d / length[:, None]
     extent = np.zeros(len(i))
-    for ends, sign in ((i, 1.0), (j, -1.0)):
+    for ends, sign, side in ((i, 1.0, arr), (j, -1.0, other)):
         for k, proto in enumerate(protos):
-            at = np.flatnonzero(arr.kind[ends] == k)
+            at = np.flatnonzero(side.kind[ends] == k)
             local = np.concatenate(proto.rings)  # (v, 2)
             rows = max(1, _SUPPORT_CHUNK // len(local))
             for a in range(0, len(at), rows):
                 sel = at[a : a + rows]
-                turn = np.radians(arr.angle[ends[sel]])
+                turn = np.radians(side.angle[ends[sel]])
                 cos, sin = np.cos(turn), np.sin(turn)
                 wx, wy = sign * u[sel, 0], sign * u[sel, 1]
                 # (R u) · v = v · (Rᵀ u), R the motif's rotation (svgtile.core.footprint.rotation)
                 along = local[:, 0] * (cos * wx + sin * wy)[:, None] + local[:, 1] * (cos * wy - sin * wx)[:, None]
-                extent[sel] += arr.scale[ends[sel]] * along.max(axis=1)
+                extent[sel] += side.scale[ends[sel]] * along.max(axis=1)
     gap = length - extent
-    margin = 1e-9 * (1.0 + float(np.abs(arr.xy).max()) + float(motif_radius(arr, protos).max()))
+    margin = max(1e-9 * (1.0 + float(np.abs(x.xy).max()) + float(motif_radius(x, protos).max())) for x in (arr, other))
     apart = gap > reach * (1.0 + 1e-9) + margin
     return apart & (length > 0)
 
 
 def _test_pairs(
-    a: np.ndarray, b: np.ndarray, reach: np.ndarray, known_close: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray]:
+    a: np.ndarray, b: np.ndarray, reach: np.ndarray, known_close: np.ndarray | None = None, *,
+    either: bool = False,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Exact tests of footprint pairs: (closer than ``reach``, sharing area), each (p,) bool.
 
     ``known_close`` (p,) bool marks pairs already known to be closer than ``reach`` (by their
-    inscribed discs), which skip the distance test.
+    inscribed discs), which skip the distance test.  With ``either`` only ``close | share`` is
+    wanted: a pair found closer than a positive ``reach`` is not tested for shared area (its
+    ``share`` is then False), which spares the two costliest GEOS predicates on most pairs.
     """
     positive = reach > 0
     close = np.zeros(len(a), dtype=bool)
@@ -198,7 +213,8 @@ def _test_pairs(
     close[test] = shapely.dwithin(a[test], b[test], reach[test])
     if known_close is not None:
         close |= known_close & positive
-    check = close | ~positive
+    # a pair no closer than a positive reach shares no area; one closer is a conflict already
+    check = ~positive if either else close | ~positive
     share = np.zeros(len(a), dtype=bool)
     share[check] = shapely.intersects(a[check], b[check])
     if share.any():
@@ -255,36 +271,75 @@ def cross_pairs(
     # (valid only when both centroids lie inside their footprints, i.e. both radii are positive)
     in_a, in_b = motif_radius(new, protos, inner=True)[a], motif_radius(old, protos, inner=True)[b]
     sure = (in_a > 0) & (in_b > 0) & (centre - in_a - in_b < np.maximum(d_rule, 0.0))
-    test = ~sure
-    if not complete:
-        known = np.zeros(len(new), dtype=bool)
-        known[a[sure]] = True
-        test &= ~known[a]
-    ta, tb = a[test], b[test]
-    hit = np.zeros(len(ta), dtype=bool)
-    if len(ta):
-        used_a, a_local = np.unique(ta, return_inverse=True)
-        geoms_a = world_footprints(new.take(used_a), protos)
-        if complete:
-            stages = [np.arange(len(ta))]
-        else:
-            # the nearest pair of each new motif first: a motif found in conflict needs no more
-            # GEOS tests (most candidates conflict with their nearest neighbour, if at all)
-            order = np.lexsort((centre[test], ta))
-            first = np.r_[True, ta[order][1:] != ta[order][:-1]]
-            stages = [order[first], order[~first]]
-        found = np.zeros(len(new), dtype=bool)
-        for at in stages:
-            at = at[~found[ta[at]]]
-            if not len(at):
-                continue
-            used_b, b_local = np.unique(tb[at], return_inverse=True)
-            close, share = _test_pairs(
-                geoms_a[a_local[at]], world_footprints(old.take(used_b), protos)[b_local], d_rule[test][at],
-            )
-            hit[at] = close | share
-            found[ta[at[hit[at]]]] = True
-    return np.r_[a[sure], ta[hit]], np.r_[b[sure], tb[hit]]
+    known = np.zeros(len(new), dtype=bool)  # new motifs known to conflict
+    known[a[sure]] = True
+    todo = np.flatnonzero(~sure)
+    if complete:
+        stages = [todo]
+    else:
+        # the nearest pair of each new motif first: a motif found in conflict needs no more
+        # tests (most candidates conflict with their nearest neighbour, if at all)
+        todo = todo[~known[a[todo]]]
+        order = todo[np.lexsort((centre[todo], a[todo]))]
+        first = np.r_[True, a[order][1:] != a[order][:-1]][: len(order)]
+        stages = [order[first], order[~first]]
+    bad = sure.copy()
+    for at in stages:
+        if not complete:
+            at = at[~known[a[at]]]
+        # a few inscribed discs per kind decide most pairs of thin, concave motifs as surely bad
+        close = _discs_close(new, old, protos, a[at], b[at], np.maximum(d_rule[at], 0.0))
+        bad[at[close]] = True
+        known[a[at[close]]] = True
+        at = at[~known[a[at]]] if not complete else at[~close]
+        # outlines whose extents along the line of centroids leave more than the rule are apart
+        at = at[~_surely_apart(new, protos, a[at], b[at], np.maximum(d_rule[at], 0.0), old)]
+        if not len(at):
+            continue
+        used_a, a_local = np.unique(a[at], return_inverse=True)
+        used_b, b_local = np.unique(b[at], return_inverse=True)
+        close, share = _test_pairs(
+            world_footprints(new.take(used_a), protos)[a_local], world_footprints(old.take(used_b), protos)[b_local],
+            d_rule[at], either=True,
+        )  # fmt: skip
+        bad[at] = close | share
+        known[a[at[bad[at]]]] = True
+    rest = ~sure & bad  # in the order of the candidates, as GEOS alone finds them
+    return np.r_[a[sure], a[rest]], np.r_[b[sure], b[rest]]
+
+
+#: Most disc-pair distances :func:`_disc_gaps` holds in memory at once.
+_DISC_CHUNK = 1 << 21
+
+
+def _disc_gaps(new, old, protos, a, b) -> tuple[np.ndarray, float]:
+    """(p,) the least gap between inscribed discs (:func:`svgtile.core.discs.disc_gap`) of each
+    pair ``(new[a], old[b])``, and the margin (user units) a gap must stay below a distance to
+    show the footprints surely closer than it (the rounding of world coordinates)."""
+    gap = np.full(len(a), np.inf)
+    if not len(a):
+        return gap, 0.0
+    margin = 1e-9 * (1.0 + float(max(np.abs(new.xy).max(), np.abs(old.xy).max())) + max(p.radius for p in protos))
+    discs = [inscribed_discs(p) for p in protos]
+    k = len(protos)
+    pair_kind = new.kind[a] * k + old.kind[b]
+    order = np.argsort(pair_kind, kind="stable")
+    bounds = np.searchsorted(pair_kind[order], np.arange(k * k + 1))
+    for g in range(k * k):
+        da, db = discs[g // k], discs[g % k]
+        rows = max(1, _DISC_CHUNK // max(len(da[1]) * len(db[1]), 1))
+        for lo in range(bounds[g], bounds[g + 1], rows):
+            at = order[lo : min(lo + rows, bounds[g + 1])]
+            i, j = a[at], b[at]
+            gap[at] = disc_gap(new.xy[i], new.angle[i], new.scale[i], da, old.xy[j], old.angle[j], old.scale[j], db)
+    return gap, margin
+
+
+def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
+    """(p,) bool: pairs ``(new[a], old[b])`` that two inscribed discs (:mod:`svgtile.core.discs`)
+    show closer than ``reach`` (p,) ≥ 0 — or sharing area, for ``reach`` 0 — surely."""
+    gap, margin = _disc_gaps(new, old, protos, a, b)
+    return gap < reach - margin
 
 
 def cull(n: int, conflicts: Conflicts, priority: np.ndarray, prefer: np.ndarray | None = None) -> np.ndarray:

@@ -56,6 +56,10 @@ REFINE_KEEP, REFINE = 3, 4
 #: leaves the most (:func:`_roomiest`).
 SCREEN = 24
 
+#: The roomiest-spot search measures this many of the screened samples per window first
+#: (:func:`_roomiest`, ``lazy``).
+LAZY_FIRST = 6
+
 #: Empty discs and room are searched on a grid of this many × this many samples per window.
 SAMPLES = 12
 
@@ -400,7 +404,7 @@ def _rank_within(labels: np.ndarray) -> np.ndarray:
 
 
 def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, ex, samples: int = SAMPLES, *,
-              nearest=None):  # fmt: skip
+              nearest=None, lazy: bool = True):  # fmt: skip
     """Per window, the point where a motif of ``kind[window]`` has the most room under ``rule``.
 
     The largest empty disc (§3.4) is where a small motif fits best, not a large one with wide
@@ -418,6 +422,9 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     rule : (k, k) float array, user units
     ex : the exemplar's motifs (their largest scale per kind sizes the motif)
     nearest : ``(d, m, inside)`` of the same samples from :func:`_largest_empty_discs`, if at hand
+    lazy : measure the room (one k-d tree query per kind) only at the samples where the nearest
+        motif's own term — an upper bound of the room — can still reach the best kept (the
+        :data:`LAZY_FIRST` most promising per window first); the same spots as measuring all
 
     Returns
     -------
@@ -435,12 +442,17 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     far = float(rule.max() + size_of.max()) + float(size.max())  # beyond: room to spare (+ r_j)
     lo = origin + ids * size  # (w, 2)
 
-    def measure(pts, owner):
+    def measure(pts, owner, at=None):
+        """room, clear at ``pts`` (all, or the indices ``at``; -inf elsewhere)."""
         inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
         room = np.where(inside, np.inf, -np.inf)
         clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
         clear[~inside] = -np.inf
-        q = np.flatnonzero(inside)
+        if at is not None:
+            skip = np.ones(len(pts), dtype=bool)
+            skip[at] = False
+            room[skip] = clear[skip] = -np.inf
+        q = np.flatnonzero(inside) if at is None else at[inside[at]]
         want = kind[owner[q]]
         for j, t, r_j in trees:
             need = size_of[want] + rule[want, j]
@@ -448,6 +460,14 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
             clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
             room[q] = np.minimum(room[q], d - r_j - need)
         return room, clear
+
+    def cap(pts, owner, d=None, m=None):
+        """An upper bound of ``measure``'s room at ``pts`` from the nearest motif alone: its
+        kind's term, which the room cannot exceed (inf where that term is beyond the bound)."""
+        if d is None:
+            d, m = tree.query(pts, k=1, workers=-1)
+        j, want = arr.kind[m], kind[owner]
+        return np.where(d >= far + size_of[j], np.inf, d - size_of[j] - size_of[want] - rule[want, j])
 
     g = (np.arange(samples) + 0.5) / samples
     cell = np.stack([v.ravel() for v in np.meshgrid(g, g)], -1)  # (s², 2) in window units
@@ -465,19 +485,41 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
         cell_of = pick.ravel()
         pts = (lo[:, None, :] + cell[pick] * size).reshape(-1, 2)
         owner = np.repeat(np.arange(len(ids)), SCREEN)
+        rows = np.arange(len(ids))[:, None]
+        bound = cap(pts, owner, d.reshape(upper.shape)[rows, pick].ravel(), m.reshape(upper.shape)[rows, pick].ravel())
     else:
         cell_of = np.tile(np.arange(len(cell)), len(ids))
-    room, clear = measure(pts, owner)
-    # the best few samples of each window, each refined on a finer grid over its own cell
+        bound = None
     per = len(pts) // len(ids)
     keep = min(REFINE_KEEP, per)
+    if lazy and bound is not None:
+        # the room is measured first at the samples of the best bounds, then wherever the bound
+        # reaches the window's keep-th best room (ties included): the same best samples
+        first = np.argsort(-bound.reshape(len(ids), per), axis=1, kind="stable")[:, : min(LAZY_FIRST, per)]
+        first = (first + (np.arange(len(ids)) * per)[:, None]).ravel()
+        room, clear = measure(pts, owner, first)
+        floor = -np.sort(-room.reshape(len(ids), per), axis=1)[:, keep - 1]
+        done = np.zeros(len(pts), dtype=bool)
+        done[first] = True
+        rest = np.flatnonzero(~done & (bound >= floor[owner]))
+        if len(rest):
+            r_rest, c_rest = measure(pts, owner, rest)
+            room[rest], clear[rest] = r_rest[rest], c_rest[rest]
+    else:
+        room, clear = measure(pts, owner)
+    # the best few samples of each window, each refined on a finer grid over its own cell
     best = np.argsort(-room.reshape(len(ids), per), axis=1, kind="stable")[:, :keep]
     f = ((np.arange(REFINE) + 0.5) / REFINE - 0.5) / samples
     sub = np.stack([v.ravel() for v in np.meshgrid(f, f)], -1)  # (REFINE², 2)
     centre = cell[cell_of.reshape(len(ids), per)[np.arange(len(ids))[:, None], best]]  # (w, keep, 2)
     fine = (lo[:, None, None, :] + (centre[:, :, None, :] + sub[None, None, :, :]) * size).reshape(-1, 2)
     fine_owner = np.repeat(np.arange(len(ids)), keep * len(sub))
-    f_room, f_clear = measure(fine, fine_owner)
+    if lazy and tree is not None:
+        # only where the bound reaches the window's best room so far (ties included)
+        best_yet = room.reshape(len(ids), per).max(axis=1)
+        f_room, f_clear = measure(fine, fine_owner, np.flatnonzero(cap(fine, fine_owner) >= best_yet[fine_owner]))
+    else:
+        f_room, f_clear = measure(fine, fine_owner)
     pts, owner = np.concatenate([pts, fine]), np.concatenate([owner, fine_owner])
     room, clear = np.concatenate([room, f_room]), np.concatenate([clear, f_clear])
     top = _best_per_owner(room, owner)

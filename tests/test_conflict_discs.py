@@ -1,0 +1,115 @@
+"""Inscribed discs per kind (svgtile.core.discs) decide pairs of motifs before GEOS: they must
+lie inside the footprints, and the conflicts found with them must be exactly those GEOS finds
+on every pair (issue 12's speed target: the marsh and scrub tufts, thin and concave)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from svgtile import read_exemplar
+from svgtile.core.arrangement import Arrangement
+from svgtile.core.conflicts import (
+    RULE_SLACK,
+    _discs_close,
+    cross_conflicts,
+    cross_pairs,
+    find_conflicts,
+    slack,
+)
+from svgtile.core.discs import inscribed_discs
+from svgtile.core.footprint import Prototype, world_footprints
+
+EXEMPLARS = Path(__file__).resolve().parents[1] / "exemplars"
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in EXEMPLARS.glob("*.svg")))
+def test_discs_lie_inside_the_outline(name):
+    for proto in read_exemplar(EXEMPLARS / f"{name}.svg").prototypes:
+        centre, radius = inscribed_discs(proto)
+        assert len(radius) and (radius > 0).all()
+        outline = proto.geometry()
+        disc = shapely.buffer(shapely.points(centre), radius, quad_segs=32)
+        # each disc is in one part of the outline (the parts are tested alone, as GEOS does)
+        assert all(shapely.covers(outline, d) or any(shapely.covers(shapely.polygons(r), d) for r in proto.rings)
+                   for d in disc)  # fmt: skip
+        gap = shapely.distance(shapely.points(centre), shapely.MultiLineString(list(proto.rings)))
+        assert (gap >= radius).all()
+
+
+def _tufts():
+    """Thin and concave motifs whose centroids lie outside them or in a thin stroke."""
+    vee = shapely.union_all([
+        shapely.LineString([(-2, 2), (0, -2), (2, 2)]).buffer(0.2),
+        shapely.LineString([(0, -2), (0, 1.5)]).buffer(0.15),
+    ])  # fmt: skip
+    ell = shapely.LineString([(-2, 2), (-2, -2), (2, -2)]).buffer(0.25)
+    bar = shapely.box(-3, -0.3, 3, 0.3)
+    out = []
+    for g in (vee, ell, bar):
+        c = g.centroid
+        out.append(
+            Prototype.from_geometry(shapely.affinity.translate(g, -c.x, -c.y), tolerance=0.0)
+        )
+    return out
+
+
+def _scatter(rng, n, k, side):
+    return Arrangement(rng.integers(0, k, n), rng.uniform(0, side, (n, 2)), rng.uniform(-180, 180, n),
+                       rng.uniform(0.8, 1.2, n))  # fmt: skip
+
+
+def _plain_cross(new, old, protos, rule):
+    """(a, b) of every conflicting pair, by GEOS on every pair."""
+    eps = slack(protos)
+    ga, gb = world_footprints(new, protos), world_footprints(old, protos)
+    a, b = (v.ravel() for v in np.meshgrid(np.arange(len(new)), np.arange(len(old)), indexing="ij"))
+    reach = rule[new.kind[a], old.kind[b]] - eps
+    close = (reach > 0) & shapely.dwithin(ga[a], gb[b], np.maximum(reach, 0))
+    share = shapely.intersects(ga[a], gb[b]) & ~shapely.touches(ga[a], gb[b])
+    hit = close | share
+    return a[hit], b[hit]
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_cross_pairs_with_discs_find_what_geos_finds(seed):
+    rng = np.random.default_rng(seed)
+    protos = _tufts()
+    old, new = _scatter(rng, 150, 3, 50), _scatter(rng, 150, 3, 50)
+    rule = np.array([[1.0, 0.5, 0.8], [0.5, 0.3, 0.6], [0.8, 0.6, 0.0]])
+    pa, pb = _plain_cross(new, old, protos, rule)
+    a, b = cross_pairs(new, old, protos, rule, complete=True)
+    assert set(zip(a.tolist(), b.tolist(), strict=True)) == set(
+        zip(pa.tolist(), pb.tolist(), strict=True)
+    )
+    bad = np.zeros(len(new), dtype=bool)
+    bad[pa] = True
+    assert 0 < bad.sum() < len(new)
+    assert np.array_equal(cross_conflicts(new, old, protos, rule), bad)
+    # the discs decide many of those pairs alone (else this test would not exercise them)
+    reach = np.maximum(rule[new.kind[pa], old.kind[pb]] - slack(protos), 0)
+    assert _discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_find_conflicts_with_discs_find_what_geos_finds(seed):
+    rng = np.random.default_rng(seed)
+    protos = _tufts()
+    arr = _scatter(rng, 250, 3, 60)
+    rule = np.array([[1.0, 0.5, 0.8], [0.5, 0.3, 0.6], [0.8, 0.6, 0.4]])
+    found = find_conflicts(arr, protos, rule)
+    g = world_footprints(arr, protos)
+    i, j = np.triu_indices(len(arr), 1)
+    reach = rule[arr.kind[i], arr.kind[j]] - (RULE_SLACK + 1e-6 * max(p.radius for p in protos))
+    violation = shapely.dwithin(g[i], g[j], reach)
+    overlap = shapely.intersects(g[i], g[j]) & ~shapely.touches(g[i], g[j])
+    keep = violation | overlap
+    plain = {(a, b): (o, v) for a, b, o, v in zip(i[keep].tolist(), j[keep].tolist(), overlap[keep].tolist(),
+                                                     violation[keep].tolist(), strict=True)}  # fmt: skip
+    got = {(a, b): (o, v) for a, b, o, v in zip(found.i.tolist(), found.j.tolist(), found.overlap.tolist(),
+                                                   found.violation.tolist(), strict=True)}  # fmt: skip
+    assert got == plain
+    assert sum(o for o, _ in plain.values()) > 10
