@@ -85,8 +85,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/616", "repetition"): "1.000 (auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
     ("fgdc/617", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/618", "repetition"): "1.000 (auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
-    ("fgdc/619", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
-    ("fgdc/620", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/621", "repetition"): "1.000 (auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
     ("fgdc/622", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/623", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
@@ -211,14 +209,15 @@ def motif_tiles(only: list[str] | tuple[str, ...] = ()):
 
 
 @cache
-def figures(tile: str):
-    """(score, exemplar overlaps, L) of the default engine on ``tile``; None if it is refused."""
+def figures(tile: str, engine: str = "auto", params: tuple[tuple[str, object], ...] = ()):
+    """(score, exemplar overlaps, L) of ``engine`` (the default engine unless given, with
+    ``params`` as (name, value) pairs) on ``tile``; None if it is refused."""
     loaded = motif_tile(tile)
     if not isinstance(loaded, tuple):
         return loaded
     t, ex, stats = loaded
     region = gate_region(t.box, len(ex.motifs))
-    result = synthesize(ex, region, "auto", seed=1, stats=stats)
+    result = synthesize(ex, region, engine, seed=1, stats=stats, params=dict(params) or None)
     s = spacing(stats)
     X0, Y0, X1, Y1 = region.bounds
 

@@ -436,4 +436,78 @@ def is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
     return (i, j) != (0, 0) and abs(g[0] - i * w) <= tol and abs(g[1] - j * h) <= tol
 
 
-__all__ = ["Order", "Step", "dominant_steps", "exact_support", "is_period", "neighbour_vectors", "read_order", "symmetry_steps", "translation_steps"]
+#: A tile is reproduced by a step when every motif meets a motif of its kind there: all but this
+#: share (floating-point slack, not a tolerance for jittered motifs).
+WHOLE = 1e-9
+#: Shortest divisor step tried for a tile's period, in mean spacings (the repetition figure's
+#: ``REPEAT_DIVIDE``), and the most divisors tried (its ``REPEAT_DIVIDE_MAX``).
+DIVIDE_MIN, DIVIDE_MAX = 0.5, 64
+#: A period shorter than this many mean spacings is the pattern's own lattice (a tile of one or
+#: two icons): its copies are its nearest neighbours (the repetition figure's ``REPEAT_MIN``).
+SHORT_PERIOD = 2.0
+
+
+def stamp_repeats(exemplar: Exemplar, order: Order | None = None) -> bool:
+    """Whether stamping a repeating tile on its period repeats content its own exact order does
+    not reproduce — the tile is *not* the stamp of a lattice (issues 12 and 13, auto's rules).
+
+    A stamp repeats every motif exactly at the period ``p`` ∈ {(w, 0), (0, h)}.  That is the
+    exemplar's own order when the tile already repeats at a step that generates ``p``, to the
+    exactness of :data:`EXACT_STEP` (the repetition figure's half bin) and for **every** motif:
+
+    * ``p`` is shorter than :data:`SHORT_PERIOD` mean spacings (one icon per tile: the period is
+      its lattice);
+    * or ``p / m`` maps every motif onto one of its kind for a whole ``m ≥ 2`` (a tile that is an
+      m-fold stamp of a smaller one, or rows exact along ``p``: FGDC 619 and 620 along x);
+    * or ``p`` is an integer combination of the analysis's steps (:attr:`Order.steps`, not the
+      period itself) that each map every motif (offset rows, a centred lattice: Equinor 30100's
+      (16, 0) and (8, 8)).
+
+    When either period is not so generated — motifs hand-jittered off any exact lattice (FGDC
+    610, 611, 617), rows exact along x at hand-drawn phases (619, 620), every motif its own kind
+    (626, 659, 732), a lattice most but not all motifs share — the stamp repeats at that period,
+    which the exemplar cannot show: True.  Not a repeating tile: False.
+
+    Parameters
+    ----------
+    exemplar : the exemplar (``period`` (w, h) user units where it repeats)
+    order : its order (:func:`read_order`), if already read
+
+    Cost: one same-kind k-d tree query per candidate step and motif (≤ 2 · 64 + 2 steps).
+    """
+    order = read_order(exemplar) if order is None else order
+    period = getattr(exemplar, "period", None)
+    if period is None:
+        return False
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    if not len(xy):
+        return False
+    s = order.spacing
+    tol = EXACT_STEP * s
+
+    def whole(g: np.ndarray) -> bool:
+        return exact_support(xy, kind, period, g, tol) >= 1.0 - WHOLE
+
+    steps = [np.asarray(st.vector, dtype=np.float64) for st in order.steps]
+    steps = [g for g in steps if not is_period(g, period, tol) and whole(g)]
+
+    def generated(p: np.ndarray) -> bool:
+        if math.hypot(*p) < SHORT_PERIOD * s:
+            return True
+        most = min(DIVIDE_MAX, int(math.hypot(*p) / (DIVIDE_MIN * s)))
+        if any(whole(p / m) for m in range(2, most + 1)):
+            return True
+        if len(steps) == 2:  # lattice coordinates of p, whole to the tolerance
+            c = np.linalg.solve(np.column_stack(steps), p)
+            return bool(np.abs(np.column_stack(steps) @ np.round(c) - p).max() <= tol)
+        if len(steps) == 1:
+            g = steps[0]
+            m = round(float(p @ g) / float(g @ g))
+            return m != 0 and bool(np.abs(m * g - p).max() <= tol)
+        return False
+
+    w, h = period
+    return not (generated(np.array([w, 0.0])) and generated(np.array([0.0, h])))
+
+
+__all__ = ["Order", "Step", "dominant_steps", "exact_support", "is_period", "neighbour_vectors", "read_order", "stamp_repeats", "symmetry_steps", "translation_steps"]

@@ -17,10 +17,10 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 
-from svgtile.analysis.order import Order, read_order
+from svgtile.analysis.order import Order, read_order, stamp_repeats
 from svgtile.analysis.stats import Stats
 from svgtile.core.exemplar import Exemplar
-from svgtile.engines.growth import grows_from
+from svgtile.engines.growth import grows_from, rows_wander
 
 #: The name users give to let svgtile choose (``--engine auto``, ``engine = "auto"``).
 AUTO = "auto"
@@ -86,6 +86,11 @@ RULES: tuple[Rule, ...] = (
     Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
          lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "
                    "and follow its edges"),
+    Rule("tile-rows", lambda o, s, e: o.period is not None and o.kind != "scatter" and stamp_repeats(e, o)
+         and rows_wander(e, s.distance), "growth", {},
+         lambda o: f"a repeating tile of rows exact along x at hand-drawn phases (steps {_steps(o)}): copies on "
+                   "its period would repeat its rows' phases, which its own exact steps do not reproduce, so "
+                   "grown with each row at a phase the tile's row-to-row steps give"),
     Rule("tile-order", lambda o, s, e: o.period is not None and o.kind != "scatter", "patch",
          {"grid": "lattice", "max_rotation": 0.0},
          lambda o: f"a repeating tile with {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): "

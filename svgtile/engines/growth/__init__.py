@@ -21,6 +21,8 @@ import dataclasses
 import re
 from dataclasses import dataclass
 
+import numpy as np
+
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.base import Context, EngineParams, param
@@ -168,4 +170,26 @@ def grows_from(exemplar: Exemplar) -> bool:
     return len(triangles(xy)) > 0
 
 
-__all__ = ["GROWTH", "ROTATIONS", "GrowthEngine", "GrowthParams", "Weights", "grows_from"]
+#: Share of the (row, phase step) pairs of a tile of wandering rows that must keep the distance
+#: rule for growth to be auto's choice there (:func:`rows_wander`).
+ROWS_FIT = 0.9
+
+
+def rows_wander(exemplar: Exemplar, distance: np.ndarray) -> bool:
+    """Whether growth's row phases (:mod:`svgtile.engines.growth.phases`) free this tile from its
+    period: it is rows exact along x at hand-drawn phases (:func:`.phases.row_phases` reads it),
+    and at least :data:`ROWS_FIT` of the tile's row-to-row phase steps fit after every row
+    (the distance rule, :func:`.phases.fitting_steps`), so any row may follow any row as the
+    tile's rows do.  FGDC 619 0.975, 620 1.000: growth keeps L 0.98 / 0.92 at repetition 0; 621
+    0.46 (rows of three kinds a 26.8-unit step apart, most steps bring a row's motifs too near
+    the next's): growth there is L 0.28, repetition 0.31 (benchmarks/README.md, auto13).
+
+    ``distance`` : (k, k) user units, the exemplar's distance rule (:attr:`Stats.distance`).
+    """
+    from svgtile.engines.growth.phases import row_phases
+
+    read = row_phases(exemplar, 0, distance)
+    return read is not None and float(read.count.sum()) >= ROWS_FIT * len(read.count) ** 2
+
+
+__all__ = ["GROWTH", "ROTATIONS", "ROWS_FIT", "GrowthEngine", "GrowthParams", "Weights", "grows_from", "rows_wander"]
