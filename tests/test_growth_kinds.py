@@ -14,12 +14,14 @@ import shapely
 
 from svgtile import analyze, read_exemplar
 from svgtile.analysis.neighbourhood import neighbourhood_distance
+from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.engines.growth import GrowthParams, Weights
 from svgtile.engines.growth.connectivity import reference_rings
 from svgtile.engines.growth.kinds import repick
 from svgtile.engines.growth.neighbourkinds import energies, neighbourhood_kinds
+from svgtile.engines.growth.rows import row_lines
 from svgtile.errors import ParameterError
 from svgtile.metrics import score
 from svgtile.metrics.window import spacing
@@ -163,18 +165,24 @@ def marsh_figures(seed: int, sweeps: int | None = None):
     return score(ex, st, arr, region)
 
 
-#: Issue 13's repetition gate not met on marsh (300 × 300, default growth): seed 2's rows repeat
-#: one run of ring copies 47.4 units along (0.255 before the neighbourhood pass, 0.264 after it by
-#: the single-mode figure); by issue 13's figure (the 4 largest peaks against what the exemplar
-#: shows) seeds 2 and 3 read 0.216 and 0.212 (seed 1 0.186).
-REPETITION_NOT_MET = {2: 0.216, 3: 0.212}
+#: Issue 13's repetition gate not met on marsh (300 × 300, default growth), by issue 13's figure
+#: (the 4 largest peaks against what the exemplar shows): seeds 2, 3 and 5 read 0.216, 0.212 and
+#: 0.201 (the others 0.177–0.198).  The figure sits at 0.20 ± 0.03 on every seed: the same world
+#: texture scored in five 300 × 300 windows reads 0.158–0.236 (mean 0.196 over seeds 1–7), its
+#: peaks at displacements longer than the exemplar shows (P_ex ≈ 0) and on whole row offsets.
+#: Rows alone make most of it: the same motifs with each row at its own random phase still read
+#: 0.06–0.17 (and lose L, 0.84 → 0.61, :func:`test_marsh_rows_at_random_phases_repeat_less_but_lose_likeness`).
+#: Costs on a reference copied nearby along its row, random costs in eq. (2), larger cells: the
+#: figure moves by less than its spread over windows (benchmarks/README.md, "marshrep13").
+REPETITION_NOT_MET = {2: 0.216, 3: 0.212, 5: 0.201}
+SEEDS = (1, 2, 3, 4, 5, 6, 7)
 
 
-@pytest.mark.parametrize("seed", [1, 2, 3])
-def test_marsh_meets_issue_13s_likeness_on_seeds_1_to_3(seed):
+@pytest.mark.parametrize("seed", SEEDS)
+def test_marsh_meets_issue_13s_likeness_on_seeds_1_to_7(seed):
     """L ≥ 0.8 with 0 overlaps, 0 violators and density ratio in 0.9–1.1 at 300 × 300, scored as
-    tests/test_growth_auto.py scores it (ring pass alone: 0.821 / 0.798 / 0.772; with the
-    neighbourhood pass 0.838 / 0.860 / 0.848)."""
+    tests/test_growth_auto.py scores it (ring pass alone: 0.821 / 0.798 / 0.772 on seeds 1–3;
+    with the neighbourhood pass 0.838 / 0.860 / 0.848 / 0.838 / 0.858 / 0.828 / 0.881)."""
     s = marsh_figures(seed)
     assert s.likeness >= 0.8, s.likeness
     assert s.overlaps_total == s.violators_total == 0
@@ -183,9 +191,31 @@ def test_marsh_meets_issue_13s_likeness_on_seeds_1_to_3(seed):
 
 @pytest.mark.parametrize("seed", [
     pytest.param(seed, marks=pytest.mark.xfail(strict=True, reason=f"repetition {REPETITION_NOT_MET[seed]:.3f}"))
-    if seed in REPETITION_NOT_MET else seed for seed in (1, 2, 3)])  # fmt: skip
-def test_marsh_repetition_on_seeds_1_to_3(seed):
+    if seed in REPETITION_NOT_MET else seed for seed in SEEDS])  # fmt: skip
+def test_marsh_repetition_on_seeds_1_to_7(seed):
     assert marsh_figures(seed).repetition <= 0.2, marsh_figures(seed).repetition
+
+
+def test_marsh_rows_at_random_phases_repeat_less_but_lose_likeness():
+    """Why :data:`REPETITION_NOT_MET` is mostly the rows' doing: seed 2's texture with
+    every row moved along itself by its own random shift (each row's own spacing kept, the
+    relations between rows gone) repeats less (0.216 → 0.06–0.16 by three draws) but falls far
+    below L 0.8 (0.64): what lifts the figure over the rows' own floor is the relation between
+    neighbouring rows, which is what L is made of."""
+    ex, st = loaded("marsh")
+    region = Region.rectangle(300, 300)
+    arr = synthesize(ex, region, "growth", seed=2, stats=st, boundary="centroid").arrangement
+    rows = row_lines(ex)
+    row = np.round((arr.xy @ rows.across - rows.offset) / rows.pitch).astype(np.int64)
+    assert abs(rows.along[1]) < 0.01  # marsh's rows run along x
+    rng = np.random.default_rng(2)
+    xy = arr.xy.copy()
+    for r in np.unique(row):
+        xy[row == r, 0] = (xy[row == r, 0] + rng.uniform(0, 300)) % 300
+    shifted = score(ex, st, Arrangement(arr.kind, xy, arr.angle, arr.scale), region)
+    grown2 = marsh_figures(2)
+    assert shifted.repetition < grown2.repetition - 0.03, (shifted.repetition, grown2.repetition)
+    assert shifted.likeness < 0.7 < 0.8 <= grown2.likeness, (shifted.likeness, grown2.likeness)
 
 
 def test_the_neighbourhood_pass_is_what_lifts_marsh():
