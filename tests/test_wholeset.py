@@ -60,9 +60,9 @@ TILES = [f"{name}/{p.stem}" for name, folder in SETS.items() for p in sorted(fol
 #: re-measured with issue 12's figure the same day).
 KNOWN: dict[tuple[str, str], str] = {
     ("equinor/11026", "overlaps"): "0 overlaps, 0 violators, exemplar 4 overlapping pairs (pebbles and dashes 0.2 apart along each row; joined they would meet their own repeat, the importer's notes say so)",
-    ("equinor/11026", "density"): "density/ρ 0.722",
-    ("equinor/11026", "kind mix"): "TV 0.232",
-    ("equinor/11030", "repetition"): "1.000 (auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
+    ("equinor/11026", "density"): "density/ρ 0.700 (2026-12-04; 0.749 at best with 0 overlaps: each tile must lose one motif of each of its two overlapping pairs, dens12c)",
+    ("equinor/11026", "kind mix"): "TV 0.203 (2026-12-04)",
+    ("equinor/11030", "repetition"): "0.261 (2026-12-04; 1.000 on 2026-12-02 before issue 13's figure: auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
     ("equinor/30100", "repetition"): "0.502",
     ("equinor/30300", "repetition"): "0.477",
     ("equinor/30400", "repetition"): "0.527",
@@ -148,7 +148,7 @@ KNOWN: dict[tuple[str, str], str] = {
     ("equinor/60600", "repetition"): "0.303 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("equinor/60700", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("equinor/65100", "repetition"): "0.472 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/65121", "repetition"): "0.608 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
+    ("equinor/65121", "repetition"): "0.375 (2026-12-04; 0.608 on 2026-12-02: auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("equinor/80100", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("equinor/80200", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("fgdc/601", "repetition"): "0.201 (2026-12-03, rare kinds pooled by shape)",
