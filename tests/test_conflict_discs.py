@@ -113,3 +113,34 @@ def test_find_conflicts_with_discs_find_what_geos_finds(seed):
                                                    found.violation.tolist(), strict=True)}  # fmt: skip
     assert got == plain
     assert sum(o for o, _ in plain.values()) > 10
+
+
+def test_a_kind_of_many_parts_gets_no_discs_and_geos_decides():
+    """A kind whose greedy cover would weigh more than MAX_PAIRS (candidate, outline point)
+    pairs — a path of many dots — gets no discs (reviewer: ≈ 5 GB for 95 dots), and its pairs'
+    conflicts are still exactly GEOS's (a rule of 0 included: overlaps only)."""
+    def dots(n):
+        g = shapely.union_all([shapely.Point(x, y).buffer(0.3) for x in range(n) for y in range(n)])
+        return Prototype.from_geometry(shapely.affinity.translate(g, -g.centroid.x, -g.centroid.y), tolerance=0.0)
+
+    assert len(inscribed_discs(dots(3))[1])  # 9 dots: under the cap, discs
+    protos = [dots(6), *_tufts()[:1]]  # 36 dots: ≈ 5 × 10⁴ candidates against ≈ 10³ outline points
+    centre, radius = inscribed_discs(protos[0])
+    assert centre.shape == (0, 2) and radius.shape == (0,)
+    assert len(inscribed_discs(protos[1])[1])  # the small kind keeps its discs
+    rng = np.random.default_rng(5)
+    arr = _scatter(rng, 120, 2, 40)
+    rule = np.array([[0.0, 0.5], [0.5, 0.3]])
+    found = find_conflicts(arr, protos, rule)
+    g = world_footprints(arr, protos)
+    i, j = np.triu_indices(len(arr), 1)
+    reach = rule[arr.kind[i], arr.kind[j]] - (RULE_SLACK + 1e-6 * max(p.radius for p in protos))
+    violation = shapely.dwithin(g[i], g[j], reach) & (rule[arr.kind[i], arr.kind[j]] > 0)
+    overlap = shapely.intersects(g[i], g[j]) & ~shapely.touches(g[i], g[j])
+    keep = violation | overlap
+    plain = {(a, b): (o, v) for a, b, o, v in zip(i[keep].tolist(), j[keep].tolist(), overlap[keep].tolist(),
+                                                     violation[keep].tolist(), strict=True)}  # fmt: skip
+    got = {(a, b): (o, v) for a, b, o, v in zip(found.i.tolist(), found.j.tolist(), found.overlap.tolist(),
+                                                   found.violation.tolist(), strict=True)}  # fmt: skip
+    assert got == plain
+    assert sum(o for o, _ in plain.values()) > 5

@@ -29,6 +29,12 @@ PAIR = 2
 #: Candidate disc centres per prototype part: a grid of about this many points over its box.
 GRID = 1500
 
+#: The most (candidate, outline point) pairs a kind's greedy cover may weigh (one float64 matrix
+#: of this many entries, ≈ 0.16 GB, and two or three like it): a kind of many parts (a path of
+#: a hundred dots has ≈ 10⁵ candidates against ≈ 2 × 10³ outline points) gets no discs, and
+#: its pairs are decided by GEOS as before the discs.
+MAX_PAIRS = 20_000_000
+
 
 #: inscribed_discs' results, per prototype while it lives (kinds are few; a process may read many
 #: exemplars, so the prototypes are not kept alive by it).
@@ -77,6 +83,8 @@ def _discs(proto: Prototype, most: int) -> tuple[np.ndarray, np.ndarray]:
     outline = np.concatenate(
         [shapely.get_coordinates(shapely.segmentize(shapely.linearrings(ring), proto.radius / 40)) for ring in proto.rings]
     )  # fmt: skip
+    if len(c) * len(outline) > MAX_PAIRS:  # a kind of many parts: no discs, GEOS decides its pairs
+        return np.zeros((0, 2)), np.zeros(0)
     # (candidates, outline points): how far each outline point lies outside each candidate disc
     outside = (
         np.hypot(c[:, None, 0] - outline[None, :, 0], c[:, None, 1] - outline[None, :, 1])

@@ -467,7 +467,9 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
         if d is None:
             d, m = tree.query(pts, k=1, workers=-1)
         j, want = arr.kind[m], kind[owner]
-        return np.where(d >= far + size_of[j], np.inf, d - size_of[j] - size_of[want] - rule[want, j])
+        # the same expression as ``measure``'s, (d - r_j) - (s_want + rule): a bound written
+        # otherwise can fall an ulp under the room it bounds and drop a tied sample (reviewer)
+        return np.where(d >= far + size_of[j], np.inf, d - size_of[j] - (size_of[want] + rule[want, j]))
 
     g = (np.arange(samples) + 0.5) / samples
     cell = np.stack([v.ravel() for v in np.meshgrid(g, g)], -1)  # (s², 2) in window units
