@@ -94,24 +94,32 @@ def test_cross_pairs_with_discs_find_what_geos_finds(seed):
     assert _discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
 
 
+def _geos_conflicts(arr, protos, rule):
+    """{(i, j): (overlap, violation)} of every conflicting pair i < j, by GEOS on every pair."""
+    g = world_footprints(arr, protos)
+    i, j = np.triu_indices(len(arr), 1)
+    reach = rule[arr.kind[i], arr.kind[j]] - (RULE_SLACK + 1e-6 * max(p.radius for p in protos))
+    violation = shapely.dwithin(g[i], g[j], reach)  # a rule ≤ 0: reach < 0, never
+    overlap = shapely.intersects(g[i], g[j]) & ~shapely.touches(g[i], g[j])
+    keep = violation | overlap
+    return dict(zip(zip(i[keep].tolist(), j[keep].tolist(), strict=True),
+                    zip(overlap[keep].tolist(), violation[keep].tolist(), strict=True), strict=True))  # fmt: skip
+
+
+def _found(c):
+    """find_conflicts' answer in :func:`_geos_conflicts`' form."""
+    return dict(zip(zip(c.i.tolist(), c.j.tolist(), strict=True),
+                    zip(c.overlap.tolist(), c.violation.tolist(), strict=True), strict=True))  # fmt: skip
+
+
 @pytest.mark.parametrize("seed", range(3))
 def test_find_conflicts_with_discs_find_what_geos_finds(seed):
     rng = np.random.default_rng(seed)
     protos = _tufts()
     arr = _scatter(rng, 250, 3, 60)
     rule = np.array([[1.0, 0.5, 0.8], [0.5, 0.3, 0.6], [0.8, 0.6, 0.4]])
-    found = find_conflicts(arr, protos, rule)
-    g = world_footprints(arr, protos)
-    i, j = np.triu_indices(len(arr), 1)
-    reach = rule[arr.kind[i], arr.kind[j]] - (RULE_SLACK + 1e-6 * max(p.radius for p in protos))
-    violation = shapely.dwithin(g[i], g[j], reach)
-    overlap = shapely.intersects(g[i], g[j]) & ~shapely.touches(g[i], g[j])
-    keep = violation | overlap
-    plain = {(a, b): (o, v) for a, b, o, v in zip(i[keep].tolist(), j[keep].tolist(), overlap[keep].tolist(),
-                                                     violation[keep].tolist(), strict=True)}  # fmt: skip
-    got = {(a, b): (o, v) for a, b, o, v in zip(found.i.tolist(), found.j.tolist(), found.overlap.tolist(),
-                                                   found.violation.tolist(), strict=True)}  # fmt: skip
-    assert got == plain
+    plain = _geos_conflicts(arr, protos, rule)
+    assert _found(find_conflicts(arr, protos, rule)) == plain
     assert sum(o for o, _ in plain.values()) > 10
 
 
@@ -131,16 +139,6 @@ def test_a_kind_of_many_parts_gets_no_discs_and_geos_decides():
     rng = np.random.default_rng(5)
     arr = _scatter(rng, 120, 2, 40)
     rule = np.array([[0.0, 0.5], [0.5, 0.3]])
-    found = find_conflicts(arr, protos, rule)
-    g = world_footprints(arr, protos)
-    i, j = np.triu_indices(len(arr), 1)
-    reach = rule[arr.kind[i], arr.kind[j]] - (RULE_SLACK + 1e-6 * max(p.radius for p in protos))
-    violation = shapely.dwithin(g[i], g[j], reach) & (rule[arr.kind[i], arr.kind[j]] > 0)
-    overlap = shapely.intersects(g[i], g[j]) & ~shapely.touches(g[i], g[j])
-    keep = violation | overlap
-    plain = {(a, b): (o, v) for a, b, o, v in zip(i[keep].tolist(), j[keep].tolist(), overlap[keep].tolist(),
-                                                     violation[keep].tolist(), strict=True)}  # fmt: skip
-    got = {(a, b): (o, v) for a, b, o, v in zip(found.i.tolist(), found.j.tolist(), found.overlap.tolist(),
-                                                   found.violation.tolist(), strict=True)}  # fmt: skip
-    assert got == plain
+    plain = _geos_conflicts(arr, protos, rule)
+    assert _found(find_conflicts(arr, protos, rule)) == plain
     assert sum(o for o, _ in plain.values()) > 5
