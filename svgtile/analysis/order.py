@@ -439,11 +439,13 @@ def is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
 #: A tile is reproduced by a step when every motif meets a motif of its kind there: all but this
 #: share (floating-point slack, not a tolerance for jittered motifs).
 WHOLE = 1e-9
-#: Shortest divisor step tried for a tile's period, in mean spacings (the repetition figure's
-#: ``REPEAT_DIVIDE``), and the most divisors tried (its ``REPEAT_DIVIDE_MAX``).
+#: Shortest divisor step tried for a tile's period, in mean spacings, and the most divisors
+#: tried; the repetition figure tries the same (:mod:`svgtile.metrics.repeats` takes them from
+#: here as ``REPEAT_DIVIDE`` and ``REPEAT_DIVIDE_MAX``).
 DIVIDE_MIN, DIVIDE_MAX = 0.5, 64
 #: A period shorter than this many mean spacings is the pattern's own lattice (a tile of one or
-#: two icons): its copies are its nearest neighbours (the repetition figure's ``REPEAT_MIN``).
+#: two icons): its copies are its nearest neighbours (the repetition figure's ``REPEAT_MIN``,
+#: taken from here).
 SHORT_PERIOD = 2.0
 
 

@@ -18,6 +18,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from svgtile.analysis.order import DIVIDE_MAX, DIVIDE_MIN, SHORT_PERIOD
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
@@ -27,7 +28,7 @@ from svgtile.metrics.window import exemplar_size, in_window, motif_sample, spaci
 #: Repetition: displacements are binned on a grid of this many mean spacings …
 REPEAT_BIN = 0.1
 #: … counted from this many mean spacings (or half the exemplar's size, if smaller) …
-REPEAT_MIN = 2.0
+REPEAT_MIN = SHORT_PERIOD  # auto's stamp_repeats reads a period shorter than this as the pattern's lattice
 #: … up to this many exemplar sizes (the larger side of the input region's bounding box) …
 REPEAT_REACH = 1.5
 #: … from at most this many reference motifs.
@@ -41,9 +42,9 @@ REPEAT_PEAKS = 4
 REPEAT_EX_MIN = 10
 #: The exemplar shows a displacement v also when it repeats at v / m to within 1 / m of the
 #: square (rows: m steps along a row), for whole m with |v| / m at least this many mean spacings …
-REPEAT_DIVIDE = 0.5
+REPEAT_DIVIDE = DIVIDE_MIN  # the same divisors auto's stamp_repeats tries
 #: … and m at most this.
-REPEAT_DIVIDE_MAX = 64
+REPEAT_DIVIDE_MAX = DIVIDE_MAX
 
 
 @dataclass(frozen=True)

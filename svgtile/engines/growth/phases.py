@@ -237,12 +237,16 @@ def fitting_steps(exemplar: Exemplar, row: np.ndarray, steps: np.ndarray, step: 
     return ok
 
 
-def wandering_rows(exemplar: Exemplar) -> tuple[float, np.ndarray, float] | None:
-    """The reading :func:`row_phases` grows from, without the distance rule: ``(step, row,
-    spacing)`` — the exact step along x (user units, a whole divisor of the width), each motif's
-    row ((m,) int, from 0 up y) and the mean spacing — or None where the tile is not rows exact
-    along x at phases that repeat only at its height (see :func:`row_phases`).  Cheap (one
-    :func:`~svgtile.analysis.order.symmetry_steps`): auto's rules read it (:mod:`svgtile.engines.choose`).
+def row_phases(exemplar: Exemplar, key: int, distance: np.ndarray) -> RowPhases | None:
+    """The world rows of a tile of rows exact along x whose phases repeat only at the tile's
+    height (see the module docstring), or None for any other exemplar.
+
+    ``distance`` is the distance rule ((k, k), user units; :func:`fitting_steps`).  The rows are
+    cut where the motifs' sorted y jump by more than half the mean spacing
+    ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
+    :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
+    the width; an exact step across the rows that maps every motif refuses the tile (one that maps
+    some rows only is a few rows the hand happened to draw at one relation, and does not).
     """
     if exemplar.period is None or len(exemplar.motifs) < MIN_ROWS:
         return None
@@ -264,30 +268,9 @@ def wandering_rows(exemplar: Exemplar) -> tuple[float, np.ndarray, float] | None
     by = np.argsort(y, kind="stable")
     row = np.empty(len(y), np.int64)
     row[by] = np.r_[0, np.cumsum(np.diff(y[by]) > 0.5 * spacing)]
-    if int(row.max()) + 1 < MIN_ROWS:
-        return None
-    return step, row, spacing
-
-
-def row_phases(exemplar: Exemplar, key: int, distance: np.ndarray) -> RowPhases | None:
-    """The world rows of a tile of rows exact along x whose phases repeat only at the tile's
-    height (see the module docstring), or None for any other exemplar.
-
-    ``distance`` is the distance rule ((k, k), user units; :func:`fitting_steps`).  The rows are
-    cut where the motifs' sorted y jump by more than half the mean spacing
-    ``√(w·h / m)``; the step along them is the tile's exact symmetry step along x (tolerance
-    :data:`svgtile.analysis.order.EXACT_STEP` spacings), which must map every motif and divide
-    the width; an exact step across the rows that maps every motif refuses the tile (one that maps
-    some rows only is a few rows the hand happened to draw at one relation, and does not).
-    The reading is :func:`wandering_rows`.
-    """
-    read = wandering_rows(exemplar)
-    if read is None:
-        return None
-    step, row, _ = read
-    m = exemplar.motifs
-    w, h = (float(v) for v in exemplar.period)
     n = int(row.max()) + 1
+    if n < MIN_ROWS:
+        return None
     q = round(step / QUANTUM)
     phase = np.array([round(float(np.min(m.xy[(row == r) & (m.kind == m.kind[row == r].min()), 0] % step)) / QUANTUM)
                       for r in range(n)], np.int64) % q  # fmt: skip
@@ -323,4 +306,4 @@ def on_rows(phases: RowPhases, exemplar: Exemplar, cand: Arrangement, support: n
     return arr.take(first), sub[first], total
 
 
-__all__ = ["ACROSS_WEIGHT", "NEAR", "QUANTUM", "STREAM", "RowPhases", "fitting_steps", "on_rows", "row_phases", "wandering_rows"]
+__all__ = ["ACROSS_WEIGHT", "NEAR", "QUANTUM", "STREAM", "RowPhases", "fitting_steps", "on_rows", "row_phases"]
