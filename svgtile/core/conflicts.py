@@ -320,16 +320,17 @@ def _disc_gaps(new, old, protos, a, b) -> tuple[np.ndarray, float]:
     if not len(a):
         return gap, 0.0
     margin = 1e-9 * (1.0 + float(max(np.abs(new.xy).max(), np.abs(old.xy).max())) + max(p.radius for p in protos))
-    discs = [inscribed_discs(p) for p in protos]
     k = len(protos)
     pair_kind = new.kind[a] * k + old.kind[b]
     order = np.argsort(pair_kind, kind="stable")
-    bounds = np.searchsorted(pair_kind[order], np.arange(k * k + 1))
-    for g in range(k * k):
-        da, db = discs[g // k], discs[g % k]
+    # the (kind, kind) groups the pairs hold, not all k² of them (a kind in no pair gets no discs)
+    groups, starts = np.unique(pair_kind[order], return_index=True)
+    ends = np.r_[starts[1:], len(order)]
+    for g, start, end in zip(groups.tolist(), starts.tolist(), ends.tolist(), strict=True):
+        da, db = inscribed_discs(protos[g // k]), inscribed_discs(protos[g % k])
         rows = max(1, _DISC_CHUNK // max(len(da[1]) * len(db[1]), 1))
-        for lo in range(bounds[g], bounds[g + 1], rows):
-            at = order[lo : min(lo + rows, bounds[g + 1])]
+        for lo in range(start, end, rows):
+            at = order[lo : min(lo + rows, end)]
             i, j = a[at], b[at]
             gap[at] = disc_gap(new.xy[i], new.angle[i], new.scale[i], da, old.xy[j], old.angle[j], old.scale[j], db)
     return gap, margin
