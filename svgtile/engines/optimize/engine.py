@@ -28,6 +28,16 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
     from svgtile.engines.optimize.solver import Settings
 
 
+#: Side of the start's patches cut from a repeating tile that the solver refills (:func:`.init.seamless`
+#: is false): this share of the tile's shorter period, so that a window with its overlap (σ = 0.25)
+#: stays within one period and holds no repeat of it, and at most :data:`MAX_CELL` exemplar
+#: spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 / 0.82 / 0.80
+#: → 0.77 / 0.83 / 0.88, density / ρ 0.87 / 0.85 / 0.83 → 0.91–0.95; 626 and 641, tiles of
+#: 5.6–5.9 spacings, at 12: repetition 0.50 and 0.25, their tile's period inside each patch).
+TILE_CELL = 0.8
+MAX_CELL = 12.0
+
+
 @dataclass(frozen=True)
 class OptimizeParams(EngineParams):
     """Parameters of the optimize engine.
@@ -102,8 +112,11 @@ class OptimizeEngine:
         refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
         settings = replace(p.settings(), insert=refill)
         spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
+        cell = p.start_cell * spacing
+        if refill:  # patches of a repeating tile as large as it allows without holding its period
+            cell = max(cell, min(TILE_CELL * min(ex.period), MAX_CELL * spacing))
         ctx.progress("patches", 0.0)
-        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
+        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
                           overlap=p.start_overlap, flow=ctx.controls.flow, refill=refill)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip

@@ -48,6 +48,8 @@ TAKEN = 0.5
 #: 601 and 613 at 0.86–0.89 of ρ: a small window's cover varies as much as the exemplar's
 #: does there, so capping each at ρ keeps their mean below it.
 WINDOW = 10.0
+#: Below this share of ρ in the texture's scored window, no vote shrinks a window short of ρ (:func:`shrinking`).
+SHORT = 0.95
 _TIE = 75  # hash stream: ties between equally voted bins
 
 
@@ -190,6 +192,37 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     take = np.zeros(m, dtype=bool)
     take[order] = short == 0
     return take
+
+
+def shrinking(arr: Arrangement, kind: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region, *,
+              window: float) -> np.ndarray:  # fmt: skip
+    """(n,) bool: the elements of ``arr`` whose new ``kind`` (n,) has a smaller footprint than
+    their present one, in a world-anchored window of side ``window`` whose cover (as
+    :func:`capped` counts it) is below ρ.
+
+    The non-penetration step (:func:`.controls.settle`) returns an element whose voted kind is
+    larger and collides, and never one whose kind is smaller: every iteration the vote of eq. (5)
+    then shrinks the covered area a little (FGDC 605: −0.02 to −0.07 of ρ per iteration, 606's
+    one-off fragments turned into dots).  Where the window is already short, such changes are
+    not taken.
+    """
+    area = footprint_areas(arr, exemplar.prototypes)
+    down = footprint_areas(Arrangement(kind, arr.xy, arr.angle, arr.scale), exemplar.prototypes) < area * (1 - 1e-9)
+    # the figure the texture is scored by: its cover in the region's interior (the region if that is empty)
+    x0, y0, x1, y1 = exemplar.region.bounds
+    scored = region.interior(max(x1 - x0, y1 - y0))
+    scored = region.shape if scored.is_empty else scored
+    within = shapely.contains_xy(scored, arr.xy[:, 0], arr.xy[:, 1])
+    if not down.any() or area[within].sum() >= SHORT * stats.density * scored.area:
+        return np.zeros(len(arr), dtype=bool)
+    cell = np.floor(arr.xy / window).astype(np.int64)
+    ids, which = np.unique(cell, axis=0, return_inverse=True)
+    which = which.ravel()
+    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
+    room = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
+    inside = shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
+    cover = np.bincount(which[inside], weights=area[inside], minlength=len(ids))
+    return down & (cover < room)[which]
 
 
 def _keys(cells: np.ndarray) -> np.ndarray:
