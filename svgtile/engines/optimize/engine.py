@@ -49,7 +49,8 @@ class OptimizeParams(EngineParams):
     neighbourhood : int in [2, 24]
         k, neighbours per neighbourhood (§3.2; 6 is the first ring of a lattice).
     start_cell : float > 0
-        Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
+        Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent); on a
+        repeating tile the solver refills, larger up to the tile's size (:func:`start_side`).
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
     anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
@@ -87,6 +88,20 @@ class OptimizeParams(EngineParams):
                         self.elongated, self.insert)
 
 
+def start_side(exemplar: Exemplar, start_cell: float, refill: bool) -> float:
+    """Side of the start's patches, user units: ``start_cell`` exemplar spacings (§4.1: the
+    neighbourhood's extent), or on a repeating tile that the solver refills (``refill``) the
+    larger of that and :data:`TILE_CELL` of the tile's shorter period, at most :data:`MAX_CELL`
+    spacings.  Each seam of the start loses motifs to culling and L to mismatched neighbourhoods;
+    a tile's own content is seamless up to its period, so patches as large as it allows have the
+    fewest seams without repeating it."""
+    spacing = float(np.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1)))
+    cell = start_cell * spacing
+    if refill and exemplar.period is not None:
+        cell = max(cell, min(TILE_CELL * min(exemplar.period), MAX_CELL * spacing))
+    return cell
+
+
 class OptimizeEngine:
     """Discrete element texture optimisation behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
@@ -111,12 +126,8 @@ class OptimizeEngine:
         # tile itself)
         refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
         settings = replace(p.settings(), insert=refill)
-        spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
-        cell = p.start_cell * spacing
-        if refill:  # patches of a repeating tile as large as it allows without holding its period
-            cell = max(cell, min(TILE_CELL * min(ex.period), MAX_CELL * spacing))
         ctx.progress("patches", 0.0)
-        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
+        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=start_side(ex, p.start_cell, refill),
                           overlap=p.start_overlap, flow=ctx.controls.flow, refill=refill)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip

@@ -48,8 +48,6 @@ TAKEN = 0.5
 #: 601 and 613 at 0.86–0.89 of ρ: a small window's cover varies as much as the exemplar's
 #: does there, so capping each at ρ keeps their mean below it.
 WINDOW = 10.0
-#: Below this share of ρ in the texture's scored window, no vote shrinks a window short of ρ (:func:`shrinking`).
-SHORT = 0.95
 _TIE = 75  # hash stream: ties between equally voted bins
 
 
@@ -204,17 +202,20 @@ def shrinking(arr: Arrangement, kind: np.ndarray, exemplar: Exemplar, stats: Sta
     larger and collides, and never one whose kind is smaller: every iteration the vote of eq. (5)
     then shrinks the covered area a little (FGDC 605: −0.02 to −0.07 of ρ per iteration, 606's
     one-off fragments turned into dots).  Where the window is already short, such changes are
-    not taken.
+    not taken; the windows are world-anchored, so the decision at a place does not depend on how
+    far the region extends (a cap on the whole texture's figure would: an edit anywhere could
+    turn it on or off everywhere).
+
+    Parameters
+    ----------
+    arr : (n motifs) the output before the vote
+    kind : (n,) int, the kinds the vote gave
+    window : side of the windows, user units (:data:`WINDOW` spacings in the solver)
     """
     area = footprint_areas(arr, exemplar.prototypes)
     down = footprint_areas(Arrangement(kind, arr.xy, arr.angle, arr.scale), exemplar.prototypes) < area * (1 - 1e-9)
-    # the figure the texture is scored by: its cover in the region's interior (the region if that is empty)
-    x0, y0, x1, y1 = exemplar.region.bounds
-    scored = region.interior(max(x1 - x0, y1 - y0))
-    scored = region.shape if scored.is_empty else scored
-    within = shapely.contains_xy(scored, arr.xy[:, 0], arr.xy[:, 1])
-    if not down.any() or area[within].sum() >= SHORT * stats.density * scored.area:
-        return np.zeros(len(arr), dtype=bool)
+    if not down.any():
+        return down
     cell = np.floor(arr.xy / window).astype(np.int64)
     ids, which = np.unique(cell, axis=0, return_inverse=True)
     which = which.ravel()
