@@ -28,6 +28,16 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
     from svgtile.engines.optimize.solver import Settings
 
 
+#: Side of the start's patches cut from a repeating tile that the solver refills (:func:`.init.seamless`
+#: is false): this share of the tile's shorter period, so that a window with its overlap (σ = 0.25)
+#: stays within one period and holds no repeat of it, and at most :data:`MAX_CELL` exemplar
+#: spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 / 0.82 / 0.80
+#: → 0.77 / 0.83 / 0.88, density / ρ 0.87 / 0.85 / 0.83 → 0.91–0.95; 626 and 641, tiles of
+#: 5.6–5.9 spacings, at 12: repetition 0.50 and 0.25, their tile's period inside each patch).
+TILE_CELL = 0.8
+MAX_CELL = 12.0
+
+
 @dataclass(frozen=True)
 class OptimizeParams(EngineParams):
     """Parameters of the optimize engine.
@@ -39,7 +49,8 @@ class OptimizeParams(EngineParams):
     neighbourhood : int in [2, 24]
         k, neighbours per neighbourhood (§3.2; 6 is the first ring of a lattice).
     start_cell : float > 0
-        Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent).
+        Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent); on a
+        repeating tile the solver refills, larger up to the tile's size (:func:`start_side`).
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell.
     anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
@@ -77,6 +88,20 @@ class OptimizeParams(EngineParams):
                         self.elongated, self.insert)
 
 
+def start_side(exemplar: Exemplar, start_cell: float, refill: bool) -> float:
+    """Side of the start's patches, user units: ``start_cell`` exemplar spacings (§4.1: the
+    neighbourhood's extent), or on a repeating tile that the solver refills (``refill``) the
+    larger of that and :data:`TILE_CELL` of the tile's shorter period, at most :data:`MAX_CELL`
+    spacings.  Each seam of the start loses motifs to culling and L to mismatched neighbourhoods;
+    a tile's own content is seamless up to its period, so patches as large as it allows have the
+    fewest seams without repeating it."""
+    spacing = float(np.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1)))
+    cell = start_cell * spacing
+    if refill and exemplar.period is not None:
+        cell = max(cell, min(TILE_CELL * min(exemplar.period), MAX_CELL * spacing))
+    return cell
+
+
 class OptimizeEngine:
     """Discrete element texture optimisation behind the engine protocol (:mod:`svgtile.engines.base`)."""
 
@@ -101,9 +126,8 @@ class OptimizeEngine:
         # tile itself)
         refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
         settings = replace(p.settings(), insert=refill)
-        spacing = float(np.sqrt(ex.region.area / max(len(ex.motifs), 1)))
         ctx.progress("patches", 0.0)
-        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=p.start_cell * spacing,
+        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=start_side(ex, p.start_cell, refill),
                           overlap=p.start_overlap, flow=ctx.controls.flow, refill=refill)  # fmt: skip
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip

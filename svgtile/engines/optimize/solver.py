@@ -29,7 +29,7 @@ from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
 from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
 from svgtile.engines.optimize.elements import Layout, layout
-from svgtile.engines.optimize.insert import insert
+from svgtile.engines.optimize.insert import WINDOW, insert, shrinking
 from svgtile.engines.optimize.match import candidate_costs, pairings
 from svgtile.engines.optimize.samples import Samples, exemplar_samples, wrap
 from svgtile.engines.optimize.search import (
@@ -145,6 +145,9 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         report(f"optimize: iteration {it + 1}/{iterations}, energy {energies[-1]:.4f}", it / iterations)
         src, dst, d, predicted = predictions(samples, hoods, match, slots)
         kind, match, cost, take = assign_kinds(samples, hoods, sarr.xy, sarr.kind, cand, match, cost, dst, predicted, s.alpha)
+        if s.insert and lay is None:  # inserting up to ρ: no vote shrinks a window already short of it
+            back = shrinking(sarr, kind, exemplar, stats, region, window=WINDOW * samples.spacing)
+            kind, take = np.where(back, sarr.kind, kind), np.where(back, -1, take)
         if (kind != sarr.kind).any():
             # the predictions of the matches the new kinds brought
             hoods = replace(hoods, kind=np.where(hoods.index >= 0, kind[np.maximum(hoods.index, 0)], -1))
