@@ -14,7 +14,7 @@ from svgtile import read_exemplar
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import (
     RULE_SLACK,
-    _discs_close,
+    discs_close,
     cross_conflicts,
     cross_pairs,
     find_conflicts,
@@ -91,7 +91,7 @@ def test_cross_pairs_with_discs_find_what_geos_finds(seed):
     assert np.array_equal(cross_conflicts(new, old, protos, rule), bad)
     # the discs decide many of those pairs alone (else this test would not exercise them)
     reach = np.maximum(rule[new.kind[pa], old.kind[pb]] - slack(protos), 0)
-    assert _discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
+    assert discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
 
 
 def _geos_conflicts(arr, protos, rule):

@@ -288,7 +288,7 @@ def cross_pairs(
         if not complete:
             at = at[~known[a[at]]]
         # a few inscribed discs per kind decide most pairs of thin, concave motifs as surely bad
-        close = _discs_close(new, old, protos, a[at], b[at], np.maximum(d_rule[at], 0.0))
+        close = discs_close(new, old, protos, a[at], b[at], np.maximum(d_rule[at], 0.0))
         bad[at[close]] = True
         known[a[at[close]]] = True
         at = at[~known[a[at]]] if not complete else at[~close]
@@ -336,7 +336,7 @@ def _disc_gaps(new, old, protos, a, b) -> tuple[np.ndarray, float]:
     return gap, margin
 
 
-def _discs_close(new, old, protos, a, b, reach) -> np.ndarray:
+def discs_close(new, old, protos, a, b, reach) -> np.ndarray:
     """(p,) bool: pairs ``(new[a], old[b])`` that two inscribed discs (:mod:`svgtile.core.discs`)
     show closer than ``reach`` (p,) ≥ 0 — or sharing area, for ``reach`` 0 — surely."""
     gap, margin = _disc_gaps(new, old, protos, a, b)

@@ -18,7 +18,7 @@ from svgtile.analysis.stats import (
 )
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import cross_conflicts, cross_pairs, cull, find_conflicts
+from svgtile.core.conflicts import cross_conflicts, cross_pairs, cull, discs_close, find_conflicts, slack
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
@@ -239,6 +239,13 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
         clash = found & (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
+        # thin or concave kinds (tufts, dashes) have tiny inscribed radii: a few discs along their
+        # strokes (svgtile.core.discs) show most of the rest too close to that nearest motif,
+        # which is cross_conflicts' own first test on the pair (same rule, slack and margin)
+        rest = np.flatnonzero(found & ~clash & ~in_disc)
+        if len(rest):
+            pair_rule = np.maximum(rule[new.kind[rest], arr.kind[idx[rest]]] - slack(protos), 0.0)
+            clash[rest[discs_close(new, arr, protos, rest, idx[rest], pair_rule)]] = True
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     free = ~cross_conflicts(new, arr, protos, rule, tree)
     inside = region.keep(new, protos, boundary)
