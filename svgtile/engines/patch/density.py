@@ -212,14 +212,14 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     radius = np.where(odd, room[wid], radius[wid])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
 
-    # every exemplar motif of every placement, then those whose centroid falls in the window
-    t_of = np.repeat(np.arange(len(wid)), m)
-    e_of = np.tile(np.arange(m), len(wid))
-    offset = np.matmul(rotation(theta)[t_of], (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
-    xy = centre[t_of] + offset
-    lo = origin + ids[wid[t_of]] * size
-    inside = ((xy >= lo) & (xy < lo + size)).all(axis=1)
-    t_of, e_of, xy = t_of[inside], e_of[inside], xy[inside]
+    # every exemplar motif of every placement, (tries, m, 2), the rotation broadcast over the
+    # motifs (not gathered per motif); then those whose centroid falls in the window, in
+    # (try, motif) order
+    offset = np.matmul(rotation(theta)[:, None], (ex.xy[None, :, :] - source[:, None, :])[..., None])[..., 0]
+    xy = centre[:, None, :] + offset
+    lo = (origin + ids[wid] * size)[:, None, :]
+    t_of, e_of = np.nonzero(((xy >= lo) & (xy < lo + size)).all(axis=2))
+    xy = xy[t_of, e_of]
     angle = turn(ex.kind[e_of], ex.angle[e_of], theta[t_of], stats)
     new = Arrangement(ex.kind[e_of], xy, angle, ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
