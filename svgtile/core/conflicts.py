@@ -11,6 +11,7 @@ edits elsewhere.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -237,6 +238,7 @@ def cross_conflicts(
 def cross_pairs(
     new: Arrangement, old: Arrangement, protos: list[Prototype], distance: np.ndarray,
     tree: cKDTree | None = None, *, complete: bool = True, groups: tuple[np.ndarray, np.ndarray] | None = None,
+    hopeless: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Conflicting pairs ``(a, b)``: motif ``new[a]`` overlaps or is too close to ``old[b]``.
 
@@ -245,6 +247,12 @@ def cross_pairs(
     already known to conflict is not tested further (enough to tell which new motifs conflict).
     With ``groups`` ((len(new),) and (len(old),) int arrays) only pairs of one group are
     checked: several independent checks in one call, each pair's outcome the same as alone.
+
+    ``hopeless`` (with ``complete``) maps conflicting pairs ``(a, b)`` known so far to the
+    (len(new),) bool mask of new motifs the caller will reject whatever their other pairs; the
+    pairs of those not yet decided are not tested (their pairs come out incomplete, the caller
+    rejects them), those of the rest come out as without it, in the same order.  It is asked
+    after the inscribed discs about the centroids and again after the few discs per kind.
     """
     none = np.zeros(0, np.int64)
     if len(new) == 0 or len(old) == 0:
@@ -275,6 +283,8 @@ def cross_pairs(
     known[a[sure]] = True
     todo = np.flatnonzero(~sure)
     if complete:
+        if hopeless is not None:
+            todo = todo[~hopeless(a[sure], b[sure])[a[todo]]]
         stages = [todo]
     else:
         # the nearest pair of each new motif first: a motif found in conflict needs no more
@@ -292,6 +302,8 @@ def cross_pairs(
         bad[at[close]] = True
         known[a[at[close]]] = True
         at = at[~known[a[at]]] if not complete else at[~close]
+        if complete and hopeless is not None:
+            at = at[~hopeless(a[bad], b[bad])[a[at]]]
         # outlines whose extents along the line of centroids leave more than the rule are apart
         at = at[~_surely_apart(new, protos, a[at], b[at], np.maximum(d_rule[at], 0.0), old)]
         if not len(at):
