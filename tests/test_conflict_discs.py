@@ -14,9 +14,9 @@ from svgtile import read_exemplar
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import (
     RULE_SLACK,
-    discs_close,
     cross_conflicts,
     cross_pairs,
+    discs_close,
     find_conflicts,
     slack,
 )

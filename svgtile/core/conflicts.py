@@ -11,6 +11,7 @@ edits elsewhere.
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -178,10 +179,12 @@ def _surely_apart(
     with np.errstate(invalid="ignore", divide="ignore"):
         u = d / length[:, None]
     extent = np.zeros(len(i))
+    # a point set reaches along u as far as its convex hull's corners, a subset of its points
+    # (tufts and scrub: 68 and 42 outline vertices, 22 and 17 corners)
     for ends, sign, side in ((i, 1.0, arr), (j, -1.0, other)):
-        for k, proto in enumerate(protos):
+        for k in np.unique(side.kind[ends]).tolist():
             at = np.flatnonzero(side.kind[ends] == k)
-            local = np.concatenate(proto.rings)  # (v, 2)
+            local = _corners(protos[k])  # (v, 2)
             rows = max(1, _SUPPORT_CHUNK // len(local))
             for a in range(0, len(at), rows):
                 sel = at[a : a + rows]
@@ -195,6 +198,19 @@ def _surely_apart(
     margin = max(1e-9 * (1.0 + float(np.abs(x.xy).max()) + float(motif_radius(x, protos).max())) for x in (arr, other))
     apart = gap > reach * (1.0 + 1e-9) + margin
     return apart & (length > 0)
+
+
+#: _corners' results, per prototype while it lives (as svgtile.core.discs keeps its discs).
+_CORNERS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _corners(proto: Prototype) -> np.ndarray:
+    """(v, 2) the corners of the convex hull of ``proto``'s outline vertices (a subset of them,
+    the same floats), local frame."""
+    if proto not in _CORNERS:
+        points = shapely.multipoints(np.concatenate(proto.rings))
+        _CORNERS[proto] = shapely.get_coordinates(shapely.convex_hull(points))
+    return _CORNERS[proto]
 
 
 def _test_pairs(

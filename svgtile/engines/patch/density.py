@@ -18,7 +18,14 @@ from svgtile.analysis.stats import (
 )
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import cross_conflicts, cross_pairs, cull, discs_close, find_conflicts, slack
+from svgtile.core.conflicts import (
+    cross_conflicts,
+    cross_pairs,
+    cull,
+    discs_close,
+    find_conflicts,
+    slack,
+)
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
@@ -187,7 +194,7 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
 
     ex = exemplar.motifs
     x0, y0, x1, y1 = exemplar.region.bounds
-    wins, tries, m = len(ids), p.disc_tries, len(ex)
+    wins, tries = len(ids), p.disc_tries
     wid = np.repeat(np.arange(wins), tries)
     tid = np.tile(np.arange(tries), wins)
     u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
