@@ -311,13 +311,27 @@ def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
     idx = np.flatnonzero(candidate)
     if len(idx) == 0:
         return displace, victim_of
-    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree)
     area_new = footprint_areas(new, protos)[idx]
     area_old = footprint_areas(arr, protos)
-    count = np.bincount(a, minlength=len(idx))
-    cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
-    scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
-    good = (count <= DISPLACE_MAX) & (cost < area_new) & (scarce == 0) & (count > 0)
+
+    def unfit(a, b, over=1.0):
+        """(len(idx),) bool: too many motifs in the way, too large, or of a scarce kind — on a
+        subset of a candidate's pairs too (``over`` a little above 1, against rounding)."""
+        count = np.bincount(a, minlength=len(idx))
+        cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
+        scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
+        return (count > DISPLACE_MAX) | (cost >= area_new * over) | (scarce != 0), count
+
+    # a candidate the pairs known so far already rule out needs no more exact tests
+    dead = np.zeros(len(idx), dtype=bool)
+
+    def hopeless(a, b):
+        dead[:] |= unfit(a, b, 1.0 + 1e-9)[0]
+        return dead
+
+    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree, hopeless=hopeless)
+    bad, count = unfit(a, b)
+    good = ~bad & (count > 0) & ~dead
     # one per window: the first good candidate; and no motif displaced twice
     first = np.full(window.max() + 1, -1)
     for c in idx[good][::-1]:  # a loop over windows' few candidates, not over motifs
