@@ -14,9 +14,9 @@ from svgtile import read_exemplar
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.conflicts import (
     RULE_SLACK,
-    _discs_close,
     cross_conflicts,
     cross_pairs,
+    discs_close,
     find_conflicts,
     slack,
 )
@@ -91,7 +91,7 @@ def test_cross_pairs_with_discs_find_what_geos_finds(seed):
     assert np.array_equal(cross_conflicts(new, old, protos, rule), bad)
     # the discs decide many of those pairs alone (else this test would not exercise them)
     reach = np.maximum(rule[new.kind[pa], old.kind[pb]] - slack(protos), 0)
-    assert _discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
+    assert discs_close(new, old, protos, pa, pb, reach).mean() > 0.3
 
 
 def _geos_conflicts(arr, protos, rule):
@@ -142,3 +142,51 @@ def test_a_kind_of_many_parts_gets_no_discs_and_geos_decides():
     plain = _geos_conflicts(arr, protos, rule)
     assert _found(find_conflicts(arr, protos, rule)) == plain
     assert sum(o for o, _ in plain.values()) > 5
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_cross_pairs_skips_only_the_motifs_the_caller_gives_up(seed):
+    """``hopeless`` (the patch engine's displacement tests): a new motif the pairs known so far
+    rule out (here: two or more) is not tested further; every other motif's pairs are exactly
+    those found without it, in the same order."""
+    rng = np.random.default_rng(seed)
+    protos = _tufts()
+    old, new = _scatter(rng, 200, 3, 40), _scatter(rng, 200, 3, 40)
+    rule = np.array([[1.0, 0.5, 0.8], [0.5, 0.3, 0.6], [0.8, 0.6, 0.0]])
+    a, b = cross_pairs(new, old, protos, rule)
+    dead = np.zeros(len(new), dtype=bool)
+    asked = []
+
+    def hopeless(ha, hb):
+        asked.append(len(ha))
+        dead[:] |= np.bincount(ha, minlength=len(new)) >= 2
+        return dead
+
+    ha, hb = cross_pairs(new, old, protos, rule, hopeless=hopeless)
+    assert len(asked) == 2 and 0 < dead.sum() < len(new)
+    live, hlive = ~dead[a], ~dead[ha]
+    assert np.array_equal(a[live], ha[hlive]) and np.array_equal(b[live], hb[hlive])
+    # the motifs given up on did conflict that much, and some of their pairs went untested
+    assert (np.bincount(a, minlength=len(new))[dead] >= 2).all()
+    assert len(ha) < len(a)
+
+
+def test_world_footprints_from_coordinates_are_the_rings_footprints():
+    """Footprints built straight from coordinates (closed rings) are those of the outline
+    turned, scaled and moved; a two-part kind gives MultiPolygons, an open ring still works."""
+    vee, ell, bar = _tufts()
+    two = Prototype(rings=(vee.rings[0], ell.rings[0] + np.array([6.0, 0.0])), area=vee.area + ell.area,
+                    radius=vee.radius + 6.0, inner=0.0, excess=0.0)  # fmt: skip
+    open_ = Prototype(rings=(bar.rings[0][:-1],), area=bar.area, radius=bar.radius, inner=bar.inner, excess=0.0)
+    protos = [vee, two, open_]
+    rng = np.random.default_rng(3)
+    arr = _scatter(rng, 60, 3, 30)
+    got = world_footprints(arr, protos)
+    for g, k, xy, angle, scale in zip(got, arr.kind, arr.xy, arr.angle, arr.scale, strict=True):
+        a = np.radians(angle)
+        c, s = np.cos(a) * scale, np.sin(a) * scale
+        parts = [shapely.polygons(np.c_[c * r[:, 0] - s * r[:, 1] + xy[0], s * r[:, 0] + c * r[:, 1] + xy[1]])
+                 for r in protos[k].rings]  # fmt: skip
+        want = parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
+        assert shapely.get_type_id(g) == shapely.get_type_id(want)
+        assert shapely.equals_exact(g, want, tolerance=1e-12)

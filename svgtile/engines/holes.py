@@ -223,12 +223,17 @@ def _round(arr, areas, exemplar, stats, region, boundary, found, *, key: int, rn
         surely = _surely_blocked(new, a, arr, areas, inner, tree, protos, win, surplus)
         new, w_new, gi_n, gj_n, c_n, a = (new.take(~surely), w_new[~surely], gi_n[~surely], gj_n[~surely],
                                           c_n[~surely], a[~surely])  # fmt: skip
-        hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree)
-        spare = (win[hit_b] >= 0) & (surplus[np.maximum(win[hit_b], 0), arr.kind[hit_b]] > 0)
-        count = np.bincount(hit_a, minlength=len(new))
-        cost = np.bincount(hit_a, weights=areas[hit_b], minlength=len(new))
-        unspared = np.bincount(hit_a, weights=~spare, minlength=len(new))
-        ok = (count == 0) | ((count <= DISPLACE_MAX) & (unspared == 0) & (cost < DISPLACE_SHARE * a))
+        # the motifs each proposal breaks the rule with; a proposal that some of them already
+        # reject (more than DISPLACE_MAX, one unspared, or too large) needs no more exact tests
+        dead = np.zeros(len(new), dtype=bool)
+
+        def hopeless(ha, hb):
+            dead[:] |= _displacing(ha, hb, len(new), a, arr, areas, win, surplus, 1.0 + 1e-9)[0]
+            return dead
+
+        hit_a, hit_b = cross_pairs(new, arr, protos, stats.distance, tree, hopeless=hopeless)
+        rejected, cost = _displacing(hit_a, hit_b, len(new), a, arr, areas, win, surplus)
+        ok = ~rejected & ~dead
         keep_at = np.flatnonzero(ok)
         remap = np.full(len(new), -1)
         remap[keep_at] = np.arange(len(keep_at))
@@ -272,6 +277,21 @@ def _surely_blocked(new, a, arr, areas, inner_old, tree, protos, win, surplus) -
     unspared = (hit & ~spare).any(axis=1)
     costly = (hit * areas[idx]).sum(axis=1) >= DISPLACE_SHARE * a
     return many | unspared | costly
+
+
+def _displacing(hit_a, hit_b, m, a, arr, areas, win, surplus, over: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Step 4's test of the m proposals against the motifs they break the rule with, pairs
+    ``(hit_a, hit_b)`` (proposal, motif of ``arr``): (m,) bool rejected — more than
+    :data:`DISPLACE_MAX` of them, one of a kind its window cannot spare, or together at least
+    :data:`DISPLACE_SHARE` × ``over`` of the proposal's area ``a`` (m,) — and (m,) their area.
+    On a subset of a proposal's pairs, a rejection (``over`` a little above 1, against the
+    rounding of the sums) holds for all of them."""
+    spare = (win[hit_b] >= 0) & (surplus[np.maximum(win[hit_b], 0), arr.kind[hit_b]] > 0)
+    count = np.bincount(hit_a, minlength=m)
+    cost = np.bincount(hit_a, weights=areas[hit_b], minlength=m)
+    unspared = np.bincount(hit_a, weights=~spare, minlength=m)
+    ok = (count == 0) | ((count <= DISPLACE_MAX) & (unspared == 0) & (cost < DISPLACE_SHARE * over * a))
+    return ~ok, cost
 
 
 def _cumsum_within(values: np.ndarray, labels: np.ndarray) -> np.ndarray:

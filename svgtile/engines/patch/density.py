@@ -18,7 +18,14 @@ from svgtile.analysis.stats import (
 )
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
-from svgtile.core.conflicts import cross_conflicts, cross_pairs, cull, find_conflicts
+from svgtile.core.conflicts import (
+    cross_conflicts,
+    cross_pairs,
+    cull,
+    discs_close,
+    find_conflicts,
+    slack,
+)
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
@@ -187,7 +194,7 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
 
     ex = exemplar.motifs
     x0, y0, x1, y1 = exemplar.region.bounds
-    wins, tries, m = len(ids), p.disc_tries, len(ex)
+    wins, tries = len(ids), p.disc_tries
     wid = np.repeat(np.arange(wins), tries)
     tid = np.tile(np.arange(tries), wins)
     u = cellrng.uniform(key, _DISC, rnd, ids[wid, 0, None], ids[wid, 1, None], tid[:, None], np.arange(2)[None, :])
@@ -212,14 +219,14 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     radius = np.where(odd, room[wid], radius[wid])
     theta = p.max_rotation * (2 * cellrng.uniform(key, _DISC_ROTATE, rnd, ids[wid, 0], ids[wid, 1], tid) - 1)
 
-    # every exemplar motif of every placement, then those whose centroid falls in the window
-    t_of = np.repeat(np.arange(len(wid)), m)
-    e_of = np.tile(np.arange(m), len(wid))
-    offset = np.matmul(rotation(theta)[t_of], (ex.xy[e_of] - source[t_of])[:, :, None])[:, :, 0]
-    xy = centre[t_of] + offset
-    lo = origin + ids[wid[t_of]] * size
-    inside = ((xy >= lo) & (xy < lo + size)).all(axis=1)
-    t_of, e_of, xy = t_of[inside], e_of[inside], xy[inside]
+    # every exemplar motif of every placement, (tries, m, 2), the rotation broadcast over the
+    # motifs (not gathered per motif); then those whose centroid falls in the window, in
+    # (try, motif) order
+    offset = np.matmul(rotation(theta)[:, None], (ex.xy[None, :, :] - source[:, None, :])[..., None])[..., 0]
+    xy = centre[:, None, :] + offset
+    lo = (origin + ids[wid] * size)[:, None, :]
+    t_of, e_of = np.nonzero(((xy >= lo) & (xy < lo + size)).all(axis=2))
+    xy = xy[t_of, e_of]
     angle = turn(ex.kind[e_of], ex.angle[e_of], theta[t_of], stats)
     new = Arrangement(ex.kind[e_of], xy, angle, ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
@@ -239,6 +246,13 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
         bound = near - a_in - b_in  # footprint distance is at most this when both radii > 0
         clash = found & (a_in > 0) & (b_in > 0) & (bound < np.maximum(rule[new.kind, arr.kind[idx]], 0))
         clash &= ~in_disc  # those may still displace (see _displacement)
+        # thin or concave kinds (tufts, dashes) have tiny inscribed radii: a few discs along their
+        # strokes (svgtile.core.discs) show most of the rest too close to that nearest motif,
+        # which is cross_conflicts' own first test on the pair (same rule, slack and margin)
+        rest = np.flatnonzero(found & ~clash & ~in_disc)
+        if len(rest):
+            pair_rule = np.maximum(rule[new.kind[rest], arr.kind[idx[rest]]] - slack(protos), 0.0)
+            clash[rest[discs_close(new, arr, protos, rest, idx[rest], pair_rule)]] = True
         new, t_of, in_disc = new.take(~clash), t_of[~clash], in_disc[~clash]
     free = ~cross_conflicts(new, arr, protos, rule, tree)
     inside = region.keep(new, protos, boundary)
@@ -297,13 +311,27 @@ def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
     idx = np.flatnonzero(candidate)
     if len(idx) == 0:
         return displace, victim_of
-    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree)
     area_new = footprint_areas(new, protos)[idx]
     area_old = footprint_areas(arr, protos)
-    count = np.bincount(a, minlength=len(idx))
-    cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
-    scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
-    good = (count <= DISPLACE_MAX) & (cost < area_new) & (scarce == 0) & (count > 0)
+
+    def unfit(a, b, over=1.0):
+        """(len(idx),) bool: too many motifs in the way, too large, or of a scarce kind — on a
+        subset of a candidate's pairs too (``over`` a little above 1, against rounding)."""
+        count = np.bincount(a, minlength=len(idx))
+        cost = np.bincount(a, weights=area_old[b], minlength=len(idx))
+        scarce = np.bincount(a, weights=(lack[window[idx[a]], arr.kind[b]] < 0).astype(float), minlength=len(idx))
+        return (count > DISPLACE_MAX) | (cost >= area_new * over) | (scarce != 0), count
+
+    # a candidate the pairs known so far already rule out needs no more exact tests
+    dead = np.zeros(len(idx), dtype=bool)
+
+    def hopeless(a, b):
+        dead[:] |= unfit(a, b, 1.0 + 1e-9)[0]
+        return dead
+
+    a, b = cross_pairs(new.take(idx), arr, protos, rule, tree, hopeless=hopeless)
+    bad, count = unfit(a, b)
+    good = ~bad & (count > 0) & ~dead
     # one per window: the first good candidate; and no motif displaced twice
     first = np.full(window.max() + 1, -1)
     for c in idx[good][::-1]:  # a loop over windows' few candidates, not over motifs
