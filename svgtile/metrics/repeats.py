@@ -71,7 +71,8 @@ class Repetition:
     repetition_vector : (float, float) or None
         Its displacement ``v = (dx, dy)``, user units.
     repetition_exemplar : float or None
-        The exemplar's own share ``P_ex(v)`` there, in [0, 1] (0: the exemplar cannot show v).
+        The exemplar's own share ``P_ex(v)`` there (modulo its exact order, if it has one), in
+        [0, 1] (0: the exemplar cannot show v).
     repetition_order : float or None
         The figure before issue 13: excess over chance at the single most common displacement
         the exemplar's exact order does not explain, blind to repetition the exemplar shows
@@ -328,12 +329,11 @@ def _rows_floor(exemplar: Exemplar, shifts: np.ndarray, lam_ref: np.ndarray, q: 
         return out
     across = np.asarray(shifts, np.float64) @ lines.across
     whole = np.abs(across - np.round(across / lines.pitch) * lines.pitch) <= BOX * q
-    res = lines.residual
-    if len(res) > 1:
-        iu = np.triu_indices(len(res), 1)
-        meet = float(np.mean(np.abs(res[iu[0]] - res[iu[1]]) <= BOX * q))
-    else:
-        meet = 1.0
+    res = np.sort(lines.residual)
+    m = len(res)
+    # pairs i < j (sorted) with res[j] − res[i] ≤ 1.5 q, counted without forming the m² pairs
+    close = np.searchsorted(res, res + BOX * q, side="right") - np.arange(1, m + 1)
+    meet = float(close.sum() / (m * (m - 1) / 2)) if m > 1 else 1.0
     p = float(np.mean(-np.expm1(-lam_ref * lines.pitch * 3 * q * meet)))
     out[whole] = p
     return out
