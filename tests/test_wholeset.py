@@ -11,9 +11,13 @@ must then go.
 
 Repetition is the figure beyond the exemplar's own order (issue 12, :mod:`svgtile.metrics.order`):
 the lattice of a tile's exact neighbour steps is left out, so auto reproducing an exact lattice
-tile on its period passes (71 entries went, 2026-12-02), while auto stamping a tile of jittered
-or irregular content, or rows whose offsets the row step does not explain, still repeats at the
-period and stays listed with that reason.
+tile on its period passes (71 entries went, 2026-12-02), and since rep13e (2026-12-04) the
+exemplar's share at a displacement is read modulo that lattice, so a tile that is its exact
+lattice kinds and all — a second site lattice offset inside it (Equinor 40100, 60100–60700,
+65100, 80100, 80200), columns of a second kind (30100–30500), a 2 × 2 stamp of a smaller tile
+(11030, 65121) — passes too (15 entries went); auto stamping a tile of jittered or irregular
+content, or rows whose offsets the row step does not explain, still repeats at the period and
+stays listed with that reason.
 
 Density and kind mix are measured on the interior (the region shrunk by one tile on every side),
 which :func:`gate_region` makes a whole number of tiles across and down, at least
@@ -62,11 +66,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("equinor/11026", "overlaps"): "0 overlaps, 0 violators, exemplar 4 overlapping pairs (pebbles and dashes 0.2 apart along each row; joined they would meet their own repeat, the importer's notes say so)",
     ("equinor/11026", "density"): "density/ρ 0.700 (2026-12-04; 0.749 at best with 0 overlaps: each tile must lose one motif of each of its two overlapping pairs, dens12c)",
     ("equinor/11026", "kind mix"): "TV 0.203 (2026-12-04)",
-    ("equinor/11030", "repetition"): "0.261 (2026-12-04; 1.000 on 2026-12-02 before issue 13's figure: auto stamps the tile; only its row step is exact, the rows' offsets repeat at the period)",
-    ("equinor/30100", "repetition"): "0.502",
-    ("equinor/30300", "repetition"): "0.477",
-    ("equinor/30400", "repetition"): "0.527",
-    ("equinor/30500", "repetition"): "0.489",
     ("fgdc/601", "likeness"): "L 0.27 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/602", "likeness"): "L 0.29 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/603", "likeness"): "L 0.46",
@@ -141,16 +140,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/730", "repetition"): "0.247 (2026-12-03, issue 13's figure: the max over the 4 largest peaks against what the exemplar shows; 0.167 at the single mode)",
     ("fgdc/730", "likeness"): "L 0.21",
     ("fgdc/732", "repetition"): "1.000 (auto stamps the tile; every motif its own kind, so the period is no order of it)",
-    ("equinor/40100", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/60100", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/60200", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/60500", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/60600", "repetition"): "0.303 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/60700", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/65100", "repetition"): "0.472 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/65121", "repetition"): "0.375 (2026-12-04; 0.608 on 2026-12-02: auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/80100", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
-    ("equinor/80200", "repetition"): "0.471 (auto stamps the tile, now read as its exact lattice: density 1.000, L 1.00; the stamp repeats beyond the steps the figure excuses) (2026-12-02, whole-tile interior)",
     ("fgdc/601", "repetition"): "0.201 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/606", "density"): "density/ρ 0.898 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/682", "kind mix"): "TV 0.060 (2026-12-03, rare kinds pooled by shape)",

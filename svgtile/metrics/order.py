@@ -34,8 +34,11 @@ irregular tile's is not, whatever its size.
 Known limits: kinds placed irregularly on a lattice of sites (a kind's same-kind neighbours
 at no common step) give no exact same-kind step; their lattice is not excused.  The other way
 round, when most motifs do share the steps (support ≥ 0.6), the whole lattice is excused, and a
-minority kind's irregular placement repeated at the tile's period goes with it (Equinor 41000
-and 61000, 70 % support: the tile engine scores 0.19 there).  Rows (one
+minority kind's irregular placement repeated at the tile's period goes with it (and, since
+rep13e, its repeats at the period plus a displacement the exemplar shows: ``P_ex`` is read
+modulo the lattice, :func:`svgtile.metrics.repeats._reduced_shares`).  Equinor 41000 and 61000
+(70 % support), once read as such a case, are not: their minority kind is triplets on an exact
+lattice of its own, and the tile engine scores 0.000 there since rep13e (0.157 before).  Rows (one
 step) excuse the multiples of the row step only: rows at a fixed spacing but a free phase put
 same-kind partners at a row offset ~3 times as often as the Poisson chance; since issue 13 the
 figure compares that with the exemplar's own share at the same displacement

@@ -7,6 +7,13 @@ the exemplar against itself — is not counted; repetition at a displacement the
 show (its tile's period stamped over irregular content, a patch copied) is.  Displacements on
 the exemplar's exact lattice (:mod:`svgtile.metrics.order`) are left out first, so that a
 texture of an exact lattice tile — stamping it is faithful — is not charged for its period.
+
+What a viewer sees, and what the figure therefore leaves out (rep13e): where a tile is its exact
+lattice, kinds and all, a motif's partner one period away is its neighbour inside the tile seen
+again — the exemplar's share is read modulo that lattice; and where an exemplar is drawn in rows,
+partners at a whole row offset are as common as motifs thrown at random along a line — that is
+the chance there, not the plane's.  Repetition is what is left: the same cluster of irregular
+content recurring (a jittered tile stamped, a patch or a run copied).
 """
 
 from __future__ import annotations
@@ -64,7 +71,8 @@ class Repetition:
     repetition_vector : (float, float) or None
         Its displacement ``v = (dx, dy)``, user units.
     repetition_exemplar : float or None
-        The exemplar's own share ``P_ex(v)`` there, in [0, 1] (0: the exemplar cannot show v).
+        The exemplar's own share ``P_ex(v)`` there (modulo its exact order, if it has one), in
+        [0, 1] (0: the exemplar cannot show v).
     repetition_order : float or None
         The figure before issue 13: excess over chance at the single most common displacement
         the exemplar's exact order does not explain, blind to repetition the exemplar shows
@@ -125,11 +133,17 @@ def repetition(
        inside the bounding box of the exemplar's input region — the part of the exemplar that overlaps itself when
        shifted by ``v``.  With fewer than :data:`REPEAT_EX_MIN` such motifs the exemplar cannot
        show ``v`` and ``P_ex = 0``: a displacement as long as the tile (its period stamped) is
-       never excused.
+       never excused — unless the exemplar has an exact order (step 2): then ``P_ex(v)`` is read
+       modulo it, the most the exemplar shows at ``v − t`` for the lattice points ``t`` around
+       ``v`` (:func:`_reduced_shares`): in a tile that is its exact lattice, kinds and all, a
+       partner one period further on is the same neighbour seen again.
     6. At random, a reference of kind c has a partner in a square with probability
        ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
-       ``window``); ``P0`` is the mean of ``p_c`` over the references.  With
-       ``b(v) = max(P0, P_ex(v))``,
+       ``window``); ``P0`` is the mean of ``p_c`` over the references.  On a drawn exemplar
+       of rows, at a shift that is a whole number of row pitches across the rows, chance is
+       that of motifs thrown at random along a line instead, ``F(v)`` (:func:`_rows_floor`;
+       0 elsewhere): rows put every partner on a line.  With
+       ``b(v) = max(P0, F(v), P_ex(v))``,
        ``repetition = max_k max(0, (P_tex(v_k) − b(v_k)) / (1 − b(v_k)))`` — the excess over
        what the exemplar shows (or chance), as in Cohen's κ; ``repetition_vector`` is the mean
        displacement in the square of the peak that gives it, ``repetition_raw`` its ``P_tex``,
@@ -188,7 +202,9 @@ def repetition(
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
     if len(peaks) == 0:  # no displacement left, or none in the half-plane the peaks are taken in
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
-    shown = _exemplar_shares(exemplar, (peaks + 0.5) * q, BOX * q, REPEAT_DIVIDE * s)
+    centres = (peaks + 0.5) * q
+    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s)
+    floor = _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)
     best = None
     for k, (mx, my) in enumerate(peaks):
         near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
@@ -199,7 +215,7 @@ def repetition(
         vector = (float(vector[0]), float(vector[1]))
         if k == 0:  # the single mode against chance alone: the figure of issue 12
             order = (max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0, vector)
-        base = max(chance, float(shown[k]))
+        base = max(chance, float(floor[k]), float(shown[k]))
         excess = max(0.0, (raw - base) / (1.0 - base)) if base < 1 else 0.0
         if best is None or excess > best[0]:
             best = (excess, raw, vector, float(shown[k]))
@@ -234,6 +250,93 @@ def _peaks(cell: np.ndarray, half: int, most: int) -> np.ndarray:
             if len(taken) == most:
                 break
     return np.array(taken, dtype=np.int64).reshape(-1, 2)
+
+
+def _reduced_shares(
+    exemplar: Exemplar, shifts: np.ndarray, steps: np.ndarray, half: float, shortest: float
+) -> np.ndarray:
+    """(k,) float: ``P_ex`` of each shift, read modulo the exemplar's exact order (step 5).
+
+    Where the exemplar has an exact order (``steps``, :func:`svgtile.metrics.order.order_steps`,
+    at least 60 % of its motifs invariant under it), a texture that keeps it looks at ``v`` as the
+    exemplar looks at ``v − t`` for any ``t`` of that lattice: a partner one lattice step further
+    on is the same neighbour seen again, not a new repetition.  So ``P_ex(v)`` is the largest
+    :func:`_exemplar_shares` over ``v`` and its reductions ``v − t``, ``t`` the lattice points
+    around ``v`` (the four of the cell ``v`` lies in; rows: the two multiples of the step either
+    side), leaving out a reduction whose ``± half`` square holds the origin (a motif would be
+    its own partner).  Example: Equinor 40100, dots on an exact (16, 16) / (−16, 16) lattice with
+    a second, offset site lattice half filled by each kind; a stamp's partner at (8, −56) is the
+    tile's own (8, 8) neighbour one period down, which the exemplar shows.  A tile with no exact
+    order (jittered, irregular) is read as before: its stamped period is never reduced.
+
+    ``shifts`` (k, 2) float, user units; ``steps`` (m, 2) float, m ≤ 2; ``half``, ``shortest``
+    as in :func:`_exemplar_shares`.
+    """
+    shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
+    if len(steps) == 0 or len(shifts) == 0:
+        return _exemplar_shares(exemplar, shifts, half, shortest)
+    g = np.asarray(steps[:2], np.float64)
+    if len(g) == 1:
+        gx, gy = g[0]
+        m = np.floor((shifts @ g[0]) / (gx * gx + gy * gy))
+        near = [m[:, None] * g[0] + i * g[0] for i in (0.0, 1.0)]
+    else:
+        (ax, ay), (bx, by) = g
+        det = ax * by - ay * bx
+        c1 = np.floor((by * shifts[:, 0] - bx * shifts[:, 1]) / det)
+        c2 = np.floor((ax * shifts[:, 1] - ay * shifts[:, 0]) / det)
+        near = [(c1 + i)[:, None] * g[0] + (c2 + j)[:, None] * g[1] for i in (0.0, 1.0) for j in (0.0, 1.0)]
+    cand = [shifts] + [shifts - t for t in near]
+    owner = np.tile(np.arange(len(shifts)), len(cand))
+    cand = np.concatenate(cand)
+    keep = np.abs(cand).max(axis=1) > half
+    keep[: len(shifts)] = True  # v itself, as before
+    share = _exemplar_shares(exemplar, cand[keep], half, shortest)
+    out = np.zeros(len(shifts))
+    np.maximum.at(out, owner[keep], share)
+    return out
+
+
+def _rows_floor(exemplar: Exemplar, shifts: np.ndarray, lam_ref: np.ndarray, q: float) -> np.ndarray:
+    """(k,) float: chance of a same-kind partner in the ``3q × 3q`` square at each shift in a
+    texture that keeps the exemplar's rows, 0 where the shift is no whole row offset.
+
+    A drawn exemplar of rows (:func:`svgtile.engines.growth.rows.row_lines`: marsh's tufts) puts
+    every motif on one of evenly spaced lines, ``pitch`` apart.  A texture faithful to it does
+    too, so every partner's displacement across the rows is a whole number of pitches, and two
+    motifs on rows ``n`` pitches apart fall into one square about as often as two motifs thrown
+    at random along a line fall into one ``3q`` stretch of it — far more often than two thrown
+    over the plane (the figure's ``P0``): the rows concentrate partners on the lines.  That is
+    what a viewer sees as rows, not as a repeat.  So at a shift within ``1.5 q`` across of a whole
+    row offset the figure's chance is, per reference of kind c,
+    ``1 − exp(−λ_c · pitch · 3q · a)``: ``λ_c · pitch`` the kind's motifs per unit length of row,
+    ``a`` the share of the exemplar's motif pairs whose offsets from their lines (the hand's
+    jitter) differ by at most ``1.5 q`` (they meet in the square's height); the mean over the
+    references.  Along the rows nothing is excused: more partners than that — a run copied, a
+    period stamped — is repetition.  A repeating tile has no row lines here (its period is read
+    by the exact order and ``P_ex``).
+
+    ``shifts`` (k, 2) float, user units; ``lam_ref`` (r,) float, λ of each reference's kind
+    (motifs per square user unit, in the window); ``q`` the bin, user units.
+    """
+    out = np.zeros(len(shifts))
+    if len(shifts) == 0 or len(lam_ref) == 0:
+        return out
+    from svgtile.engines.growth.rows import row_lines  # the row lines of a drawn exemplar
+
+    lines = row_lines(exemplar)
+    if lines is None:
+        return out
+    across = np.asarray(shifts, np.float64) @ lines.across
+    whole = np.abs(across - np.round(across / lines.pitch) * lines.pitch) <= BOX * q
+    res = np.sort(lines.residual)
+    m = len(res)
+    # pairs i < j (sorted) with res[j] − res[i] ≤ 1.5 q, counted without forming the m² pairs
+    close = np.searchsorted(res, res + BOX * q, side="right") - np.arange(1, m + 1)
+    meet = float(close.sum() / (m * (m - 1) / 2)) if m > 1 else 1.0
+    p = float(np.mean(-np.expm1(-lam_ref * lines.pitch * 3 * q * meet)))
+    out[whole] = p
+    return out
 
 
 def _exemplar_shares(
