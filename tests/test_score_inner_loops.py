@@ -129,3 +129,27 @@ def test_set_covariance_of_apart_rectangles_is_the_plain_sum(monkeypatch):
         got = pattern._set_covariance(boxes, d, reach=50.0)
         assert np.array_equal(got, want), chunk
     assert (want > 1e-6).sum() > 10_000  # most displacements overlap some window
+
+
+def test_the_ground_and_cell_searches_find_what_the_regular_expressions_find():
+    """``_first_match`` (``bytes.find`` of the pattern's head, then a match there) is
+    ``pattern.search``, and ``_without_ground`` is ``_OWN_GROUND.sub(rb"\\1", count=1)``, on
+    documents with decoys (the head without the rest), one ground, two, and none."""
+    from svgtile.svg import texture
+
+    ground = b'<path class="svgtile-ground" style="fill:#eee;stroke:none" fill-rule="evenodd" d="M0 0h9v9z" />'
+    group = b'<g id="svgtile" clip-path="url(#c)">'
+    cell = b'<path class="svgtile-edge" d="M0 0"/>'
+    docs = [
+        b"<svg>" + group + b"\n  " + ground + b"\n<use/></g></svg>",
+        b'<svg><g id="svgtile-x">\n<path class="svgtile-face"/>' + group + b"\n\t" + ground + group + b"\n" + ground + b"</g></svg>",
+        b'<svg><g id="svgtile"><path class="svgtile-" /><path class="svgtile-lines" />' + cell + b"</g></svg>",
+        b'<svg><g id="svgtile">\n<use/><path class="svgtile-corne" /></g></svg>',
+        b"",
+    ]
+    for doc in docs:
+        for regex, head in ((texture._CELL_PATH, texture._CELL_HEAD), (texture._OWN_GROUND, texture._GROUND_HEAD)):
+            fast, plain = texture._first_match(regex, head, doc), regex.search(doc)
+            assert (fast and fast.span()) == (plain and plain.span()), (regex.pattern, doc)
+        assert texture._without_ground(doc) == texture._OWN_GROUND.sub(rb"\1", doc, count=1), doc
+    assert texture._without_ground(docs[0]) != docs[0] and texture._first_match(texture._CELL_PATH, texture._CELL_HEAD, docs[2])

@@ -77,14 +77,13 @@ def score(exemplar, texture, as_json, exact, jobs):
     from svgtile.cli.common import json_safe, load, warn_if_few
     from svgtile.metrics import score as measure
     from svgtile.metrics.likeness import baseline_distances
-    from svgtile.metrics.scoring import ready_worker
     from svgtile.svg.texture import start_reading
 
     with _no_cycle_collection(), _second_process(jobs) as pool:
         ex, stats = load(exemplar)
-        worker_submit(pool, ready_worker)  # forked now: it starts while the file is read
-        # the worker scans the last 30 % of the <use> lines first, then measures the baselines
-        # while this process scans the rest and measures the figures up to E
+        # the worker, forked once the file is read (it finds its part of the <use> lines in its
+        # own memory), scans the last 30 % of them first, then measures the baselines while this
+        # process scans the rest and measures the figures up to E
         reading = start_reading(texture, pool=pool)
         baselines = worker_submit(pool, baseline_distances, ex, stats)
         arr, region = reading.finish(ex)
