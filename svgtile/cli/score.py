@@ -69,26 +69,27 @@ def score(exemplar, texture, as_json, exact, jobs):
     --exact measures everything on every motif.
     """
     _check_order(exemplar, texture)
-    # imported here, not at the module's head: the other commands do not load them; the worker
-    # is forked after them (at its first task) and inherits them (forked before them, it imported
-    # them again at the same time as this process: measured no faster where a core was idle and
-    # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
-    from svgtile.apps.compare import format_score
-    from svgtile.cli.common import json_safe, load, warn_if_few
-    from svgtile.metrics import score as measure
-    from svgtile.metrics.likeness import baseline_distances
-    from svgtile.svg.texture import start_reading
+    with _no_cycle_collection():  # from the imports on: they alone ran it ≈ 130 times (≈ 0.05 s)
+        # imported here, not at the module's head: the other commands do not load them; the worker
+        # is forked after them (at its first task) and inherits them (forked before them, it imported
+        # them again at the same time as this process: measured no faster where a core was idle and
+        # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
+        from svgtile.apps.compare import format_score
+        from svgtile.cli.common import json_safe, load, warn_if_few
+        from svgtile.metrics import score as measure
+        from svgtile.metrics.likeness import baseline_distances
+        from svgtile.svg.texture import start_reading
 
-    with _no_cycle_collection(), _second_process(jobs) as pool:
-        ex, stats = load(exemplar)
-        # the worker, forked once the file is read (it finds its part of the <use> lines in its
-        # own memory), scans the last 30 % of them first, then measures the baselines while this
-        # process scans the rest and measures the figures up to E
-        reading = start_reading(texture, pool=pool)
-        baselines = worker_submit(pool, baseline_distances, ex, stats)
-        arr, region = reading.finish(ex)
-        del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
-        result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
+        with _second_process(jobs) as pool:
+            ex, stats = load(exemplar)
+            # the worker, forked once the file is read (it finds its part of the <use> lines in its
+            # own memory), scans the last 30 % of them first, then measures the baselines while this
+            # process scans the rest and measures the figures up to E
+            reading = start_reading(texture, pool=pool)
+            baselines = worker_submit(pool, baseline_distances, ex, stats)
+            arr, region = reading.finish(ex)
+            del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
+            result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
     warn_if_few(result.motifs, texture)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
