@@ -351,18 +351,31 @@ def _compose(x: np.ndarray, y: np.ndarray, angles: tuple[str, ...], scales: tupl
     n = len(x)
     one, zero = np.ones(n), np.zeros(n)
     m = _pre_cat(np.stack([one, zero, zero, one, zero, zero]), (1.0, 0.0, 0.0, 1.0, x, y))
-    turned = np.flatnonzero(np.fromiter(map(bool, angles), bool, n))
-    if len(turned):
-        a = np.array(list(filter(None, angles)), dtype=np.float64)
-        theta = math.tau * a / 360.0  # svgelements Angle.degrees
-        ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
-        st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
-        m[:, turned] = _pre_cat(m[:, turned], (ct, st, -st, ct, 0.0, 0.0))
-    scaled = np.flatnonzero(np.fromiter(map(bool, scales), bool, n))
-    if len(scaled):
-        s = np.array(list(filter(None, scales)), dtype=np.float64)
-        m[:, scaled] = _pre_cat(m[:, scaled], (s, 0.0, 0.0, s, 0.0, 0.0))
+    for texts, op in ((angles, "rotate"), (scales, "scale")):
+        given = np.fromiter(map(bool, texts), bool, n)
+        every = bool(given.all())  # then no row needs picking out (each a copy of the 6 × n)
+        if not every and not given.any():
+            continue
+        v = _numbers(texts if every else list(filter(None, texts)))
+        if op == "rotate":
+            theta = math.tau * v / 360.0  # svgelements Angle.degrees
+            ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
+            st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
+            factor = (ct, st, -st, ct, 0.0, 0.0)
+        else:
+            factor = (v, 0.0, 0.0, v, 0.0, 0.0)
+        if every:
+            m = _pre_cat(m, factor)
+        else:
+            at = np.flatnonzero(given)
+            m[:, at] = _pre_cat(m[:, at], factor)
     return m
+
+
+def _numbers(texts: list[str] | tuple[str, ...]) -> np.ndarray:
+    """(n,) float array of decimal ``texts``: Python's ``float`` of each, the correctly rounded
+    double that ``np.array(texts, dtype=np.float64)`` gives too (≈ 1.4 × as fast as it)."""
+    return np.fromiter(map(float, texts), np.float64, len(texts))
 
 
 def pose(columns: tuple[list[str], ...] | list[list[str]], suffix: np.ndarray) -> Pose | None:
@@ -373,7 +386,7 @@ def pose(columns: tuple[list[str], ...] | list[list[str]], suffix: np.ndarray) -
     Row by row: a motif's pose depends on its own columns alone, bit for bit.
     """
     xs, ys, angles, scales, suffix_text = columns
-    m = _compose(np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64), angles, scales)
+    m = _compose(_numbers(xs), _numbers(ys), angles, scales)
     suffixes = {suffix_text[i]: s for s, i in enumerate(np.unique(suffix, return_index=True)[1].tolist())}
     for text, s in suffixes.items():
         at = np.flatnonzero(suffix == s)
