@@ -153,3 +153,30 @@ def test_the_ground_and_cell_searches_find_what_the_regular_expressions_find():
             assert (fast and fast.span()) == (plain and plain.span()), (regex.pattern, doc)
         assert texture._without_ground(doc) == texture._OWN_GROUND.sub(rb"\1", doc, count=1), doc
     assert texture._without_ground(docs[0]) != docs[0] and texture._first_match(texture._CELL_PATH, texture._CELL_HEAD, docs[2])
+
+
+def _plain_motif_sample(arr, index, most):
+    """:func:`svgtile.metrics.window.motif_sample` as first written: a stable sort of every hash."""
+    from svgtile.core.cellrng import hash64
+
+    if len(index) <= most:
+        return index
+    q = np.round(arr.xy[index] * 1e4).astype(np.int64)
+    h = hash64(0x5C0E, 0, arr.kind[index], q[:, 0], q[:, 1])
+    return np.sort(index[np.argsort(h, kind="stable")[:most]])
+
+
+def test_motif_sample_picks_the_stable_sorts_first_hashes_ties_included():
+    """score11e: a partition instead of a sort of all the hashes; motifs of the same kind at the
+    same place hash alike, and the tie at the cut goes to the lower index as in a stable sort."""
+    from svgtile.metrics.window import motif_sample
+
+    rng = np.random.default_rng(0)
+    for n, most, same in [(20_000, 4000, 0), (5000, 4000, 0), (1000, 10, 500), (1000, 999, 900), (50, 1, 30),
+                          (2000, 1500, 1990), (300, 0, 0)]:  # fmt: skip
+        xy, kind = rng.uniform(0, 100, (n, 2)), rng.integers(0, 3, n)
+        xy[:same], kind[:same] = xy[0], kind[0]
+        arr = Arrangement(kind, xy, np.zeros(n), np.ones(n))
+        index = np.sort(rng.choice(2 * n, size=n, replace=False)) % n if same else np.arange(n)
+        fast, plain = motif_sample(arr, index, most), _plain_motif_sample(arr, index, most)
+        assert fast.dtype == plain.dtype and fast.tobytes() == plain.tobytes(), (n, most, same)
