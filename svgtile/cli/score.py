@@ -83,7 +83,7 @@ def score(exemplar, texture, as_json, exact, jobs):
         with _second_process(jobs) as pool:
             ex, stats = load(exemplar)
             # the worker, forked once the file is read (it finds its part of the <use> lines in its
-            # own memory), scans the last 30 % of them first, then measures the baselines while this
+            # own memory), scans the last 40 % of them first, then measures the baselines while this
             # process scans the rest and measures the figures up to E
             reading = start_reading(texture, pool=pool)
             baselines = worker_submit(pool, baseline_distances, ex, stats)

@@ -69,12 +69,11 @@ _OWN_USE = re.compile(_possessive(
 SPLIT_ABOVE = 20_000
 
 #: The worker's share of the lines (of their text, cut at a line boundary): less than half, as
-#: after its scan it measures the baselines and the footprint figures (≈ 0.84 s CPU on the
-#: 177,723-motif gravel texture) while this process, after its scan and the rest of the read
-#: (≈ 0.1 s), measures the other figures (≈ 0.59 s); the scan is ≈ 0.39 s in all
-#: (benchmarks/README.md, "`svgtile score`: the read split across the two processes, and no
-#: teardown").
-WORKER_SHARE = 0.3
+#: after its scan it measures the baselines and the footprint figures (≈ 0.58 s CPU on the
+#: 177,723-motif gravel texture, with scipy.ndimage's import) while this process, after its
+#: scan, reads the rest and measures the other figures (≈ 0.50 s); the scan is ≈ 0.30 s in all
+#: (min of 5, one process: benchmarks/README.md, "score11e").
+WORKER_SHARE = 0.4
 
 
 @dataclass(frozen=True, eq=False)
