@@ -6,7 +6,8 @@ Runs ``python -m svgtile score EXEMPLAR TEXTURE OPTIONS`` as a child process who
 wrapped with timestamps (wall clock, ``time.time``, seconds since the child was launched): the
 imports, the exemplar, the texture's read, each figure handed to the worker and the wait for
 it, the figures, the print, and the end of the child's teardown as its parent sees it.  Each
-line names the process that wrote it ("cmd" or "worker").  Nothing in the package is changed:
+line names the process that wrote it ("cmd" or "worker") and gives that process's CPU time so
+far (``time.process_time``: a forked worker's starts at 0; score11e).  Nothing in the package is changed:
 the wrappers are put in place in the child only, before the command runs (the worker is forked
 from it, and finds them by the same module attributes).  Run it from the root of the package to
 measure.
@@ -28,7 +29,7 @@ def _child(t0: float, argv: list[str]) -> None:
 
     def mark(what: str) -> None:
         who = "cmd" if os.getpid() == main_pid else "worker"
-        os.write(2, f"@timeline {time.time() - t0:7.3f} {who:6s} {what}\n".encode())
+        os.write(2, f"@timeline {time.time() - t0:7.3f} cpu {time.process_time():6.3f} {who:6s} {what}\n".encode())
 
     main_pid = os.getpid()
     mark("interpreter up")
@@ -66,7 +67,9 @@ def _child(t0: float, argv: list[str]) -> None:
     wrap(cmd, "measure", "figures (this process)")
     wrap(scoring, "worker_result", "wait for worker")
     wrap(scoring, "_footprint_figures", "footprint figures")
-    wrap(scoring, "ready_worker", "worker ready")
+    wrap(scoring, "ready_worker", "worker ready")  # before score11e
+    for name in ("kind_trees", "structure", "repetition", "measure_likeness", "conflict_counts", "largest_empty_disc"):
+        wrap(scoring, name, name)
     import svgtile.metrics.likeness as likeness
 
     wrap(likeness, "baseline_distances", "baselines")

@@ -134,3 +134,28 @@ def test_the_score_reports_both_figures_and_the_steps_left_out():
     text = format_score(s).splitlines()
     rows = [line for line in text if line.startswith(("repetition", "  incl. exemplar's lattice"))]
     assert [float(r.split()[-1]) for r in rows] == [round(s.repetition, 3), round(s.repetition_total, 3)]
+
+
+@pytest.mark.parametrize("jitter", [0.0, 1.2])
+def test_with_no_order_left_out_the_total_is_the_mode_of_every_displacement(jitter, monkeypatch):
+    """score11e: without exemplar steps the total's figures are read off the first peak (the
+    same bin) instead of a second pass over the displacements (``_mode_share``, still run where
+    steps are left out): the same figures, bit for bit."""
+    from svgtile.metrics import repeats
+
+    ex = exemplar(grid(4, jitter=2.0, seed=3), kinds=[i % 2 for i in range(16)], period=True)
+    arr, region = stamp(ex, 8)
+    arr = Arrangement(arr.kind, arr.xy + np.random.default_rng(1).uniform(-jitter, jitter, arr.xy.shape), arr.angle,
+                      arr.scale)  # fmt: skip
+    calls = []
+    plain = repeats._mode_share
+    monkeypatch.setattr(repeats, "_mode_share", lambda *a: calls.append(1) or plain(*a))
+    fast = measure(ex, arr, region)
+    assert fast.order_steps == () and calls == [], "an irregular tile: no steps, no second pass"
+    # a step far beyond reach explains no displacement: the same displacements, with the second pass
+    monkeypatch.setattr(repeats, "order_steps", lambda *a: np.array([[1e9, 0.0]]))
+    slow = measure(ex, arr, region)
+    assert calls == [1]
+    assert (fast.repetition_total, fast.repetition_total_vector) == (slow.repetition_total, slow.repetition_total_vector)
+    assert (fast.repetition, fast.repetition_raw) == (slow.repetition, slow.repetition_raw)
+    assert fast.repetition_total > 0 and fast.repetition_total_vector is not None

@@ -129,3 +129,54 @@ def test_set_covariance_of_apart_rectangles_is_the_plain_sum(monkeypatch):
         got = pattern._set_covariance(boxes, d, reach=50.0)
         assert np.array_equal(got, want), chunk
     assert (want > 1e-6).sum() > 10_000  # most displacements overlap some window
+
+
+def test_the_ground_and_cell_searches_find_what_the_regular_expressions_find():
+    """``_first_match`` (``bytes.find`` of the pattern's head, then a match there) is
+    ``pattern.search``, and ``_without_ground`` is ``_OWN_GROUND.sub(rb"\\1", count=1)``, on
+    documents with decoys (the head without the rest), one ground, two, and none."""
+    from svgtile.svg import texture
+
+    ground = b'<path class="svgtile-ground" style="fill:#eee;stroke:none" fill-rule="evenodd" d="M0 0h9v9z" />'
+    group = b'<g id="svgtile" clip-path="url(#c)">'
+    cell = b'<path class="svgtile-edge" d="M0 0"/>'
+    docs = [
+        b"<svg>" + group + b"\n  " + ground + b"\n<use/></g></svg>",
+        b'<svg><g id="svgtile-x">\n<path class="svgtile-face"/>' + group + b"\n\t" + ground + group + b"\n" + ground + b"</g></svg>",
+        b'<svg><g id="svgtile"><path class="svgtile-" /><path class="svgtile-lines" />' + cell + b"</g></svg>",
+        b'<svg><g id="svgtile">\n<use/><path class="svgtile-corne" /></g></svg>',
+        b"",
+    ]
+    for doc in docs:
+        for regex, head in ((texture._CELL_PATH, texture._CELL_HEAD), (texture._OWN_GROUND, texture._GROUND_HEAD)):
+            fast, plain = texture._first_match(regex, head, doc), regex.search(doc)
+            assert (fast and fast.span()) == (plain and plain.span()), (regex.pattern, doc)
+        assert texture._without_ground(doc) == texture._OWN_GROUND.sub(rb"\1", doc, count=1), doc
+    assert texture._without_ground(docs[0]) != docs[0] and texture._first_match(texture._CELL_PATH, texture._CELL_HEAD, docs[2])
+
+
+def _plain_motif_sample(arr, index, most):
+    """:func:`svgtile.metrics.window.motif_sample` as first written: a stable sort of every hash."""
+    from svgtile.core.cellrng import hash64
+
+    if len(index) <= most:
+        return index
+    q = np.round(arr.xy[index] * 1e4).astype(np.int64)
+    h = hash64(0x5C0E, 0, arr.kind[index], q[:, 0], q[:, 1])
+    return np.sort(index[np.argsort(h, kind="stable")[:most]])
+
+
+def test_motif_sample_picks_the_stable_sorts_first_hashes_ties_included():
+    """score11e: a partition instead of a sort of all the hashes; motifs of the same kind at the
+    same place hash alike, and the tie at the cut goes to the lower index as in a stable sort."""
+    from svgtile.metrics.window import motif_sample
+
+    rng = np.random.default_rng(0)
+    for n, most, same in [(20_000, 4000, 0), (5000, 4000, 0), (1000, 10, 500), (1000, 999, 900), (50, 1, 30),
+                          (2000, 1500, 1990), (300, 0, 0)]:  # fmt: skip
+        xy, kind = rng.uniform(0, 100, (n, 2)), rng.integers(0, 3, n)
+        xy[:same], kind[:same] = xy[0], kind[0]
+        arr = Arrangement(kind, xy, np.zeros(n), np.ones(n))
+        index = np.sort(rng.choice(2 * n, size=n, replace=False)) % n if same else np.arange(n)
+        fast, plain = motif_sample(arr, index, most), _plain_motif_sample(arr, index, most)
+        assert fast.dtype == plain.dtype and fast.tobytes() == plain.tobytes(), (n, most, same)

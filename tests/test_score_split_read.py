@@ -127,12 +127,29 @@ def test_the_split_read_is_the_serial_read_in_a_forked_worker(tmp_path, name, en
         region = Region.rectangle(150, 110, x=-3.5, y=2.25)
         arr = arrange(engine, ex, region, rng=np.random.default_rng(4), stats=analyze(ex), **options)
         path.write_text(svg_document(ex, arr, region, boundary="clip", params={}))
-    calls = []
+    calls, futures = [], []
     with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
         submit = pool.submit
-        pool.submit = lambda fn, *a, **k: calls.append(fn.__name__) or submit(fn, *a, **k)
+        pool.submit = lambda fn, *a, **k: calls.append(fn.__name__) or futures.append(submit(fn, *a, **k)) or futures[-1]
         serial, _ = _read_both(path, ex, pool)
-    assert calls == ["scan"] and len(serial[0]) > 20
+    assert calls == ["scan_lent"] and len(serial[0]) > 20
+    # forked at the hand-over, the worker found the document in its memory and scanned its part
+    assert isinstance(futures[0].result(), OwnLines)
+
+
+@pytest.mark.skipif(not FORK, reason="no fork on this system: svgtile score reads in one process")
+def test_a_worker_forked_before_the_document_was_read_leaves_its_part_here(tmp_path):
+    """The worker scans its part in the document it inherited (score11e); one forked before the
+    file was read holds no such document: it says so (False) and this process scans the part."""
+    ex = _varied_texture(tmp_path / "t.svg")
+    futures = []
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
+        pool.submit(int).result()  # forked now, before the read
+        submit = pool.submit
+        pool.submit = lambda fn, *a, **k: futures.append(submit(fn, *a, **k)) or futures[-1]
+        serial, _ = _read_both(tmp_path / "t.svg", ex, pool)
+    assert len(futures) == 1 and futures[0].result() is False and len(serial[0]) > 100
+    assert uselines._LENT is None, "the document is not held after the read"
 
 
 @pytest.mark.parametrize("n", [1, 2, 3, 7])

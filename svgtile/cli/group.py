@@ -127,9 +127,11 @@ def main(argv: list[str] | None = None) -> int:
     if threading.current_thread() is not threading.main_thread():  # signals are the main thread's
         return _main(argv)
     old = {s: signal.signal(s, _terminate) for s in (signal.SIGTERM, signal.SIGHUP)}
+    Ending.will_end = argv is None
     try:
         code = _main(argv)
     finally:
+        Ending.will_end = False
         for signum, handler in old.items():
             signal.signal(signum, handler)
     if argv is None:  # the process's command line: a command may have asked to end it now

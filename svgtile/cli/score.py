@@ -69,40 +69,41 @@ def score(exemplar, texture, as_json, exact, jobs):
     --exact measures everything on every motif.
     """
     _check_order(exemplar, texture)
-    # imported here, not at the module's head: the other commands do not load them; the worker
-    # is forked after them (at its first task) and inherits them (forked before them, it imported
-    # them again at the same time as this process: measured no faster where a core was idle and
-    # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
-    from svgtile.apps.compare import format_score
-    from svgtile.cli.common import json_safe, load, warn_if_few
-    from svgtile.metrics import score as measure
-    from svgtile.metrics.likeness import baseline_distances
-    from svgtile.metrics.scoring import ready_worker
-    from svgtile.svg.texture import start_reading
+    # the collector paused from the heavy imports on (they alone ran it ≈ 130 times, ≈ 0.05 s) to
+    # the process's end: all is printed and no file written, the interpreter's teardown would
+    # only free memory (Ending)
+    with _no_cycle_collection_to_the_end():
+        # imported here, not at the module's head: the other commands do not load them; the worker
+        # is forked after them (at its first task) and inherits them (forked before them, it imported
+        # them again at the same time as this process: measured no faster where a core was idle and
+        # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
+        from svgtile.apps.compare import format_score
+        from svgtile.cli.common import json_safe, load, warn_if_few
+        from svgtile.metrics import score as measure
+        from svgtile.metrics.likeness import baseline_distances
+        from svgtile.svg.texture import start_reading
 
-    with _no_cycle_collection(), _second_process(jobs) as pool:
-        ex, stats = load(exemplar)
-        worker_submit(pool, ready_worker)  # forked now: it starts while the file is read
-        # the worker scans the last 30 % of the <use> lines first, then measures the baselines
-        # while this process scans the rest and measures the figures up to E
-        reading = start_reading(texture, pool=pool)
-        baselines = worker_submit(pool, baseline_distances, ex, stats)
-        arr, region = reading.finish(ex)
-        del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
-        result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
-    warn_if_few(result.motifs, texture)
-    if as_json:
-        out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
-        click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
-    else:
-        click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs centred in its region "
-                   "(motifs the region's edge cuts, centred outside it, are not counted)")
-        if result.sample is not None:
-            click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
-                       "--exact to measure it on every motif)")  # fmt: skip
-        click.echo(format_score(result))
-    # all is printed and no file written: the interpreter's teardown would only free memory
-    Ending.ask()
+        with _second_process(jobs) as pool:
+            ex, stats = load(exemplar)
+            # the worker, forked once the file is read (it finds its part of the <use> lines in its
+            # own memory), scans the last 40 % of them first, then measures the baselines while this
+            # process scans the rest and measures the figures up to E
+            reading = start_reading(texture, pool=pool)
+            baselines = worker_submit(pool, baseline_distances, ex, stats)
+            arr, region = reading.finish(ex)
+            del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
+            result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
+        warn_if_few(result.motifs, texture)
+        if as_json:
+            out = {"exemplar": Path(exemplar).name, "texture": Path(texture).name, **result.to_dict()}
+            click.echo(json.dumps(json_safe(out), indent=2, allow_nan=False))
+        else:
+            click.echo(f"{Path(texture).name} against {Path(exemplar).name}: {len(arr)} motifs centred in its region "
+                       "(motifs the region's edge cuts, centred outside it, are not counted)")
+            if result.sample is not None:
+                click.echo(f"sampled: {result.sample.describe()} (structure: nearest gaps, pair correlation; "
+                           "--exact to measure it on every motif)")  # fmt: skip
+            click.echo(format_score(result))
 
 
 #: An exemplar file that svgtile wrote as a texture with more motifs than this, scored against
@@ -211,14 +212,23 @@ def _worker_signals(parent: int) -> None:
 
 
 @contextmanager
-def _no_cycle_collection():
+def _no_cycle_collection_to_the_end():
     """CPython's cyclic collector paused: reading and measuring a large texture makes hundreds
     of thousands of objects that hold no reference cycles (the strings of the ``<use>`` scan,
-    one shapely footprint per motif), and the collector would walk them all again and again."""
+    one shapely footprint per motif), and the collector would walk them all again and again.
+
+    When the block ends (all printed) the command asks to end the process
+    (:class:`~svgtile.cli.output.Ending`); if the process will end so, the collector stays
+    paused (resuming ran one collection of everything made meanwhile, ≈ 0.02 s), else (an error,
+    ``main([...])`` from Python, click's test runner) it resumes."""
     enabled = gc.isenabled()
     gc.disable()
     try:
         yield
-    finally:
+    except BaseException:
         if enabled:
             gc.enable()
+        raise
+    if enabled and not Ending.will_end:
+        gc.enable()
+    Ending.ask()

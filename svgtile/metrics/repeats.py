@@ -195,12 +195,16 @@ def repetition(
     if len(who) == 0:
         return Repetition(0.0, 0.0, None, 0.0, None, own, 0.0, 0.0, None)
     disp = np.concatenate(disp)
-    total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+    # with no order to leave out, the total's mode is the first peak below (the same bin: the
+    # most populated, the first in row-major order on a tie), so its figures are taken there
+    total = _mode_share(who, disp, ref, len(arr), q, reach, chance) if len(steps) else None
     mine = ~explained(disp, steps, BOX * q) if len(steps) else slice(None)  # no order: nothing to leave out
     who, disp = who[mine], disp[mine]
     cell = np.floor(disp / q).astype(np.int64)
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
     if len(peaks) == 0:  # no displacement left, or none in the half-plane the peaks are taken in
+        if total is None:
+            total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     centres = (peaks + 0.5) * q
     shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s)
@@ -215,6 +219,8 @@ def repetition(
         vector = (float(vector[0]), float(vector[1]))
         if k == 0:  # the single mode against chance alone: the figure of issue 12
             order = (max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0, vector)
+            if total is None:  # _mode_share's figures of the same bin
+                total = (order[0], raw, vector)
         base = max(chance, float(floor[k]), float(shown[k]))
         excess = max(0.0, (raw - base) / (1.0 - base)) if base < 1 else 0.0
         if best is None or excess > best[0]:

@@ -388,14 +388,6 @@ def _footprint_figures(
     return conflicts, r_tex, r_ex
 
 
-def ready_worker() -> None:
-    """A worker's first task, handed to it as it is forked (``svgtile score``): while the command
-    reads the texture file, import what only the figures of :func:`_footprint_figures` need
-    (scipy.ndimage, for the empty discs: ≈ 0.04 s), which the worker would otherwise import in
-    the middle of them."""
-    import scipy.ndimage  # noqa: F401
-
-
 def _rarest_spacing(stats: Stats) -> float:
     """Mean spacing ``1 / sqrt(f_i λ)`` of the exemplar's rarest kind, user units."""
     lam = float(stats.frequency[stats.frequency > 0].min()) * stats.count_density

@@ -69,7 +69,14 @@ def motif_sample(arr: Arrangement, index: np.ndarray, most: int) -> np.ndarray:
         return index
     q = np.round(arr.xy[index] * 1e4).astype(np.int64)
     h = hash64(0x5C0E, 0, arr.kind[index], q[:, 0], q[:, 1])
-    return np.sort(index[np.argsort(h, kind="stable")[:most]])
+    if most <= 0:
+        return index[:0]
+    # the first ``most`` of a stable sort of h, as a set, without sorting all m: every hash below
+    # the most-th smallest, then those equal to it in index order (a stable sort's tie order)
+    cut = h[np.argpartition(h, most - 1)[most - 1]]
+    below = np.flatnonzero(h < cut)
+    tied = np.flatnonzero(h == cut)[: most - len(below)]
+    return np.sort(index[np.concatenate([below, tied])])
 
 
 def finite_or_none(value: float | None) -> float | None:

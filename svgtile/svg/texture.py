@@ -92,7 +92,7 @@ def start_reading(path: str | Path, *, pool: Executor | None = None, split_above
         data = read_input(path, error=ExemplarError, limit=MAX_TEXTURE_BYTES)
     except ExemplarError:
         data = None  # the exemplar reader reports it
-    if data is None or _CELL_PATH.search(data):
+    if data is None or _first_match(_CELL_PATH, _CELL_HEAD, data) is not None:
         return Reading(str(path), data, None, cellular=data is not None)
     data = _without_ground(data)
     block = uselines.start_block(data, pool, uselines.SPLIT_ABOVE if split_above is None else split_above)
@@ -185,16 +185,38 @@ def _nearest_kind(kind: Kind, kinds: tuple[Kind, ...]) -> int | None:
 _USE = f"{{{SVG_NS}}}use"
 #: A cell or line as :func:`svgtile.svg.writer.cell_elements` writes it.
 _CELL_PATH = re.compile(rb'<path class="svgtile-(?:corner|edge|face|line)" ')
+_CELL_HEAD = b'<path class="svgtile-'
 _HREF = f"{{{XLINK_NS}}}href"
 #: The ground svgtile paints first in its motif group (:func:`svgtile.svg.writer._ground`), as written.
 _OWN_GROUND = re.compile(rb'(<g id="svgtile[^"<>]*"(?: clip-path="[^"<>]*")?>)\n[ \t]*<path class="svgtile-ground" '
                          rb'style="fill:[^";<>]*;stroke:none" fill-rule="evenodd" d="[^"<>]*" />')
+_GROUND_HEAD = b'<g id="svgtile'
 
 
 def _without_ground(data: bytes) -> bytes:
     """The texture without the ground path svgtile wrote under its motifs (the exemplar's
-    ``svgtile:ground``): paint, not a motif, so neither reader must count it."""
-    return _OWN_GROUND.sub(rb"\1", data, count=1)
+    ``svgtile:ground``): paint, not a motif, so neither reader must count it.
+
+    ``_OWN_GROUND.sub(rb"\\1", data, count=1)``, the same bytes (``data`` itself if there is
+    no ground), found by :func:`_first_match`."""
+    found = _first_match(_OWN_GROUND, _GROUND_HEAD, data)
+    if found is None:
+        return data
+    return b"".join((data[: found.start()], found.group(1), data[found.end() :]))
+
+
+def _first_match(pattern: re.Pattern, head: bytes, data: bytes) -> re.Match | None:
+    """``pattern.search(data)`` for a ``pattern`` every match of which starts with the plain
+    bytes ``head``, found faster: ``head`` is looked for with ``bytes.find`` (a texture of 177k
+    motifs is 19 MB, over which the regular expression engine looked for it at ≈ 1 GB/s, ``find``
+    at several) and ``pattern`` matched only there, in order, so the first match is the same."""
+    at = data.find(head)
+    while at >= 0:
+        found = pattern.match(data, at)
+        if found is not None:
+            return found
+        at = data.find(head, at + 1)
+    return None
 
 
 def _own_use_block(

@@ -13,7 +13,9 @@ lines), so the lines can be scanned in parts — the last part in another proces
 
 from __future__ import annotations
 
+import itertools
 import math
+import os
 import re
 import sys
 from concurrent.futures import BrokenExecutor, Executor, Future
@@ -67,12 +69,11 @@ _OWN_USE = re.compile(_possessive(
 SPLIT_ABOVE = 20_000
 
 #: The worker's share of the lines (of their text, cut at a line boundary): less than half, as
-#: after its scan it measures the baselines and the footprint figures (≈ 0.84 s CPU on the
-#: 177,723-motif gravel texture) while this process, after its scan and the rest of the read
-#: (≈ 0.1 s), measures the other figures (≈ 0.59 s); the scan is ≈ 0.39 s in all
-#: (benchmarks/README.md, "`svgtile score`: the read split across the two processes, and no
-#: teardown").
-WORKER_SHARE = 0.3
+#: after its scan it measures the baselines and the footprint figures (≈ 0.58 s CPU on the
+#: 177,723-motif gravel texture, with scipy.ndimage's import) while this process, after its
+#: scan, reads the rest and measures the other figures (≈ 0.50 s); the scan is ≈ 0.30 s in all
+#: (min of 5, one process: benchmarks/README.md, "score11e").
+WORKER_SHARE = 0.4
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,20 +126,70 @@ class OwnLines:
 @dataclass(frozen=True, eq=False)
 class Block:
     """Where the ``<use>`` lines of svgtile's motif group lie in a texture (:func:`start_block`):
-    ``data[start:end]`` is ``"\\n" + body + "\\n" + indent``; ``body[cut:]`` is the last part of
-    the lines, which ``far`` (a future of :func:`scan`) is scanning, or ``cut`` is past the end."""
+    ``data[start:end]`` is ``"\\n" + lines + "\\n" + indent``; ``body`` is the text of the lines
+    this process scans — all of them, or the first part when ``far`` (a future of
+    :func:`scan_lent`) is scanning the rest in the worker: ``rest`` is then ``(serial, start,
+    stop)``, the document's serial (:func:`lend`) and where those lines lie in it."""
 
     start: int
     end: int
     body: str
-    cut: int
+    rest: tuple[int, int, int] | None
     far: Future | None
+
+
+#: The document the worker of ``svgtile score`` finds in its memory, forked after the file was
+#: read (:func:`lend`): ``(serial, data, pid of the lender)``, or None.  The worker scans its part
+#: of the lines there instead of receiving the text through a pipe (≈ 6 MB of the 177k-motif
+#: texture: pickled, written and read back, and the worker started scanning only then).
+_LENT: tuple[int, bytes, int] | None = None
+_SERIAL = itertools.count(1)
+
+
+def lend(data: bytes) -> int:
+    """Put ``data`` where a worker forked from now on finds it (:func:`scan_lent`), and return
+    its serial number, which such a worker holds too; :func:`take_back` releases it here."""
+    global _LENT
+    serial = next(_SERIAL)
+    _LENT = (serial, data, os.getpid())
+    return serial
+
+
+def take_back(serial: int) -> None:
+    """Release the document lent as ``serial`` (:func:`lend`), if it is still the one lent."""
+    global _LENT
+    if _LENT is not None and _LENT[0] == serial:
+        _LENT = None
+
+
+def scan_lent(serial: int, start: int, stop: int) -> OwnLines | bool | None:
+    """In a worker forked after :func:`lend`: :func:`scan` of the lines ``data[start:stop]`` of
+    the document lent as ``serial`` (None if they are not UTF-8 or not svgtile's ``<use>``
+    lines); False if this process does not hold that document (its worker was forked before it
+    was lent): then the lender scans them itself.  A forked worker lets go of its copy after."""
+    global _LENT
+    lent = _LENT
+    if lent is None or lent[0] != serial:
+        return False
+    if lent[2] != os.getpid():  # a forked worker: the lender's copy is its own to keep
+        _LENT = None
+    return _scan_bytes(lent[1], start, stop)
+
+
+def _scan_bytes(data: bytes, start: int, stop: int) -> OwnLines | None:
+    """:func:`scan` of the lines ``data[start:stop]``, None if they are not UTF-8."""
+    try:
+        text = data[start:stop].decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    return scan(text)
 
 
 def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block | None:
     """Find svgtile's motif group of ``<use>`` lines at the end of ``data`` (None if there is
     none) and, with a ``pool`` and more than ``split_above`` lines, hand the last
-    :data:`WORKER_SHARE` of them (from a line boundary on) to its worker (:func:`scan`).
+    :data:`WORKER_SHARE` of them (from a line boundary on) to its worker (:func:`scan_lent`: the
+    document is lent first, so a worker forked at this hand-over finds it in its own memory).
 
     A dropped line repeats the ``href`` and attributes text of a kept one and has a transform of
     plain numbers, so the cut document is well-formed and means the same exactly when the whole
@@ -161,39 +212,58 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
     end = data.rfind(b"</g>")
     if end < opening.end() or re.fullmatch(rb"</g>[ \n]*</svg>[ \n]*", data[end:]) is None:
         return None
-    # data[opening.end():end] is "\n" + one line per <use> + "\n" + the indent of </g>: the lines
-    # are decoded in one copy (spaces and newlines are single bytes in UTF-8)
+    # data[opening.end():end] is "\n" + one line per <use> + "\n" + the indent of </g> (spaces
+    # and newlines are single bytes in UTF-8, never part of another character's)
     stop = end
     while stop > opening.end() and data[stop - 1] == 0x20:
         stop -= 1
     if stop - opening.end() < 3 or data[opening.end()] != 0x0A or data[stop - 1] != 0x0A:
         return None
+    # the lines are data[first:last]; the worker's part, from a line boundary on, is decoded and
+    # scanned there (in the document it holds, lent before it was forked), this one's here
+    first, last = opening.end() + 1, stop - 1
+    middle = data.find(b"\n", first + int((last - first) * (1.0 - WORKER_SHARE)), last)
+    rest = far = None
+    if pool is not None and middle >= 0 and data.count(b"\n", first, last) >= split_above:
+        serial = lend(data)
+        far = worker_submit(pool, scan_lent, serial, middle + 1, last)  # None: the worker died, all here
+        if far is None:
+            take_back(serial)
+        else:
+            rest, last = (serial, middle + 1, last), middle
     try:
-        body = data[opening.end() + 1 : stop - 1].decode("utf-8")
+        body = data[first:last].decode("utf-8")
     except UnicodeDecodeError:
+        if rest is not None:  # the worker's part is not wanted
+            take_back(rest[0])
         return None
-    cut, far = len(body) + 1, None
-    middle = body.find("\n", int(len(body) * (1.0 - WORKER_SHARE)))
-    if pool is not None and middle >= 0 and body.count("\n") >= split_above:
-        far = worker_submit(pool, scan, body[middle + 1 :])  # None: the worker died, all scanned here
-        cut = middle + 1 if far is not None else cut
-    return Block(opening.end(), end, body, cut, far)
+    return Block(opening.end(), end, body, rest, far)
 
 
 def cut_document(data: bytes, block: Block) -> tuple[bytes, OwnLines] | None:
     """The document cut to the first ``<use>`` of each group, and the lines scanned (both
-    parts' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it."""
-    lines = scan(block.body[: block.cut - 1])
-    if lines is None:
-        return None  # the worker's part is not wanted
-    if block.far is not None:
-        try:
-            far = block.far.result()
-        except BrokenExecutor:  # the worker died (killed, out of memory): scanned here instead
-            far = scan(block.body[block.cut :])
-        if far is None:
-            return None
-        lines = joined(lines, far)
+    parts' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it (or
+    not UTF-8)."""
+    lines = scan(block.body)
+    if block.far is None:
+        return _cut(data, block, lines) if lines is not None else None
+    serial, start, stop = block.rest
+    if lines is None:  # the worker's part is not wanted
+        take_back(serial)
+        return None
+    try:
+        far = block.far.result()
+    except BrokenExecutor:  # the worker died (killed, out of memory): scanned here instead
+        far = False
+    finally:
+        take_back(serial)
+    if far is False:  # (or the worker was forked before the document was lent)
+        far = _scan_bytes(data, start, stop)
+    return _cut(data, block, joined(lines, far)) if far is not None else None
+
+
+def _cut(data: bytes, block: Block, lines: OwnLines) -> tuple[bytes, OwnLines]:
+    """The document with only ``lines``' first line of each group kept, and ``lines``."""
     kept = "\n".join(lines.first_lines).encode("utf-8")
     return data[: block.start] + b"\n" + kept + b"\n" + data[block.end :], lines
 
@@ -280,18 +350,31 @@ def _compose(x: np.ndarray, y: np.ndarray, angles: tuple[str, ...], scales: tupl
     n = len(x)
     one, zero = np.ones(n), np.zeros(n)
     m = _pre_cat(np.stack([one, zero, zero, one, zero, zero]), (1.0, 0.0, 0.0, 1.0, x, y))
-    turned = np.flatnonzero(np.fromiter(map(bool, angles), bool, n))
-    if len(turned):
-        a = np.array(list(filter(None, angles)), dtype=np.float64)
-        theta = math.tau * a / 360.0  # svgelements Angle.degrees
-        ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
-        st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
-        m[:, turned] = _pre_cat(m[:, turned], (ct, st, -st, ct, 0.0, 0.0))
-    scaled = np.flatnonzero(np.fromiter(map(bool, scales), bool, n))
-    if len(scaled):
-        s = np.array(list(filter(None, scales)), dtype=np.float64)
-        m[:, scaled] = _pre_cat(m[:, scaled], (s, 0.0, 0.0, s, 0.0, 0.0))
+    for texts, op in ((angles, "rotate"), (scales, "scale")):
+        given = np.fromiter(map(bool, texts), bool, n)
+        every = bool(given.all())  # then no row needs picking out (each a copy of the 6 × n)
+        if not every and not given.any():
+            continue
+        v = _numbers(texts if every else list(filter(None, texts)))
+        if op == "rotate":
+            theta = math.tau * v / 360.0  # svgelements Angle.degrees
+            ct = np.fromiter(map(math.cos, theta.tolist()), np.float64, len(theta))
+            st = np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta))
+            factor = (ct, st, -st, ct, 0.0, 0.0)
+        else:
+            factor = (v, 0.0, 0.0, v, 0.0, 0.0)
+        if every:
+            m = _pre_cat(m, factor)
+        else:
+            at = np.flatnonzero(given)
+            m[:, at] = _pre_cat(m[:, at], factor)
     return m
+
+
+def _numbers(texts: list[str] | tuple[str, ...]) -> np.ndarray:
+    """(n,) float array of decimal ``texts``: Python's ``float`` of each, the correctly rounded
+    double that ``np.array(texts, dtype=np.float64)`` gives too (≈ 1.4 × as fast as it)."""
+    return np.fromiter(map(float, texts), np.float64, len(texts))
 
 
 def pose(columns: tuple[list[str], ...] | list[list[str]], suffix: np.ndarray) -> Pose | None:
@@ -302,7 +385,7 @@ def pose(columns: tuple[list[str], ...] | list[list[str]], suffix: np.ndarray) -
     Row by row: a motif's pose depends on its own columns alone, bit for bit.
     """
     xs, ys, angles, scales, suffix_text = columns
-    m = _compose(np.array(xs, dtype=np.float64), np.array(ys, dtype=np.float64), angles, scales)
+    m = _compose(_numbers(xs), _numbers(ys), angles, scales)
     suffixes = {suffix_text[i]: s for s, i in enumerate(np.unique(suffix, return_index=True)[1].tolist())}
     for text, s in suffixes.items():
         at = np.flatnonzero(suffix == s)
