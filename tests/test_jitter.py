@@ -16,7 +16,7 @@ from svgtile.analysis.stats import analyze
 from svgtile.core.conflicts import find_conflicts
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
-from svgtile.engines.jitter import exact_rows, jitters, rows_fit, spread
+from svgtile.engines.jitter import exact_rows, jitters, row_shifts, rows_fit, spread
 
 TILE = 40.0
 
@@ -124,3 +124,22 @@ def test_rows_fit_reads_whether_any_row_may_take_any_phase():
     assert rows_fit(rows, read_order(rows), st.distance + 3.5) < 0.8
     lattice = jittered_lattice()
     assert rows_fit(lattice, read_order(lattice), analyze(lattice).distance) == 0.0  # no exact rows
+
+
+def test_row_shifts_keep_the_rule_and_do_not_depend_on_the_bands_asked_for():
+    # dashes 2.4 long, rows 4 apart, a rule of 2.5: rows of dashes 1.6 apart along x conflict
+    # with the next row at most phases, so draws are rejected and drawn again
+    ex, _ = free_rows()
+    st = analyze(ex)
+    o = read_order(ex)
+    wide = st.distance + 3.0
+    bands, shifts = row_shifts(ex, st, o, 0, 3, key=7)
+    _, more = row_shifts(ex, st, o, -6, 9, key=7)
+    assert np.array_equal(shifts, more[6:10])
+    assert list(bands) == [0, 1, 2, 3]
+    assert np.abs(shifts).max() <= 2.0 + 1e-9 and np.ptp(shifts) > 0.5  # within half a step, and drawn
+    from dataclasses import replace
+    tight = replace(st, distance=wide)
+    _, s2 = row_shifts(ex, tight, o, 0, 3, key=7)
+    # rows 4 apart, dots 1.2 wide: a rule of ≥ 3.2 cannot be kept at any phase, so every row keeps its own
+    assert np.abs(s2).max() < 1e-9

@@ -12,10 +12,11 @@ jitters the tile itself has:
 * the site of motif ``i`` is the consensus of where its same-kind neighbours at the order's steps
   ``±v`` (:func:`svgtile.analysis.order.read_order`) put it, ``mean(xy_i, xy_j ∓ v)`` — Ma, Wei &
   Tong 2011 §3.2 compare exactly these neighbour vectors; the jitter is the rest;
-* a motif of a **row** that is exact along its step (the step's spread under
-  :data:`~svgtile.analysis.order.EXACT_STEP` spacings) moves with its row: the row's jitter is
-  the mean of its motifs', drawn per row and world band across the rows (the row continues whole
-  along itself, so the copies along it stay exact and only the row phases change);
+* a motif of a **row** that is exact along x or y (the step's spread under
+  :data:`~svgtile.analysis.order.EXACT_STEP` spacings) moves with its row, to a phase drawn from
+  the tile's rows' phases per row and world band of copies across the rows (the row continues
+  whole along itself, so it stays exact; rows that would break the distance rule draw again,
+  :func:`row_shifts`);
 * every other motif draws its jitter per world cell from those of its kind in the tile.
 
 Draws are hashes of the run's key and world integers (:mod:`svgtile.core.cellrng`): the same
@@ -43,6 +44,9 @@ from svgtile.core.region import Region
 
 #: Redraws of a conflicting motif's jitter before it goes back to its tile position.
 ROUNDS = 6
+#: Redraws of a conflicting row's phase before it keeps its tile phase (a round costs one batched
+#: conflict test of every pair of neighbouring rows).
+ROW_ROUNDS = 16
 _DRAW, _ROW, _ORDER = 11, 12, 13  # hash streams
 
 
@@ -110,7 +114,8 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
     Copy ``(a, b)`` is the tile's motifs translated as :func:`svgtile.engines.tile.copies` does;
     then a motif of an exact row moves with its row along the row by ``φ' − φ_r`` (wrapped to
     ± half a step), ``φ'`` the phase of a row of the tile drawn per (row, band of copies across the
-    rows): the row continues whole across the copies along it.  Every other motif moves to its
+    rows; :func:`row_shifts`, where rows that would conflict draw again): the row continues whole
+    across the copies along it.  Every other motif moves to its
     site plus a jitter of its kind drawn per (copy, motif) (:func:`jitters`), and draws again while
     it overlaps or breaks the distance rule, :data:`ROUNDS` times at most, then goes back to its
     tile position.  Conflicts left are culled.
@@ -129,7 +134,7 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
     from svgtile.engines.tile import copies
 
     jitter = jitters(exemplar, order)
-    row, phase, axis, step = exact_rows(exemplar, order)
+    row, _, axis, step = exact_rows(exemplar, order)
     idx = np.flatnonzero(keep)
     if len(idx) == 0:
         return Arrangement.empty()
@@ -160,10 +165,8 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
     xy = tile_xy.copy()
     if in_row.any():
         band = (cb if axis == 0 else ca)[in_row]
-        phases = phase[np.unique(row, return_index=True)[1]]
-        u = cellrng.uniform(key, _ROW, band, row[i[in_row]])
-        drawn = phases[np.minimum((u * len(phases)).astype(int), len(phases) - 1)]
-        xy[in_row, axis] += (drawn - phase[i[in_row]] + step / 2) % step - step / 2
+        bands, shifts = row_shifts(exemplar, stats, order, int(band.min()), int(band.max()), key=key)
+        xy[in_row, axis] += shifts[band - bands[0], row[i[in_row]]]
         xy = np.round(xy, DECIMALS)
 
     def draw(attempt: np.ndarray, sel: np.ndarray) -> np.ndarray:
@@ -251,3 +254,97 @@ def rows_fit(exemplar: Exemplar, order: Order, distance: np.ndarray) -> float:
         a, _ = cross_pairs(new, olds, exemplar.prototypes, distance, complete=False, groups=(group_new, group_old))
         fit += len(delta) - len(np.unique(group_new[a]))
     return fit / (len(rows) * len(phases))
+
+
+def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last: int, *,
+               key: int) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Each world row's shift along itself: ``(band, row)`` moves by ``φ' − φ_row`` (wrapped to
+    ± half a step), ``φ'`` one of the tile's rows' phases drawn by a hash of ``(band, row,
+    attempt)``.
+
+    A row runs on whole along itself (its shift is one per band of copies), so whether two rows
+    keep the distance rule is read on one period of them: of two rows that conflict the one of
+    lower priority redraws, :data:`ROW_ROUNDS` times at most, then keeps its tile phase (shift 0).
+    Bands around ``first … last`` are settled as far as a chain of redraws can reach, so that
+    those asked for do not depend on the region's extent.
+
+    Returns
+    -------
+    bands : (B,) int array, the bands ``first … last``
+    shifts : (B, R) float array, user units, the shift of each band's rows (R rows in the tile)
+    """
+    from svgtile.core.conflicts import cross_pairs
+
+    row, phase, axis, step = exact_rows(exemplar, order)
+    motifs = exemplar.motifs
+    period = np.asarray(exemplar.period, dtype=float)
+    rows = np.unique(row)
+    first_of = np.unique(row, return_index=True)[1]
+    phases = phase[first_of]
+    # a redraw moves a conflict on by one row a round at most: settle enough bands around
+    margin = math.ceil(2 * ROW_ROUNDS / len(rows)) + 1
+    lo, hi = first - margin, last + margin
+    band = np.repeat(np.arange(lo, hi + 1), len(rows))
+    r = np.tile(rows, hi - lo + 1)
+    n = len(band)
+    # neighbouring rows: (r, r', band offset e) whose motifs can come within the rule's reach
+    reach = 2 * float(motif_radius(motifs, exemplar.prototypes).max()) + float(stats.distance.max())
+    across = motifs.xy[first_of, 1 - axis]
+    near = [(a, b, e) for a in rows for b in rows for e in (0, 1)
+            if (e == 1 or a < b) and abs(across[b] + e * period[1 - axis] - across[a]) < reach + 1e-9]  # fmt: skip
+    if not near:
+        shifts = np.zeros((last - first + 1, len(rows)))
+        return np.arange(first, last + 1), shifts
+    pa, pb, pe = (np.array(v) for v in zip(*near, strict=True))
+    # world pairs: (band β, row a) against (band β + e, row b)
+    wa = (np.arange(hi - lo + 1)[:, None] * len(rows) + pa[None]).ravel()
+    wb = ((np.arange(hi - lo + 1)[:, None] + pe[None]) * len(rows) + pb[None]).ravel()
+    inside = wb < n
+    wa, wb = wa[inside], wb[inside]
+    along = np.zeros(2)
+    along[axis] = period[axis]
+    members = [np.flatnonzero(row == q) for q in rows]
+
+    def stretch(w: np.ndarray, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Motifs of world rows ``w`` over three periods along, shifted; and the group of each."""
+        idx = [members[q] for q in r[w]]
+        size = np.array([len(x) for x in idx])
+        m_ = np.concatenate(idx)
+        g = np.repeat(np.arange(len(w)), size)
+        off = np.zeros((len(m_), 2))
+        off[:, axis] = np.repeat(shift, size)
+        off[:, 1 - axis] = np.repeat((band[w] - lo) * period[1 - axis], size)
+        xy = motifs.xy[m_] + off
+        xy = np.concatenate([xy - along, xy, xy + along])
+        return np.tile(m_, 3), xy, np.tile(g, 3)
+
+    priority = cellrng.uniform(key, _ORDER, band, r)
+    attempt = np.zeros(n, dtype=np.int64)
+    settled = np.zeros(n, dtype=bool)
+
+    def shift_of(w: np.ndarray) -> np.ndarray:
+        u = cellrng.uniform(key, _ROW, band[w], r[w], attempt[w])
+        drawn = phases[np.minimum((u * len(phases)).astype(int), len(phases) - 1)]
+        return np.where(settled[w], 0.0, (drawn - phase[first_of[r[w]]] + step / 2) % step - step / 2)
+
+    for _ in range(2 * ROW_ROUNDS):
+        ma, xa, ga = stretch(wa, shift_of(wa))
+        mb, xb, gb = stretch(wb, shift_of(wb))
+        new = Arrangement(motifs.kind[ma], xa, motifs.angle[ma], motifs.scale[ma])
+        old = Arrangement(motifs.kind[mb], xb, motifs.angle[mb], motifs.scale[mb])
+        a, _ = cross_pairs(new, old, exemplar.prototypes, stats.distance, complete=False, groups=(ga, gb))
+        bad = np.unique(ga[a])
+        if len(bad) == 0:
+            break
+        one, two = wa[bad], wb[bad]
+        loser = np.where(priority[one] < priority[two], one, two)
+        loser = np.where(settled[loser], one + two - loser, loser)
+        loser = np.unique(loser[~settled[loser]])
+        if len(loser) == 0:
+            break
+        attempt[loser] += 1
+        settled[loser[attempt[loser] >= ROW_ROUNDS]] = True
+    shifts = np.zeros(n)
+    shifts[:] = shift_of(np.arange(n))
+    keep = (band >= first) & (band <= last)
+    return np.arange(first, last + 1), shifts[keep].reshape(last - first + 1, len(rows))
