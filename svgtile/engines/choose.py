@@ -25,8 +25,11 @@ from svgtile.engines.jitter import rows_fit
 
 #: A tile's rows go to :func:`svgtile.engines.jitter.redraw` (rule ``tile-jitter``) when at least
 #: this share of its (row, phase) pairs keep the distance rule (:func:`~svgtile.engines.jitter.rows_fit`):
-#: FGDC 616, 617, 654, 669 1.000, 618 0.849; 621 0.753 (redrawn: density 0.86, L 0.52) and 670
-#: 0.472 (density 0.62) stay stamped.
+#: FGDC 616, 617, 654, 669 1.000, 618 0.849; 621 0.753 (redrawn: L 0.40) and 670 0.472 (its
+#: columns locked to their neighbours: every redraw falls back to the tile) stay stamped.
+#: Redrawn (benchmarks/README.md, jit12): 669 passes every gate (repetition 0.033, L 0.97);
+#: 616 and 618 repeat less (0.73) at L 0.96–0.97; 617 and 654 still repeat at (w, 0) (1.000, L
+#: 0.92–0.94), their rows' kinds running on whole along x.
 ROWS_FIT = 0.8
 
 #: The name users give to let svgtile choose (``--engine auto``, ``engine = "auto"``).
