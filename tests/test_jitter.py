@@ -22,7 +22,9 @@ TILE = 40.0
 
 
 def jittered_lattice():
-    return exemplar(grid_points(jitter=0.3, seed=2), size=(TILE, TILE), period=True)  # sites (1 + 4i, 1 + 4j)
+    return exemplar(
+        grid_points(jitter=0.3, seed=2), size=(TILE, TILE), period=True
+    )  # sites (1 + 4i, 1 + 4j)
 
 
 def free_rows(seed=4):
@@ -65,7 +67,9 @@ def test_a_jittered_lattice_keeps_its_sites_and_its_spread_and_does_not_repeat_a
     # and does not meet itself one period on, as the stamp does
     assert partners_at(xy, np.array([TILE, 0.0])) < 0.15
     assert partners_at(xy, np.array([0.0, TILE])) < 0.15
-    stamp = synthesize(ex, Region.rectangle(4 * TILE, 4 * TILE), "tile", seed=1, stats=st, boundary="centroid")
+    stamp = synthesize(
+        ex, Region.rectangle(4 * TILE, 4 * TILE), "tile", seed=1, stats=st, boundary="centroid"
+    )
     assert partners_at(stamp.arrangement.xy, np.array([TILE, 0.0])) == 1.0
     c = find_conflicts(result.arrangement, ex.prototypes, st.distance)
     assert len(c.i) == 0
@@ -77,12 +81,17 @@ def test_rows_at_free_phases_stay_exact_and_take_the_tiles_phases_band_by_band()
     xy = result.arrangement.xy
     ys = np.unique(np.round(xy[:, 1], 4))
     got = []
-    for y in ys:  # a world row lies in one band of copies: exact along x across them (one phase mod 4)
+    for (
+        y
+    ) in ys:  # a world row lies in one band of copies: exact along x across them (one phase mod 4)
         ph = np.round(xy[np.round(xy[:, 1], 4) == y, 0] % 4.0, 3)
         assert np.ptp(ph) < 1e-3 or np.ptp((ph + 2.0) % 4.0) < 1e-3, y
         got.append(float(ph[0]))
     # every phase is one of the tile's rows' phases
-    assert all(np.min(np.abs((np.array(got)[:, None] - phases[None] % 4.0 + 2.0) % 4.0 - 2.0), axis=1) < 1e-3)
+    assert all(
+        np.min(np.abs((np.array(got)[:, None] - phases[None] % 4.0 + 2.0) % 4.0 - 2.0), axis=1)
+        < 1e-3
+    )
     # and the rows of one band are not those of the band above: the period (0, 40) does not repeat
     assert partners_at(xy, np.array([0.0, TILE])) < 0.5
     assert partners_at(xy, np.array([TILE, 0.0])) == 1.0  # along the rows they run on whole
@@ -102,7 +111,9 @@ def test_the_baseline_tiling_is_unchanged_by_the_parameter_default():
     ex = jittered_lattice()
     st = analyze(ex)
     plain = synthesize(ex, Region.rectangle(80, 80), "tile", seed=1, stats=st)
-    off = synthesize(ex, Region.rectangle(80, 80), "tile", seed=1, stats=st, params={"redraw_jitter": False})
+    off = synthesize(
+        ex, Region.rectangle(80, 80), "tile", seed=1, stats=st, params={"redraw_jitter": False}
+    )
     assert np.array_equal(plain.arrangement.xy, off.arrangement.xy)
 
 
@@ -113,13 +124,17 @@ def test_an_exact_lattice_has_no_jitter_and_free_rows_their_phases():
     row, phase, axis, step = exact_rows(rows, read_order(rows))
     assert (axis, step) == (0, pytest.approx(4.0))
     assert len(np.unique(row)) == 10
-    assert sorted(np.round(np.unique(np.round(phase, 6)), 4)) == pytest.approx(sorted(np.round(phases % 4.0, 4)), abs=1e-3)
+    assert sorted(np.round(np.unique(np.round(phase, 6)), 4)) == pytest.approx(
+        sorted(np.round(phases % 4.0, 4)), abs=1e-3
+    )
 
 
 def test_rows_fit_reads_whether_any_row_may_take_any_phase():
     rows, _ = free_rows()
     st = analyze(rows)
-    assert rows_fit(rows, read_order(rows), st.distance) == 1.0  # dots 1.2 wide, rows 4 apart: always fit
+    assert (
+        rows_fit(rows, read_order(rows), st.distance) == 1.0
+    )  # dots 1.2 wide, rows 4 apart: always fit
     # a distance rule wider than the rows' gap makes most phases conflict
     assert rows_fit(rows, read_order(rows), st.distance + 3.5) < 0.8
     lattice = jittered_lattice()
@@ -137,8 +152,11 @@ def test_row_shifts_keep_the_rule_and_do_not_depend_on_the_bands_asked_for():
     _, more = row_shifts(ex, st, o, -6, 9, key=7)
     assert np.array_equal(shifts, more[6:10])
     assert list(bands) == [0, 1, 2, 3]
-    assert np.abs(shifts).max() <= 2.0 + 1e-9 and np.ptp(shifts) > 0.5  # within half a step, and drawn
+    assert (
+        np.abs(shifts).max() <= 2.0 + 1e-9 and np.ptp(shifts) > 0.5
+    )  # within half a step, and drawn
     from dataclasses import replace
+
     tight = replace(st, distance=wide)
     _, s2 = row_shifts(ex, tight, o, 0, 3, key=7)
     # rows 4 apart, dots 1.2 wide: a rule of ≥ 3.2 cannot be kept at any phase, so every row keeps its own

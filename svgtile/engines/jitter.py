@@ -78,7 +78,9 @@ def jitters(exemplar: Exemplar, order: Order) -> np.ndarray:
     return xy - total / count[:, None]
 
 
-def exact_rows(exemplar: Exemplar, order: Order) -> tuple[np.ndarray, np.ndarray, int | None, float]:
+def exact_rows(
+    exemplar: Exemplar, order: Order
+) -> tuple[np.ndarray, np.ndarray, int | None, float]:
     """The tile's rows exact along x (or y), and each row's phase along them.
 
     Returns
@@ -165,7 +167,9 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
     xy = tile_xy.copy()
     if in_row.any():
         band = (cb if axis == 0 else ca)[in_row]
-        bands, shifts = row_shifts(exemplar, stats, order, int(band.min()), int(band.max()), key=key)
+        bands, shifts = row_shifts(
+            exemplar, stats, order, int(band.min()), int(band.max()), key=key
+        )
         xy[in_row, axis] += shifts[band - bands[0], row[i[in_row]]]
         xy = np.round(xy, DECIMALS)
 
@@ -174,16 +178,22 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
         u = cellrng.uniform(key, _DRAW, ca[sel], cb[sel], i[sel], attempt[sel])
         for k, pool in pools.items():
             on = kind[sel] == k
-            out[on] = site[sel][on] + pool[np.minimum((u[on] * len(pool)).astype(int), len(pool) - 1)]
+            out[on] = (
+                site[sel][on] + pool[np.minimum((u[on] * len(pool)).astype(int), len(pool) - 1)]
+            )
         return np.round(out, DECIMALS)
 
     attempt = np.zeros(n, dtype=np.int64)
     free = ~in_row
     xy[free] = draw(attempt, free)
-    settled = in_row.copy()  # rows are drawn once (their draw is shared along the band); conflicts left are culled
+    settled = (
+        in_row.copy()
+    )  # rows are drawn once (their draw is shared along the band); conflicts left are culled
     pri = cellrng.uniform(key, _ORDER, ca, cb, i)
     for _ in range(ROUNDS + 1):
-        c = find_conflicts(Arrangement(kind, xy, base.angle, base.scale), exemplar.prototypes, stats.distance)
+        c = find_conflicts(
+            Arrangement(kind, xy, base.angle, base.scale), exemplar.prototypes, stats.distance
+        )
         loser = np.where(pri[c.i] < pri[c.j], c.i, c.j)
         loser = np.where(settled[loser], c.i + c.j - loser, loser)  # the other one moves
         move = np.zeros(n, dtype=bool)
@@ -201,7 +211,9 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
         arr = arr.take(cull(n, c, pri))
     rr = motif_radius(arr, exemplar.prototypes)
     p = arr.xy
-    return arr.take((p[:, 0] + rr > X0) & (p[:, 0] - rr < X1) & (p[:, 1] + rr > Y0) & (p[:, 1] - rr < Y1))
+    return arr.take(
+        (p[:, 0] + rr > X0) & (p[:, 0] - rr < X1) & (p[:, 1] + rr > Y0) & (p[:, 1] - rr < Y1)
+    )
 
 
 def spread(jitter: np.ndarray) -> float:
@@ -251,7 +263,9 @@ def rows_fit(exemplar: Exemplar, order: Order, distance: np.ndarray) -> float:
         olds = Arrangement(np.tile(old.kind, len(delta)), np.tile(old.xy, (len(delta), 1)),
                            np.tile(old.angle, len(delta)), np.tile(old.scale, len(delta)))  # fmt: skip
         group_old = np.repeat(np.arange(len(delta)), len(old))
-        a, _ = cross_pairs(new, olds, exemplar.prototypes, distance, complete=False, groups=(group_new, group_old))
+        a, _ = cross_pairs(
+            new, olds, exemplar.prototypes, distance, complete=False, groups=(group_new, group_old)
+        )
         fit += len(delta) - len(np.unique(group_new[a]))
     return fit / (len(rows) * len(phases))
 
@@ -325,14 +339,18 @@ def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last:
     def shift_of(w: np.ndarray) -> np.ndarray:
         u = cellrng.uniform(key, _ROW, band[w], r[w], attempt[w])
         drawn = phases[np.minimum((u * len(phases)).astype(int), len(phases) - 1)]
-        return np.where(settled[w], 0.0, (drawn - phase[first_of[r[w]]] + step / 2) % step - step / 2)
+        return np.where(
+            settled[w], 0.0, (drawn - phase[first_of[r[w]]] + step / 2) % step - step / 2
+        )
 
     for _ in range(2 * ROW_ROUNDS):
         ma, xa, ga = stretch(wa, shift_of(wa))
         mb, xb, gb = stretch(wb, shift_of(wb))
         new = Arrangement(motifs.kind[ma], xa, motifs.angle[ma], motifs.scale[ma])
         old = Arrangement(motifs.kind[mb], xb, motifs.angle[mb], motifs.scale[mb])
-        a, _ = cross_pairs(new, old, exemplar.prototypes, stats.distance, complete=False, groups=(ga, gb))
+        a, _ = cross_pairs(
+            new, old, exemplar.prototypes, stats.distance, complete=False, groups=(ga, gb)
+        )
         bad = np.unique(ga[a])
         if len(bad) == 0:
             break
