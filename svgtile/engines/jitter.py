@@ -20,7 +20,9 @@ jitters the tile itself has:
 * every other motif draws its jitter per world cell from those of its kind in the tile.
 
 Draws are hashes of the run's key and world integers (:mod:`svgtile.core.cellrng`): the same
-seed gives the same bytes and a place's texture does not depend on the region's extent.  A drawn
+seed gives the same bytes; a band's row phases do not depend on the region's extent, and a
+motif's redraws only on the copies near it (the redraw rounds have no fixed bound, so the tile
+engine's ``reach`` is infinite with this option: tiled runs are run whole).  A drawn
 motif that overlaps or breaks the distance rule draws again (up to :data:`ROUNDS` times); one
 still in conflict then goes back to its tile position and, failing that, the conflicts are culled
 as the tiling culls its seams (:func:`svgtile.core.conflicts.cull`).
@@ -186,9 +188,8 @@ def redraw(exemplar: Exemplar, stats: Stats, order: Order, region: Region, keep:
     attempt = np.zeros(n, dtype=np.int64)
     free = ~in_row
     xy[free] = draw(attempt, free)
-    settled = (
-        in_row.copy()
-    )  # rows are drawn once (their draw is shared along the band); conflicts left are culled
+    # rows are settled (their phases were drawn against their neighbours); conflicts left are culled
+    settled = in_row.copy()
     pri = cellrng.uniform(key, _ORDER, ca, cb, i)
     for _ in range(ROUNDS + 1):
         c = find_conflicts(
