@@ -27,10 +27,13 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests"))
 
 #: The two ways to fill a repeating tile, as (engine, params) for :func:`test_wholeset.figures`.
-WAYS = {"stamp": ("patch", (("grid", "lattice"), ("max_rotation", 0.0))), "growth": ("growth", ())}
+#: ``redraw``: the tile engine with each copy's row phases and jitter drawn anew (jit12,
+#: :mod:`svgtile.engines.jitter`, auto's ``tile-jitter`` rule).
+WAYS = {"stamp": ("patch", (("grid", "lattice"), ("max_rotation", 0.0))), "growth": ("growth", ()),
+        "redraw": ("tile", (("redraw_jitter", True),))}
 
 
-def measure(only: list[str]) -> None:
+def measure(only: list[str], ways: list[str]) -> None:
     import test_wholeset as W
 
     from svgtile.analysis.order import read_order, stamp_repeats
@@ -40,7 +43,8 @@ def measure(only: list[str]) -> None:
         if o.period is None or o.kind == "scatter":
             continue
         head = {"tile": tile, "order": o.kind, "motifs": len(ex.motifs), "repeats": stamp_repeats(ex, o)}
-        for way, (engine, params) in WAYS.items():
+        for way in ways:
+            engine, params = WAYS[way]
             t0 = time.perf_counter()
             s, _exov, L = W.figures(tile, engine, params)
             print(json.dumps({**head, "way": way, "density": round(s.density_ratio, 4), "tv": round(s.kind_mix_tv, 4),
@@ -72,11 +76,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("tiles", nargs="*", help="set/stem prefixes, as test_wholeset names them (fgdc/61)")
     parser.add_argument("--table", type=Path, help="print the markdown table of a run's JSON lines")
+    parser.add_argument("--ways", default="stamp,growth", help=f"comma-separated, of {', '.join(WAYS)}")
     args = parser.parse_args()
     if args.table:
         table(args.table)
     else:
-        measure(args.tiles)
+        measure(args.tiles, args.ways.split(","))
 
 
 if __name__ == "__main__":

@@ -140,8 +140,8 @@ def find_python():
 
 #: The engine parameters of the dialog, passed on to ``svgtile inkscape fill`` (a test checks them
 #: against the .inx and svgtile's engine parameter classes).
-ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "rotation", "priority",
-                  "relax-every", "passes", "neighbourhood")
+ENGINE_OPTIONS = ("grid", "overlap", "max-rotation", "junction", "vary-orientation", "redraw-jitter", "rotation",
+                  "priority", "relax-every", "passes", "neighbourhood")
 
 
 class FillWithTexture(inkex.EffectExtension):
@@ -155,6 +155,7 @@ class FillWithTexture(inkex.EffectExtension):
         pars.add_argument("--max-rotation", type=float, default=30.0)
         pars.add_argument("--junction", type=float, default=0.6)
         pars.add_argument("--vary-orientation", type=inkex.Boolean, default=False)
+        pars.add_argument("--redraw-jitter", type=inkex.Boolean, default=False)
         pars.add_argument("--passes", type=int, default=10)
         pars.add_argument("--neighbourhood", type=int, default=6)
         pars.add_argument("--rotation", default="auto", choices=["auto", "none", "fit", "flow"])

@@ -180,7 +180,7 @@ def test_cli_refuses_an_option_the_engine_does_not_have(tmp_path, capsys):
     rc = main(["synth", str(EXEMPLAR), "-o", str(out), "--size", "50", "--engine", "tile", "--grid", "hex"])
     err = capsys.readouterr().err
     assert rc == 1 and not out.exists()
-    assert err == "svgtile: error: engine 'tile' has no parameter --grid (its parameters: none)\n"
+    assert err == "svgtile: error: engine 'tile' has no parameter --grid (its parameters: --redraw-jitter)\n"
 
 
 def test_an_engine_plug_in_registers_through_the_entry_point_group(monkeypatch):

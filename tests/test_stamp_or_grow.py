@@ -49,7 +49,8 @@ FGDC = Path(__file__).resolve().parents[2] / "shared" / "data" / "fgdc-geologic-
 
 @pytest.mark.skipif(not FGDC.is_dir(), reason="../shared/data (real symbol sets) is not beside the checkout")
 @pytest.mark.parametrize(("name", "rule"), [("619", "tile-rows"), ("620", "tile-rows"), ("621", "tile-order"),
-                                            ("610", "tile-order"), ("711", "tile-order")])  # fmt: skip
+                                            ("610", "tile-order"), ("711", "tile-order"), ("618", "tile-jitter"),
+                                            ("669", "tile-jitter"), ("670", "tile-order")])  # fmt: skip
 def test_auto_grows_the_tiles_whose_rows_wander_and_stamps_the_others(name, rule):
     from svgtile.svg.reader import parse_exemplar
     from svgtile.tiles.importer import import_tile

@@ -21,6 +21,16 @@ from svgtile.analysis.order import Order, read_order, stamp_repeats
 from svgtile.analysis.stats import Stats
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.growth import grows_from, rows_wander
+from svgtile.engines.jitter import rows_fit
+
+#: A tile's rows go to :func:`svgtile.engines.jitter.redraw` (rule ``tile-jitter``) when at least
+#: this share of its (row, phase) pairs keep the distance rule (:func:`~svgtile.engines.jitter.rows_fit`):
+#: FGDC 616, 617, 654, 669 1.000, 618 0.849; 621 0.753 (redrawn: L 0.40) and 670 0.472 (its
+#: columns locked to their neighbours: every redraw falls back to the tile) stay stamped.
+#: Redrawn (benchmarks/README.md, jit12): 669 passes every gate (repetition 0.033, L 0.97);
+#: 616 and 618 repeat less (0.73) at L 0.96–0.97; 617 and 654 still repeat at (w, 0) (1.000, L
+#: 0.92–0.94), their rows' kinds running on whole along x.
+ROWS_FIT = 0.8
 
 #: The name users give to let svgtile choose (``--engine auto``, ``engine = "auto"``).
 AUTO = "auto"
@@ -91,6 +101,11 @@ RULES: tuple[Rule, ...] = (
          lambda o: f"a repeating tile of rows exact along x at hand-drawn phases (steps {_steps(o)}): copies on "
                    "its period would repeat its rows' phases, which its own exact steps do not reproduce, so "
                    "grown with each row at a phase the tile's row-to-row steps give"),
+    Rule("tile-jitter", lambda o, s, e: o.period is not None and o.kind != "scatter" and stamp_repeats(e, o)
+         and rows_fit(e, o, s.distance) >= ROWS_FIT, "tile", {"redraw_jitter": True},
+         lambda o: f"a repeating tile of rows exact along their step at hand-drawn phases (steps {_steps(o)}): "
+                   "copies of the tile with each row at a phase drawn from the tile's rows' phases and the other "
+                   "motifs' jitter drawn anew, so the rows stay exact and the tile's period does not repeat"),
     Rule("tile-order", lambda o, s, e: o.period is not None and o.kind != "scatter", "patch",
          {"grid": "lattice", "max_rotation": 0.0},
          lambda o: f"a repeating tile with {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): "

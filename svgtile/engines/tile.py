@@ -21,8 +21,10 @@ stamped texture instead would make copies differ at their seams — and the cost
 that of one exemplar, whatever the output size.  Which motif of a conflicting pair leaves is the
 only random choice, a hash of the run's key and the motif's index in the exemplar.
 
-The engine has no parameters: the Tiling strategy is defined by a square grid, σ = 0, no
-rotation and the exemplar's own orientations (a patch parameter given to it is an error).
+The Tiling strategy is defined by a square grid, σ = 0, no rotation and the exemplar's own
+orientations (a patch parameter given to it is an error).  Its one parameter, ``redraw_jitter``
+(auto's rule ``tile-jitter``), keeps a repeating tile's rows but draws each copy's row phases and
+jitter anew (:mod:`svgtile.engines.jitter`); the baseline is the plain Tiling.
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ from svgtile.core.conflicts import RULE_SLACK, Conflicts, cull, find_conflicts
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
-from svgtile.engines.base import Context, EngineParams
+from svgtile.engines.base import Context, EngineParams, param
 
 _PRIORITY = 0  # hash stream: which motif of a conflicting pair leaves the tiling
 
@@ -54,7 +56,12 @@ SEAM_MARGIN = 2 * RULE_SLACK
 
 @dataclass(frozen=True)
 class TileParams(EngineParams):
-    """The Tiling strategy has no parameters: a square grid, σ = 0, no rotation."""
+    """The Tiling strategy: a square grid, σ = 0, no rotation; ``redraw_jitter`` keeps the tile's
+    lattice or rows and draws each copy's jitter anew (:mod:`svgtile.engines.jitter`)."""
+
+    redraw_jitter: bool = param(False, "Keep a repeating tile's rows and lattice but draw each copy's row "
+                                       "phases and jitter anew from the tile's own, so a hand-jittered tile "
+                                       "does not repeat at its period.")
 
 
 class TileEngine:
@@ -77,11 +84,18 @@ class TileEngine:
         ctx.progress("seams", 0.0)
         keep = periodic_keep(ctx.exemplar, ctx.stats, key=ctx.key)
         ctx.progress("tiles", 0.3)
+        if p.redraw_jitter and ctx.exemplar.period is not None:
+            from svgtile.analysis.order import read_order
+            from svgtile.engines.jitter import redraw
+
+            return redraw(ctx.exemplar, ctx.stats, read_order(ctx.exemplar), ctx.region, keep, key=ctx.key)
         return stamp(ctx.exemplar, ctx.region, keep)
 
     def reach(self, exemplar: Exemplar, params: TileParams) -> float:
-        """Tile-exact with no halo: a copy is a function of its grid cell alone."""
-        return 0.0
+        """Tile-exact with no halo: a copy is a function of its grid cell alone.  Redrawn jitter
+        (``redraw_jitter``) settles conflicts by rounds of redraws and a cull, whose chains have no
+        bound: run whole."""
+        return math.inf if params.redraw_jitter and exemplar.period is not None else 0.0
 
 
 TILE = TileEngine()
