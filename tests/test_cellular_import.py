@@ -185,8 +185,8 @@ def test_import_and_synth_give_a_texture_for_105_of_the_116_fgdc_tiles():
 @pytest.mark.parametrize(("code", "share"), [("705", "40%"), ("709", "44%"), ("733", "66%")])
 def test_fgdc_tiles_whose_cells_would_leave_out_a_quarter_are_refused(code, share, capsys):
     """Drawn as cells, 709 (contorted gneiss) came out a grid of straight lines, 705 half as dark
-    with its streaks, 733 hatching without its cross-hatched bands (linework figures S −1.4, 0.76,
-    −0.2; ink 0.48, 0.58, 0.71): what the bedding and joints leave out is the pattern.  The
+    with its streaks, 733 hatching without its cross-hatched bands (linework figures, 709/705/733:
+    S −1.01, 0.43, 0.06; ink 0.48, 0.58, 0.71): what the bedding and joints leave out is the pattern.  The
     refusal is one line giving the share, and 717 (14 % left out) is still read as cells."""
     with pytest.raises(TileRefused, match=f"leave out .*{share} of its stroke length"):
         import_tile(FGDC / f"{code}.svg")

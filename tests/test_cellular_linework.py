@@ -84,6 +84,7 @@ REFUSED = {"fgdc/705", "fgdc/709", "fgdc/733"}
 
 #: (tile, figure) -> what was measured (2026-12-04, seed 1, auto, 4 × 4 tiles, inner 2 × 2 at 512 px).
 KNOWN: dict[tuple[str, str], str] = {
+    ("fgdc/675", "structure"): "S 0.749 (ink 0.95; interbedded since issue 12, S 0.50 and ink 1.48 before: its tick marks sit in the brick courses, not on the dashed rows)",
     ("fgdc/628", "ink"): "ink 0.79 (S 0.38)",
     ("fgdc/629", "ink"): "ink 0.56 (S 0.04)",
     ("fgdc/631", "ink"): "ink 0.67 (S 0.35)",
@@ -98,12 +99,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/657", "ink"): "ink 0.75 (S 0.49)",
     ("fgdc/660", "ink"): "ink 1.56 (S 0.31)",
     ("fgdc/661", "ink"): "ink 0.78 (S 0.53)",
-    ("fgdc/673", "ink"): "ink 1.51 (S 0.56)",
-    ("fgdc/674", "ink"): "ink 1.51 (S 0.74)",
-    ("fgdc/675", "ink"): "ink 1.48 (S 0.50)",
-    ("fgdc/678", "ink"): "ink 1.41 (S 0.70)",
-    ("fgdc/679", "ink"): "ink 1.34 (S 0.72)",
-    ("fgdc/680", "ink"): "ink 1.39 (S 0.69)",
     ("fgdc/703", "ink"): "ink 0.83 (S 0.45)",
     ("fgdc/708", "ink"): "ink 1.51 (S -0.08)",
     ("fgdc/717", "ink"): "ink 0.24 (S 0.06)",
@@ -127,12 +122,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/661", "structure"): "S 0.53 (ink 0.78)",
     ("fgdc/662", "structure"): "S 0.50 (ink 1.07)",
     ("fgdc/663", "structure"): "S 0.44 (ink 1.01)",
-    ("fgdc/673", "structure"): "S 0.56 (ink 1.51)",
-    ("fgdc/674", "structure"): "S 0.74 (ink 1.51)",
-    ("fgdc/675", "structure"): "S 0.50 (ink 1.48)",
-    ("fgdc/678", "structure"): "S 0.70 (ink 1.41)",
-    ("fgdc/679", "structure"): "S 0.72 (ink 1.34)",
-    ("fgdc/680", "structure"): "S 0.69 (ink 1.39)",
     ("fgdc/703", "structure"): "S 0.45 (ink 0.83)",
     ("fgdc/708", "structure"): "S -0.08 (ink 1.51)",
     ("fgdc/717", "structure"): "S 0.06 (ink 0.24)",

@@ -96,17 +96,18 @@ def import_cellular(tile: TilePieces, refused: ExemplarError, import_pieces) -> 
     for bearing in dict.fromkeys((first, 0.0)):  # the likeliest bearing, then the horizontal
         try:
             found = _bedded(tile, feats, bearing, refused, import_pieces)
-        except LeftOut as exc:
-            left_out = left_out or exc
+        except ExemplarError as exc:
+            left_out = left_out or (exc if isinstance(exc, LeftOut) else None)
             continue
-        except ExemplarError:
-            continue
-        if found[1]["cell_style"] or bearing != 0.0:
+        dashed = any("dash" in spec for spec in found[1].get("lines", ()))
+        if bearing != 0.0 or (found[1]["cell_style"] and not dashed):
             return found
-        try:  # no joints across courses of one height: are they interbedded courses?
-            return _interbedded(tile, feats, refused, import_pieces)
+        try:  # no joints, or joints and dashed rows (673: bricks between some rows): interbedded courses?
+            inter = _interbedded(tile, feats, refused, import_pieces)
         except ExemplarError:
             return found
+        bands = inter[1]["bands"]
+        return inter if not found[1]["cell_style"] or len(bands["cut"]) < len(bands["rows"]) else found
     raise left_out or refused
 
 
