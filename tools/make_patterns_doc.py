@@ -4,7 +4,8 @@ For each tile: ``svgtile import`` (motifs, kinds, or the reason it is refused), 
 3 × 3 tile sizes synthesized with the default engine, ``auto`` (seed 1; the engine it chose is in
 the table), and its figures from :func:`svgtile.metrics.score` (likeness L among them: on a
 3 × 3 texture, one tile of interior, a rough figure).  A bedded or brick tile imported as cells
-(the cellular engine) reports its cells; the motif figures do not apply to it.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
+(the cellular engine) reports its cells and, in the density and L columns, the linework figures
+ink and S (:mod:`svgtile.metrics.linework`); the motif figures do not apply to it.  Also renders the FGDC swatch sheet to docs/fgdc-swatches.png
 (the same as ``svgtile swatches <lithology dir> -o sheet.svg --png``).
 
 Needs ``../shared/data`` beside the repository and the ``png`` extra (resvg-py).  Run from the
@@ -18,6 +19,7 @@ import io
 from pathlib import Path
 
 from svgtile import Region, analyze
+from svgtile.apps.linework import measure_tile
 from svgtile.apps.preview import render_png
 from svgtile.apps.swatches import collect, read_names, swatch_sheet
 from svgtile.engines import synthesize
@@ -56,6 +58,9 @@ def row(path: Path, names: dict[str, str]) -> dict:
     if made.cells is not None:
         out.update(motifs=len(imported), kinds=imported.kinds, wrapped=int(imported.wrapped.sum()), texture=len(arr),
                    cells=len(made.cells.cells))  # fmt: skip
+        lw = measure_tile(path, seed=SEED)  # the linework figure: the motif figures do not apply
+        if lw is not None:
+            out.update(ink=lw.ink, structure=lw.structure)
         return out
     figures = score(ex, stats, arr, region)
     out.update(
@@ -73,7 +78,7 @@ def fmt(v, digits=2) -> str:
 
 def table(rows: list[dict]) -> list[str]:
     lines = [
-        "| pattern | name | motifs | kinds | cut & reassembled | result | engine | texture motifs | overlaps | violators | density ratio | kind-mix TV | coverage | likeness L |",
+        "| pattern | name | motifs | kinds | cut & reassembled | result | engine | texture motifs | overlaps | violators | density ratio (cells: ink) | kind-mix TV | coverage | likeness L (cells: S) |",
         "|---|---|--:|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|",
     ]
     for r in rows:
@@ -82,7 +87,7 @@ def table(rows: list[dict]) -> list[str]:
         elif "cells" in r:
             lines.append(
                 f"| {r['pattern']} | {r['name']} | {r['motifs']} | {r['kinds']} | {r['wrapped']} | accepted as cells | "
-                f"{r['engine']} | {r['texture']} in {r['cells']} cells | | | | | | |"
+                f"{r['engine']} | {r['texture']} in {r['cells']} cells | | | {fmt(r.get('ink'))} | | | {fmt(r.get('structure'))} |"
             )
         else:
             lines.append(

@@ -50,8 +50,11 @@ from svgtile.files import read_input
 from svgtile.svg.kinds import match_kinds
 from svgtile.svg.tilepieces import TilePieces, parse_tile
 from svgtile.tiles.overlaps import merge_motifs, own_overlaps, separate_kinds
+from svgtile.tiles.refusals import LeftOut, TileRefused
 from svgtile.tiles.repeat import radii, repeat_groups, symmetry_orders
 from svgtile.tiles.write import exemplar_text
+
+__all__ = ["ImportedTile", "LeftOut", "TileRefused", "import_bedded", "import_pieces", "import_tile"]
 
 #: Two parallel straight strokes closer than this share of the shorter one's length belong to one
 #: motif, as the two lines of each FGDC 729 motif do (gaps 0.16–0.21 of the length there).
@@ -96,10 +99,6 @@ MERGE_ROUNDS = 3
 #: The 3 × 3 block of tiles, central tile (0, 0) at index 4.
 OFFSETS = np.array([(i, j) for j in (-1, 0, 1) for i in (-1, 0, 1)], dtype=np.float64)
 CENTRE = 4
-
-
-class TileRefused(ExemplarError):
-    """The tile is not an arrangement of discrete motifs (hatching, continuous lines, a fill)."""
 
 
 @dataclass(frozen=True, eq=False)
