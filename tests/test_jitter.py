@@ -16,7 +16,14 @@ from svgtile.analysis.stats import analyze
 from svgtile.core.conflicts import find_conflicts
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
-from svgtile.engines.jitter import exact_rows, jitters, row_shifts, rows_fit, spread
+from svgtile.engines.jitter import (
+    exact_rows,
+    jitters,
+    row_shifts,
+    rows_fit,
+    rows_repeat_within,
+    spread,
+)
 
 TILE = 40.0
 
@@ -141,13 +148,23 @@ def test_rows_fit_reads_whether_any_row_may_take_any_phase():
     assert rows_fit(lattice, read_order(lattice), analyze(lattice).distance) == 0.0  # no exact rows
 
 
-def test_row_shifts_keep_the_rule_and_do_not_depend_on_the_bands_asked_for():
-    # dashes 2.4 long, rows 4 apart, a rule of 2.5: rows of dashes 1.6 apart along x conflict
-    # with the next row at most phases, so draws are rejected and drawn again
+def test_row_shifts_redraw_and_do_not_depend_on_the_bands_asked_for():
+    # dots 1.23 wide in rows 4 apart: the analysed rule keeps every phase, a rule 0.2 wider makes
+    # some phases conflict with the next row, so draws are rejected and drawn again in chains —
+    # which must settle the bands asked for alike however many bands are settled around them
+    # (reviewer, 2026-12-04: the test ran no chain, with 0 conflicts or all of them)
     ex, _ = free_rows()
     st = analyze(ex)
     o = read_order(ex)
     wide = st.distance + 3.0
+    from dataclasses import replace
+
+    for key in (7, 8, 9):
+        free = row_shifts(ex, st, o, 0, 3, key=key)[1]
+        some = replace(st, distance=st.distance + 0.2)
+        chained = [row_shifts(ex, some, o, lo, hi, key=key)[1][-lo : 4 - lo] for lo, hi in ((0, 3), (-6, 9), (-40, 40))]
+        assert np.array_equal(chained[0], chained[1]) and np.array_equal(chained[0], chained[2])
+        assert not np.array_equal(chained[0], free)  # a chain of redraws ran
     bands, shifts = row_shifts(ex, st, o, 0, 3, key=7)
     _, more = row_shifts(ex, st, o, -6, 9, key=7)
     assert np.array_equal(shifts, more[6:10])
@@ -155,9 +172,37 @@ def test_row_shifts_keep_the_rule_and_do_not_depend_on_the_bands_asked_for():
     assert (
         np.abs(shifts).max() <= 2.0 + 1e-9 and np.ptp(shifts) > 0.5
     )  # within half a step, and drawn
-    from dataclasses import replace
-
     tight = replace(st, distance=wide)
     _, s2 = row_shifts(ex, tight, o, 0, 3, key=7)
     # rows 4 apart, dots 1.2 wide: a rule of ≥ 3.2 cannot be kept at any phase, so every row keeps its own
     assert np.abs(s2).max() < 1e-9
+
+
+def test_rows_out_of_each_others_reach_take_their_drawn_phases():
+    """Rows farther apart than the rule's reach cannot conflict: each takes its drawn phase (it
+    was left at the tile's, a stamp, when no pair of rows was near — reviewer, 2026-12-04)."""
+    rng = np.random.default_rng(4)
+    phases = rng.uniform(0, 4, 5)
+    pts = [((x + ph) % TILE, y + 1.0) for y, ph in zip(np.arange(0, TILE, 8.0), phases, strict=True)
+           for x in np.arange(0, TILE, 4.0)]  # fmt: skip
+    ex = exemplar(pts, size=(TILE, TILE), period=True)
+    st = analyze(ex)
+    _, shifts = row_shifts(ex, st, read_order(ex), 0, 3, key=7)
+    assert np.ptp(shifts) > 0.5
+
+
+def test_rows_whose_kinds_repeat_only_at_the_period_are_told():
+    ex, _ = free_rows()  # one kind: every row repeats at its step
+    assert rows_repeat_within(ex, read_order(ex)) == 1.0
+    # kinds along each row in an order that repeats only at the tile's width
+    # (each dot beside one of its kind, so the step along x is exact; rows rolled against each
+    # other, so the columns are not)
+    order = np.array([0, 0, 1, 1, 1, 0, 0, 0, 1, 1])
+    pts, kinds = [], []
+    for j, y in enumerate(np.arange(0, TILE, 4.0)):
+        for i, x in enumerate(np.arange(0, TILE, 4.0)):
+            pts.append((x + 1.0, y + 1.0))
+            kinds.append(int(np.roll(order, 3 * j)[i]))
+    ex2 = exemplar(pts, kinds, size=(TILE, TILE), period=True)
+    assert exact_rows(ex2, read_order(ex2))[2] == 0  # rows along x
+    assert rows_repeat_within(ex2, read_order(ex2)) == 0.0

@@ -89,7 +89,7 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/623", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/626", "repetition"): "1.000 (auto stamps the tile; every motif its own kind, so the period is no order of it)",
     ("fgdc/653", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
-    ("fgdc/654", "repetition"): "1.000 (2026-12-04, auto's tile-jitter: rows at redrawn phases run on whole along x, and their minority kinds repeat at (w, 0), which the tile shows at 0.73 only)",
+    ("fgdc/654", "repetition"): "1.000 (auto stamps the tile: its rows' six kinds come in an order that repeats only at the period, so redrawn phases cannot break (w, 0) — redrawn 1.000 at L 0.94, 2026-12-04)",
     ("fgdc/655", "likeness"): "L 0.50 (2026-12-03, rare kinds pooled by shape)",
     ("fgdc/656", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/659", "repetition"): "1.000 (auto stamps the tile; every motif its own kind, so the period is no order of it)",

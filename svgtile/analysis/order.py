@@ -415,6 +415,14 @@ def exact_support(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] 
     ``xy`` (n, 2) and ``g`` (2,) and ``tol`` in user units, ``kind`` (n,) ints, ``period`` (w, h)
     or None.
     """
+    has = exact_partners(xy, kind, period, g, tol)
+    return float(has.mean()) if len(xy) else 0.0
+
+
+def exact_partners(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] | None, g: np.ndarray,
+                   tol: float) -> np.ndarray:  # fmt: skip
+    """(n,) bool: the motifs :func:`exact_support` counts (a same-kind motif within ``tol`` of
+    ``x + g`` or ``x − g``, across a tile's edges)."""
     if period is None:
         shifts = np.zeros((1, 2))
     else:
@@ -426,7 +434,7 @@ def exact_support(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float] 
         for sign in (1.0, -1.0):
             d, _ = tree.query(xy[mine] + sign * g, k=1, distance_upper_bound=tol)
             has[mine] |= np.isfinite(d)
-    return float(has.mean()) if len(xy) else 0.0
+    return has
 
 
 def is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
@@ -512,4 +520,4 @@ def stamp_repeats(exemplar: Exemplar, order: Order | None = None) -> bool:
     return not (generated(np.array([w, 0.0])) and generated(np.array([0.0, h])))
 
 
-__all__ = ["Order", "Step", "dominant_steps", "exact_support", "is_period", "neighbour_vectors", "read_order", "stamp_repeats", "symmetry_steps", "translation_steps"]
+__all__ = ["Order", "Step", "dominant_steps", "exact_partners", "exact_support", "is_period", "neighbour_vectors", "read_order", "stamp_repeats", "symmetry_steps", "translation_steps"]

@@ -21,7 +21,7 @@ from svgtile.analysis.order import Order, read_order, stamp_repeats
 from svgtile.analysis.stats import Stats
 from svgtile.core.exemplar import Exemplar
 from svgtile.engines.growth import grows_from, rows_wander
-from svgtile.engines.jitter import rows_fit
+from svgtile.engines.jitter import rows_fit, rows_repeat_within
 
 #: A tile's rows go to :func:`svgtile.engines.jitter.redraw` (rule ``tile-jitter``) when at least
 #: this share of its (row, phase) pairs keep the distance rule (:func:`~svgtile.engines.jitter.rows_fit`):
@@ -29,7 +29,10 @@ from svgtile.engines.jitter import rows_fit
 #: columns locked to their neighbours: every redraw falls back to the tile) stay stamped.
 #: Redrawn (benchmarks/README.md, jit12): 669 passes every gate (repetition 0.033, L 0.97);
 #: 616 and 618 repeat less (0.73) at L 0.96–0.97; 617 and 654 still repeat at (w, 0) (1.000, L
-#: 0.92–0.94), their rows' kinds running on whole along x.
+#: 0.92–0.94), their rows' kinds running on whole along x.  The same share of the rows must have
+#: kinds that repeat within the period (:func:`~svgtile.engines.jitter.rows_repeat_within`): 654's
+#: six kinds come in an order that repeats only at the period (0.0), so it stays stamped; 617
+#: (1.0) is still redrawn.
 ROWS_FIT = 0.8
 
 #: The name users give to let svgtile choose (``--engine auto``, ``engine = "auto"``).
@@ -102,7 +105,7 @@ RULES: tuple[Rule, ...] = (
                    "its period would repeat its rows' phases, which its own exact steps do not reproduce, so "
                    "grown with each row at a phase the tile's row-to-row steps give"),
     Rule("tile-jitter", lambda o, s, e: o.period is not None and o.kind != "scatter" and stamp_repeats(e, o)
-         and rows_fit(e, o, s.distance) >= ROWS_FIT, "tile", {"redraw_jitter": True},
+         and rows_repeat_within(e, o) >= ROWS_FIT and rows_fit(e, o, s.distance) >= ROWS_FIT, "tile", {"redraw_jitter": True},
          lambda o: f"a repeating tile of rows exact along their step at hand-drawn phases (steps {_steps(o)}): "
                    "copies of the tile with each row at a phase drawn from the tile's rows' phases and the other "
                    "motifs' jitter drawn anew, so the rows stay exact and the tile's period does not repeat"),

@@ -17,7 +17,9 @@ jitters the tile itself has:
   the tile's rows' phases per row and world band of copies across the rows (the row continues
   whole along itself, so it stays exact; rows that would break the distance rule draw again,
   :func:`row_shifts`);
-* every other motif draws its jitter per world cell from those of its kind in the tile.
+* every other motif draws its jitter per world cell from those of its kind in the tile (where the
+  tile has an exact step along an axis every motif is in a row, so only the rows' phases are
+  drawn: FGDC 616, 617, 618, 669).
 
 Draws are hashes of the run's key and world integers (:mod:`svgtile.core.cellrng`): the same
 seed gives the same bytes; a band's row phases do not depend on the region's extent, and a
@@ -222,6 +224,29 @@ def spread(jitter: np.ndarray) -> float:
     return float(np.sqrt((jitter**2).sum(axis=1).mean())) if len(jitter) else 0.0
 
 
+def rows_repeat_within(exemplar: Exemplar, order: Order) -> float:
+    """Share of the tile's exact rows whose kinds, in order along the row, repeat at a whole
+    fraction of the period (a row of one kind, or kinds alternating, …); 0 when there are none.
+
+    A row runs on whole along itself at any phase :func:`redraw` gives it, so a row whose kinds
+    come in an order that repeats only at the tile's period (FGDC 654: six kinds) repeats at
+    ``(w, 0)`` whatever its phase: redrawn it loses likeness and still repeats, and the tile is
+    better stamped (reviewer, 2026-12-04).
+    """
+    row, _, axis, _ = exact_rows(exemplar, order)
+    if axis is None:
+        return 0.0
+    kind, along = exemplar.motifs.kind, exemplar.motifs.xy[:, axis] % exemplar.period[axis]
+    rows = np.unique(row)
+    repeats = 0
+    for q in rows:  # a few dozen rows of a tile
+        m = np.flatnonzero(row == q)
+        seq = kind[m[np.argsort(along[m], kind="stable")]]
+        n = len(seq)
+        repeats += any(n % p == 0 and np.array_equal(seq, np.roll(seq, p)) for p in range(1, n // 2 + 1))
+    return repeats / len(rows)
+
+
 def rows_fit(exemplar: Exemplar, order: Order, distance: np.ndarray) -> float:
     """Share of (row, phase) pairs of the tile whose row, moved alone to that phase, keeps the
     distance rule with the rest of the tile (across its edges); 0 when the tile has no exact rows.
@@ -307,9 +332,19 @@ def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last:
     across = motifs.xy[first_of, 1 - axis]
     near = [(a, b, e) for a in rows for b in rows for e in (0, 1)
             if (e == 1 or a < b) and abs(across[b] + e * period[1 - axis] - across[a]) < reach + 1e-9]  # fmt: skip
-    if not near:
-        shifts = np.zeros((last - first + 1, len(rows)))
-        return np.arange(first, last + 1), shifts
+    attempt = np.zeros(n, dtype=np.int64)
+    settled = np.zeros(n, dtype=bool)
+
+    def shift_of(w: np.ndarray) -> np.ndarray:
+        u = cellrng.uniform(key, _ROW, band[w], r[w], attempt[w])
+        drawn = phases[np.minimum((u * len(phases)).astype(int), len(phases) - 1)]
+        return np.where(
+            settled[w], 0.0, (drawn - phase[first_of[r[w]]] + step / 2) % step - step / 2
+        )
+
+    keep = (band >= first) & (band <= last)
+    if not near:  # no two rows come within the rule's reach: each keeps its first drawn phase
+        return np.arange(first, last + 1), shift_of(np.flatnonzero(keep)).reshape(last - first + 1, len(rows))
     pa, pb, pe = (np.array(v) for v in zip(*near, strict=True))
     # world pairs: (band β, row a) against (band β + e, row b)
     wa = (np.arange(hi - lo + 1)[:, None] * len(rows) + pa[None]).ravel()
@@ -334,16 +369,6 @@ def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last:
         return np.tile(m_, 3), xy, np.tile(g, 3)
 
     priority = cellrng.uniform(key, _ORDER, band, r)
-    attempt = np.zeros(n, dtype=np.int64)
-    settled = np.zeros(n, dtype=bool)
-
-    def shift_of(w: np.ndarray) -> np.ndarray:
-        u = cellrng.uniform(key, _ROW, band[w], r[w], attempt[w])
-        drawn = phases[np.minimum((u * len(phases)).astype(int), len(phases) - 1)]
-        return np.where(
-            settled[w], 0.0, (drawn - phase[first_of[r[w]]] + step / 2) % step - step / 2
-        )
-
     for _ in range(2 * ROW_ROUNDS):
         ma, xa, ga = stretch(wa, shift_of(wa))
         mb, xb, gb = stretch(wb, shift_of(wb))
@@ -363,7 +388,5 @@ def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last:
             break
         attempt[loser] += 1
         settled[loser[attempt[loser] >= ROW_ROUNDS]] = True
-    shifts = np.zeros(n)
-    shifts[:] = shift_of(np.arange(n))
-    keep = (band >= first) & (band <= last)
+    shifts = shift_of(np.arange(n))
     return np.arange(first, last + 1), shifts[keep].reshape(last - first + 1, len(rows))

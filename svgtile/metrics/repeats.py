@@ -25,11 +25,11 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.analysis.order import DIVIDE_MAX, DIVIDE_MIN, SHORT_PERIOD
+from svgtile.analysis.order import DIVIDE_MAX, DIVIDE_MIN, SHORT_PERIOD, exact_partners
 from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
-from svgtile.metrics.order import BOX, explained, order_steps
+from svgtile.metrics.order import BOX, EXACT, explained, order_steps
 from svgtile.metrics.window import exemplar_size, in_window, motif_sample, spacing
 
 #: Repetition: displacements are binned on a grid of this many mean spacings …
@@ -207,7 +207,7 @@ def repetition(
             total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     centres = (peaks + 0.5) * q
-    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s)
+    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s)
     floor = _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)
     best = None
     for k, (mx, my) in enumerate(peaks):
@@ -259,7 +259,7 @@ def _peaks(cell: np.ndarray, half: int, most: int) -> np.ndarray:
 
 
 def _reduced_shares(
-    exemplar: Exemplar, shifts: np.ndarray, steps: np.ndarray, half: float, shortest: float
+    exemplar: Exemplar, shifts: np.ndarray, steps: np.ndarray, half: float, shortest: float, tol: float
 ) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift, read modulo the exemplar's exact order (step 5).
 
@@ -270,13 +270,17 @@ def _reduced_shares(
     :func:`_exemplar_shares` over ``v`` and its reductions ``v − t``, ``t`` the lattice points
     around ``v`` (the four of the cell ``v`` lies in; rows: the two multiples of the step either
     side), leaving out a reduction whose ``± half`` square holds the origin (a motif would be
-    its own partner).  Example: Equinor 40100, dots on an exact (16, 16) / (−16, 16) lattice with
+    its own partner).  A reduction counts only partners that are themselves on the lattice (a
+    same-kind motif within ``tol`` one step on, either way, along every generator): the partner
+    ``t`` further on is then the same neighbour seen again; a jittered partner is not repeated
+    by the lattice, so content jittered off it and stamped at the period stays caught even where
+    the rest of the tile keeps the steps.  Example: Equinor 40100, dots on an exact (16, 16) / (−16, 16) lattice with
     a second, offset site lattice half filled by each kind; a stamp's partner at (8, −56) is the
     tile's own (8, 8) neighbour one period down, which the exemplar shows.  A tile with no exact
     order (jittered, irregular) is read as before: its stamped period is never reduced.
 
     ``shifts`` (k, 2) float, user units; ``steps`` (m, 2) float, m ≤ 2; ``half``, ``shortest``
-    as in :func:`_exemplar_shares`.
+    as in :func:`_exemplar_shares`; ``tol`` user units, the exact steps' tolerance.
     """
     shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
     if len(steps) == 0 or len(shifts) == 0:
@@ -296,10 +300,16 @@ def _reduced_shares(
     owner = np.tile(np.arange(len(shifts)), len(cand))
     cand = np.concatenate(cand)
     keep = np.abs(cand).max(axis=1) > half
-    keep[: len(shifts)] = True  # v itself, as before
-    share = _exemplar_shares(exemplar, cand[keep], half, shortest)
-    out = np.zeros(len(shifts))
-    np.maximum.at(out, owner[keep], share)
+    out = _exemplar_shares(exemplar, shifts, half, shortest)  # v itself, as before
+    keep[: len(shifts)] = False
+    if keep.any():
+        xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+        period = getattr(exemplar, "period", None)
+        on = np.ones(len(xy), dtype=bool)
+        for step in g:
+            on &= exact_partners(xy, kind, period, step, tol)
+        share = _exemplar_shares(exemplar, cand[keep], half, shortest, partners=on)
+        np.maximum.at(out, owner[keep], share)
     return out
 
 
@@ -346,7 +356,7 @@ def _rows_floor(exemplar: Exemplar, shifts: np.ndarray, lam_ref: np.ndarray, q: 
 
 
 def _exemplar_shares(
-    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float
+    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float, partners: np.ndarray | None = None
 ) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift, step 5 of :func:`repetition`.
 
@@ -361,7 +371,7 @@ def _exemplar_shares(
     not repeat at a fraction of the period to that precision).
 
     ``shifts`` (k, 2) float, user units, the squares' centres ``v``; ``half`` and ``shortest``
-    user units.
+    user units; ``partners`` (n,) bool or None: only these motifs count as partners (all if None).
     """
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     out = np.zeros(len(shifts))
@@ -380,7 +390,8 @@ def _exemplar_shares(
     row, col = np.nonzero(seen)
     # one tree over every kind: each kind's motifs moved apart along x by more than any reach
     apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
-    tree = cKDTree(np.c_[xy[:, 0] + kind * apart, xy[:, 1]])
+    mate = slice(None) if partners is None else partners
+    tree = cKDTree(np.c_[xy[mate, 0] + kind[mate] * apart, xy[mate, 1]])
     found = tree.query_ball_point(
         np.c_[tx[row, col] + kind[col] * apart, ty[row, col]], e[row], p=np.inf, return_length=True
     )
