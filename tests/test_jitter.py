@@ -206,3 +206,12 @@ def test_rows_whose_kinds_repeat_only_at_the_period_are_told():
     ex2 = exemplar(pts, kinds, size=(TILE, TILE), period=True)
     assert exact_rows(ex2, read_order(ex2))[2] == 0  # rows along x
     assert rows_repeat_within(ex2, read_order(ex2)) == 0.0
+
+
+def test_redraw_jitter_on_an_exemplar_with_no_period_is_refused():
+    """A drawn exemplar has no tile to redraw: a clear error, not a silent stamp (reviewer, 2026-12-04)."""
+    from svgtile.errors import ParameterError
+
+    ex = exemplar(grid_points(), size=(TILE, TILE))
+    with pytest.raises(ParameterError, match="no repeating tile"):
+        synthesize(ex, Region.rectangle(80, 80), "tile", seed=1, params={"redraw_jitter": True})

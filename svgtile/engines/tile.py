@@ -42,6 +42,7 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import motif_radius
 from svgtile.core.region import Region
 from svgtile.engines.base import Context, EngineParams, param
+from svgtile.errors import ParameterError
 
 _PRIORITY = 0  # hash stream: which motif of a conflicting pair leaves the tiling
 
@@ -84,7 +85,10 @@ class TileEngine:
         ctx.progress("seams", 0.0)
         keep = periodic_keep(ctx.exemplar, ctx.stats, key=ctx.key)
         ctx.progress("tiles", 0.3)
-        if p.redraw_jitter and ctx.exemplar.period is not None:
+        if p.redraw_jitter and ctx.exemplar.period is None:
+            raise ParameterError(f"{ctx.exemplar.source}: --redraw-jitter redraws a repeating tile's jitter, and this "
+                                 "exemplar is no repeating tile (no svgtile:period; `svgtile import` makes one)")  # fmt: skip
+        if p.redraw_jitter:
             from svgtile.analysis.order import read_order
             from svgtile.engines.jitter import redraw
 
