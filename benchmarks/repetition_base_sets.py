@@ -22,10 +22,10 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, "tests")
-from test_wholeset import gate_region, motif_tiles
+from test_wholeset import gate_region, motif_tiles, scored_window
 
 from svgtile.engines import synthesize
-from svgtile.metrics import interior, repetition
+from svgtile.metrics import repetition
 from svgtile.metrics.order import order_steps
 from svgtile.metrics.repeats import REPEAT_MIN
 from svgtile.metrics.window import spacing
@@ -46,9 +46,7 @@ for prefix in only:
         if ordered and not len(order_steps(ex, spacing(stats), REPEAT_MIN * spacing(stats))):
             continue
         region = gate_region(t.box, len(ex.motifs))
-        win = interior(ex, region)
-        if win.is_empty or win.area <= 0:
-            win = region.shape
+        win = scored_window(ex, region)
         out = []
         for eng in engines:
             arr = synthesize(ex, region, eng, seed=1, stats=stats).arrangement

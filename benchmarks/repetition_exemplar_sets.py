@@ -11,10 +11,10 @@ from __future__ import annotations
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import gate_region, motif_tiles
+from test_wholeset import gate_region, motif_tiles, scored_window
 
 from svgtile.engines import synthesize
-from svgtile.metrics import interior, repetition
+from svgtile.metrics import repetition
 
 args = sys.argv[1:]
 engines = args[: args.index("--")] if "--" in args else args
@@ -22,9 +22,7 @@ only = args[args.index("--") + 1 :] if "--" in args else []
 engines = engines or ["auto", "tile", "random"]
 for tile, t, ex, stats in motif_tiles(only):
     region = gate_region(t.box, len(ex.motifs))
-    win = interior(ex, region)
-    if win.is_empty or win.area <= 0:
-        win = region.shape
+    win = scored_window(ex, region)
     out = []
     for eng in engines:
         arr = synthesize(ex, region, eng, seed=1, stats=stats).arrangement

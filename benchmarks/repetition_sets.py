@@ -12,11 +12,11 @@ import math
 import sys
 
 sys.path.insert(0, "tests")
-from test_wholeset import motif_tiles
+from test_wholeset import motif_tiles, scored_window
 
 from svgtile.core.region import Region
 from svgtile.engines import synthesize
-from svgtile.metrics import interior, repetition
+from svgtile.metrics import repetition
 
 only = sys.argv[1:]
 for tile, t, ex, stats in motif_tiles(only):
@@ -25,9 +25,7 @@ for tile, t, ex, stats in motif_tiles(only):
     region = Region.rectangle(k * w, k * h * 0.75, x0, y0)
     out = []
     for eng in ("auto", "tile"):
-        win = interior(ex, region)
-        if win.is_empty or win.area <= 0:
-            win = region.shape
+        win = scored_window(ex, region)
         s = repetition(synthesize(ex, region, eng, seed=1, stats=stats).arrangement, ex, stats, win)
         out.append(f"{eng} {s.repetition:.3f}/{s.repetition_total:.3f}")
     print(f"{tile:36s} steps={len(s.order_steps)} " + "  ".join(out), flush=True)

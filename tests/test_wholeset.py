@@ -171,6 +171,15 @@ def gate_region(box: tuple[float, float, float, float], motifs: int) -> Region:
     return Region.rectangle(2 * m + a * w, 2 * m + a * h, x0, y0)
 
 
+def scored_window(ex, region: Region):
+    """The window a tile's texture is scored on: the region's interior (one tile in from every
+    side), or the whole region where that is empty (the benchmarks over the whole sets)."""
+    from svgtile.metrics import interior
+
+    win = interior(ex, region)
+    return region.shape if win.is_empty or win.area <= 0 else win
+
+
 def motif_tile(tile: str):
     """(imported tile, exemplar, stats) of ``tile`` ("set/stem"); None if the importer refuses
     it, "cellular" if it is imported as cells (the benchmarks over the whole sets use it too)."""
