@@ -321,17 +321,19 @@ def row_shifts(exemplar: Exemplar, stats: Stats, order: Order, first: int, last:
     rows = np.unique(row)
     first_of = np.unique(row, return_index=True)[1]
     phases = phase[first_of]
-    # a redraw moves a conflict on by one row a round at most: settle enough bands around
-    margin = math.ceil(2 * ROW_ROUNDS / len(rows)) + 1
-    lo, hi = first - margin, last + margin
-    band = np.repeat(np.arange(lo, hi + 1), len(rows))
-    r = np.tile(rows, hi - lo + 1)
-    n = len(band)
     # neighbouring rows: (r, r', band offset e) whose motifs can come within the rule's reach
     reach = 2 * float(motif_radius(motifs, exemplar.prototypes).max()) + float(stats.distance.max())
     across = motifs.xy[first_of, 1 - axis]
     near = [(a, b, e) for a in rows for b in rows for e in (0, 1)
             if (e == 1 or a < b) and abs(across[b] + e * period[1 - axis] - across[a]) < reach + 1e-9]  # fmt: skip
+    # a redraw moves a conflict on by one near pair a round at most (one row, or farther where the
+    # reach spans several): settle enough bands around the ones asked for
+    hop = max((abs(across[b] + e * period[1 - axis] - across[a]) for a, b, e in near), default=0.0)
+    margin = max(math.ceil(2 * ROW_ROUNDS / len(rows)), math.ceil(2 * ROW_ROUNDS * hop / period[1 - axis])) + 1
+    lo, hi = first - margin, last + margin
+    band = np.repeat(np.arange(lo, hi + 1), len(rows))
+    r = np.tile(rows, hi - lo + 1)
+    n = len(band)
     attempt = np.zeros(n, dtype=np.int64)
     settled = np.zeros(n, dtype=bool)
 
