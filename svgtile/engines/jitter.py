@@ -38,7 +38,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from svgtile.analysis.order import EXACT_STEP, STEP_TOLERANCE, Order
-from svgtile.analysis.stats import Stats
+from svgtile.analysis.stats import Stats, periodic_block
 from svgtile.core import cellrng
 from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.conflicts import cull, find_conflicts
@@ -63,10 +63,8 @@ def jitters(exemplar: Exemplar, order: Order) -> np.ndarray:
     is ``xy_i`` less its site.  ``exemplar.period`` must be set.
     """
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
-    w, h = exemplar.period
-    shifts = np.array([(a * w, b * h) for a in (-1, 0, 1) for b in (-1, 0, 1)])
-    block = (xy[None] + shifts[:, None]).reshape(-1, 2)
-    bkind = np.tile(kind, len(shifts))
+    around = periodic_block(exemplar.motifs, exemplar.period)
+    block, bkind = around.xy, around.kind
     tol = STEP_TOLERANCE * order.spacing
     total, count = xy.copy(), np.ones(len(xy))
     for k in np.unique(kind):
@@ -265,10 +263,7 @@ def rows_fit(exemplar: Exemplar, order: Order, distance: np.ndarray) -> float:
     if axis is None:
         return 0.0
     motifs = exemplar.motifs
-    w, h = exemplar.period
-    shifts = np.array([(a * w, b * h) for a in (-1, 0, 1) for b in (-1, 0, 1)])
-    block = Arrangement(np.tile(motifs.kind, 9), (motifs.xy[None] + shifts[:, None]).reshape(-1, 2),
-                        np.tile(motifs.angle, 9), np.tile(motifs.scale, 9))  # fmt: skip
+    block = periodic_block(motifs, exemplar.period)
     brow = np.tile(row, 9)
     rows = np.unique(row)
     phases = phase[np.unique(row, return_index=True)[1]]
