@@ -319,7 +319,20 @@ def numbered(keys: list | tuple) -> np.ndarray:
 
 def first_groups(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The first element of each distinct value of ``key`` (n,), increasing, and each element's
-    group, groups numbered in order of first appearance."""
+    group, groups numbered in order of first appearance.  ``key`` is non-negative; where its
+    values are few against n (a texture's kinds: they are, 177k motifs have some ten), one pass
+    over it instead of a sort (25 ms of the 177k-motif texture's read)."""
+    n = len(key)
+    top = int(key.max()) + 1 if n else 0
+    if 0 < top <= 4 * n:
+        at = np.full(top, n, dtype=np.int64)
+        np.minimum.at(at, key, np.arange(n, dtype=np.int64))
+        present = np.flatnonzero(at < n)
+        first = at[present]
+        order = np.argsort(first, kind="stable")
+        group_of_key = np.empty(top, dtype=np.int64)
+        group_of_key[present[order]] = np.arange(len(present))
+        return first[order], group_of_key[key]
     groups, first, member = np.unique(key, return_index=True, return_inverse=True)
     order = np.argsort(first, kind="stable")
     kind_of_group = np.empty(len(groups), dtype=np.int64)
@@ -397,8 +410,10 @@ def pose(columns: tuple[list[str], ...] | list[list[str]], suffix: np.ndarray) -
     a, b, c, d, e, f = m
     mat = np.zeros((n, 3, 3))
     mat[:, 0], mat[:, 1], mat[:, 2, 2] = np.stack([a, c, e], 1), np.stack([b, d, f], 1), 1.0
-    # the reader's walk: identity (root, group) @ transform @ translation(x = 0, y = 0)
-    mat = np.eye(3) @ mat @ np.eye(3)
+    # the reader's walk: identity (root, group) @ transform @ translation(x = 0, y = 0); a product
+    # with the identity is each entry plus zeros, which only turns a −0 into +0: ``+ 0.0`` does
+    # the same, bit for bit (two batched 3 × 3 products of 177k matrices cost 20 ms)
+    mat += 0.0
     lin = mat[:, :2, :2]
     det = np.linalg.det(lin)
     if (np.abs(det) < 1e-12).any():
