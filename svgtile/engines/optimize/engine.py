@@ -29,13 +29,34 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
 
 
 #: Side of the start's patches cut from a repeating tile that the solver refills (:func:`.init.seamless`
-#: is false): this share of the tile's shorter period, so that a window with its overlap (σ = 0.25)
-#: stays within one period and holds no repeat of it, and at most :data:`MAX_CELL` exemplar
-#: spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 / 0.82 / 0.80
-#: → 0.77 / 0.83 / 0.88, density / ρ 0.87 / 0.85 / 0.83 → 0.91–0.95; 626 and 641, tiles of
-#: 5.6–5.9 spacings, at 12: repetition 0.50 and 0.25, their tile's period inside each patch).
-TILE_CELL = 0.8
+#: is false): this share of the tile's shorter period — the whole of it: the tile's content is
+#: seamless up to its period, so the patch holds no seam of its own — and at most :data:`MAX_CELL`
+#: exemplar spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 /
+#: 0.82 / 0.80 → 0.77 / 0.83 / 0.88; 626 and 641, tiles of 5.6–5.9 spacings, at 12: repetition
+#: 0.50 and 0.25, their tile's period inside each patch).  0.8 → 1.0 with the seeded first
+#: search (:data:`SEEDED`), overlap 0.25, FGDC's 90 tiles (2 × 2 tiles, seed 1): every bound met
+#: 28 → 42, median L 0.82 → 0.84, L ≥ 0.85 31 → 44; but 642 density / ρ 0.93 → 1.16 (3 large
+#: motifs carry 85 % of its cover: 19 in the region for its 12) and 629 L 0.87 → 0.84, which
+#: :data:`REFILL_OVERLAP` undoes.
+TILE_CELL = 1.0
 MAX_CELL = 12.0
+#: How far the start's patches reach past their cells (σ, a fraction of the cell) where the
+#: solver refills: not at all.  The overlap is there so that seams, once culled, are not sparser
+#: than the exemplar; insertion refills them here.  With patches of the tile's whole period the
+#: overlap strips held a second phase of the tile, whose large motifs culling keeps (the smaller
+#: leave first) and whose mismatched neighbourhoods the solver does not undo.  0.25 → 0, FGDC's
+#: 90 tiles (2 × 2 tiles, seed 1, with TILE_CELL 1.0 and the seeded search): every bound met 42 →
+#: 67, median L 0.84 → 0.91, L ≥ 0.85 44 → 73, density in bounds 88 → 88 (642 1.16 → 0.99, 641
+#: 0.87 → 1.02; 606 0.90 → 0.89, 614 0.95 → 0.90 out), repetition ≤ 0.2 87 → 85 (664 0.07 →
+#: 0.22, 653 0.15 → 0.22: whole-period patches put more of the tile side by side).
+REFILL_OVERLAP = 0.0
+#: Patches of at least this many exemplar spacings seed the solver's first search with the
+#: exemplar motif each start motif was copied from (:func:`.init.patch_start` ``sources``,
+#: :func:`.solver.refine` ``first``; §4.1–4.2: a motif copied with its neighbours has its own
+#: source as its best match, which the hashed first candidates, 48 of the tile's motifs, may miss
+#: on a tile of hundreds).  Below it (drawn exemplars at the default ``start_cell``, tiles under
+#: 12 spacings) the first search is unchanged, so are their textures.
+SEEDED = 12.0
 
 
 @dataclass(frozen=True)
@@ -52,7 +73,8 @@ class OptimizeParams(EngineParams):
         Side of the start's patches, exemplar spacings (§4.1: the neighbourhood's extent); on a
         repeating tile the solver refills, larger up to the tile's size (:func:`start_side`).
     start_overlap : float ≥ 0
-        How far each start patch reaches past its cell, a fraction of the cell.
+        How far each start patch reaches past its cell, a fraction of the cell (on a repeating
+        tile the solver refills, :data:`REFILL_OVERLAP` instead).
     anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
     """
 
@@ -95,11 +117,16 @@ def start_side(exemplar: Exemplar, start_cell: float, refill: bool) -> float:
     spacings.  Each seam of the start loses motifs to culling and L to mismatched neighbourhoods;
     a tile's own content is seamless up to its period, so patches as large as it allows have the
     fewest seams without repeating it."""
-    spacing = float(np.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1)))
+    spacing = _spacing(exemplar)
     cell = start_cell * spacing
     if refill and exemplar.period is not None:
         cell = max(cell, min(TILE_CELL * min(exemplar.period), MAX_CELL * spacing))
     return cell
+
+
+def _spacing(exemplar: Exemplar) -> float:
+    """The exemplar's mean spacing ``sqrt(area / motifs)``, user units."""
+    return float(np.sqrt(exemplar.region.area / max(len(exemplar.motifs), 1)))
 
 
 class OptimizeEngine:
@@ -127,10 +154,14 @@ class OptimizeEngine:
         refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
         settings = replace(p.settings(), insert=refill)
         ctx.progress("patches", 0.0)
-        arr = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=start_side(ex, p.start_cell, refill),
-                          overlap=p.start_overlap, flow=ctx.controls.flow, refill=refill)  # fmt: skip
+        cell = start_side(ex, p.start_cell, refill)
+        seeded = cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9)  # MAX_CELL's cap is SEEDED spacings exactly
+        start = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
+                            overlap=REFILL_OVERLAP if refill else p.start_overlap,
+                            flow=ctx.controls.flow, refill=refill, sources=seeded)  # fmt: skip
+        arr, first = start if seeded else (start, None)
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
-                        flow=ctx.controls.flow, settings=settings, progress=ctx.progress)  # fmt: skip
+                        flow=ctx.controls.flow, settings=settings, progress=ctx.progress, first=first)  # fmt: skip
         return arr
 
     def reach(self, exemplar: Exemplar, params: OptimizeParams) -> float:

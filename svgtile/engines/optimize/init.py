@@ -47,7 +47,8 @@ _THIN = 74
 
 
 def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
-                cell: float, overlap: float, flow: FlowField | None = None, refill: bool = False) -> Arrangement:  # fmt: skip
+                cell: float, overlap: float, flow: FlowField | None = None, refill: bool = False,
+                sources: bool = False) -> Arrangement | tuple[Arrangement, np.ndarray]:  # fmt: skip
     """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
 
     Parameters
@@ -66,15 +67,18 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
         the density.  (The thinning that follows is left as it is: thinned by size too, a tile
         of discs and dots kept 34 % discs for the exemplar's 25 %; counting only the motifs
         whose centroid lies in the region, FGDC 612's L fell 0.77 → 0.64 for no density.)
+    sources : whether to return, with the start, where each of its motifs was copied from
 
     Returns
     -------
-    Arrangement with no conflicts, kept by the boundary mode.
+    Arrangement with no conflicts, kept by the boundary mode; with ``sources``, also (n,) int,
+    the index of the exemplar motif each of its motifs is a copy of (the first search's seeds,
+    :func:`.solver.refine`'s ``first``).
     """
     motifs, protos = exemplar.motifs, exemplar.prototypes
     period = getattr(exemplar, "period", None)
     if seamless(exemplar, flow):
-        return period_start(exemplar, stats, region, boundary)
+        return period_start(exemplar, stats, region, boundary, sources=sources)
     x0, y0, x1, y1 = exemplar.region.bounds
     win = cell * (1.0 + overlap)
     pts, src = motifs.xy, np.arange(len(motifs))
@@ -117,8 +121,9 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
         area = footprint_areas(arr, protos)
         priority -= SIZE * area / max(float(area.max(initial=0.0)), 1e-12)
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), priority)
-    arr = arr.take(keep)
-    return arr.take(thin(arr, exemplar, stats, region, key=key, window=2 * cell))
+    arr, e = arr.take(keep), e[keep]
+    kept = thin(arr, exemplar, stats, region, key=key, window=2 * cell)
+    return (arr.take(kept), e[kept]) if sources else arr.take(kept)
 
 
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
@@ -149,7 +154,8 @@ def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
     return True
 
 
-def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str) -> Arrangement:
+def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
+                 sources: bool = False) -> Arrangement | tuple[Arrangement, np.ndarray]:  # fmt: skip
     """The repeating tile on its own period over ``region`` (§4.1's patches, seamless).
 
     Copy ``(a, b)`` of the exemplar's motifs is translated by ``(a·W, b·H)``, ``(W, H)`` the
@@ -161,7 +167,8 @@ def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str
 
     Returns
     -------
-    Arrangement with no conflicts, kept by the boundary mode.
+    Arrangement with no conflicts, kept by the boundary mode; with ``sources``, also (n,) int,
+    the exemplar motif each motif is a copy of (as :func:`patch_start`).
     """
     motifs, protos = exemplar.motifs, exemplar.prototypes
     w, h = exemplar.period
@@ -180,7 +187,7 @@ def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str
     # the later copy's motif leaves: (row of copies, copy in the row, motif), all world-anchored
     order = (np.repeat(B * (i.max() - i.min() + 1) + A, m) * m + np.tile(np.arange(m), len(A)))[near]
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), order.astype(np.float64))
-    return arr.take(keep)
+    return (arr.take(keep), np.tile(np.arange(m), len(A))[near][keep]) if sources else arr.take(keep)
 
 
 def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, key: int,

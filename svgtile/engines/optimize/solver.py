@@ -74,8 +74,8 @@ class Settings:
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
            iterations: int, key: int, flow: FlowField | None = None, settings: Settings = Settings(),
-           progress: Callable[[str, float], None] | None = None,
-           samples: Samples | None = None) -> tuple[Arrangement, list[float]]:  # fmt: skip
+           progress: Callable[[str, float], None] | None = None, samples: Samples | None = None,
+           first: np.ndarray | None = None) -> tuple[Arrangement, list[float]]:  # fmt: skip
     """``iterations`` of Pseudocode 1 starting from ``arr``.
 
     Parameters
@@ -88,6 +88,13 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
     flow : the local orientation field (§5, eq. (7)), or None
     settings : solver settings
     progress : called as ``progress(stage, fraction)`` each iteration, the stage naming the energy
+    first : (n,) int or None — the first search's matches, one exemplar sample per element of
+        ``arr`` (in its order): the exemplar motif each was copied from
+        (:func:`.init.patch_start` with ``sources``).  A motif copied with its neighbours has its
+        source as its best match (§4.1–4.2: its neighbourhood is the source's, but at the patch's
+        seams), so the first pass takes them instead of searching ``FIRST_CANDIDATES`` samples
+        by hash, and later passes propagate them by k-coherence as usual.  Used with one sample
+        per motif only (ignored with elongated samples, whose indices are not the motifs').
 
     Returns
     -------
@@ -101,8 +108,10 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
         return arr, energies
     s = settings
     # reading order: ties (equal costs, equal votes) go by position, not by where an engine put a motif
-    arr = arr.take(np.lexsort((arr.xy[:, 0], arr.xy[:, 1])))
+    order = np.lexsort((arr.xy[:, 0], arr.xy[:, 1]))
+    arr = arr.take(order)
     lay = layout(exemplar.prototypes, s.elongated)
+    seeds = None if first is None or lay is not None else np.asarray(first, dtype=np.int64)[order]
     if samples is None:
         ex_samples = None
         if lay is not None:
@@ -124,11 +133,17 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             sarr = Arrangement(sattr, sxy, arr.angle[owner], arr.scale[owner])
         turn = local_turn(flow, sarr.xy)
         hoods = output_neighbourhoods(sarr.xy, sarr.kind, s.neighbours, samples.spacing, turn)
-        if match is None:
-            cand = first_candidates(samples, sarr.xy, sarr.kind, key=key)
-        else:
+        if match is None and seeds is not None:
+            # the seeds as the one candidate each: the search keeps them, pairs and costs them;
+            # the kind vote then weighs the k-coherence candidates they propose, as later passes'
+            match, cost, slots = search(samples, hoods, sarr.kind, seeds[:, None], s.alpha)
             cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
-        match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
+        else:
+            if match is None:
+                cand = first_candidates(samples, sarr.xy, sarr.kind, key=key)
+            else:
+                cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
+            match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
         if s.insert and lay is None and 0 < it < iterations - 1:
             grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
             if len(chosen):  # the grown output searched again, the new elements from their predicted samples
