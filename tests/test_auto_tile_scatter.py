@@ -31,7 +31,8 @@ def test_drawn_scatter_and_repeating_rows_keep_their_engines():
     drawn = exemplar(random_points(100))  # the same marks with no period: patch's defaults, as before
     o = read_order(drawn)
     assert (o.period, o.kind) == (None, "scatter")
-    assert (choose(drawn, analyze(drawn)).engine, choose(drawn, analyze(drawn)).rule) == ("patch", "scatter")
+    c = choose(drawn, analyze(drawn), order=o)
+    assert (c.engine, dict(c.params), c.rule) == ("patch", {}, "scatter")
     lattice = exemplar(grid_points(), period=True)  # a repeating lattice stays on its period
     assert choose(lattice, analyze(lattice)).rule == "tile-order"
 

@@ -106,8 +106,9 @@ def _steps(o: Order) -> str:
 #: 606, 612–614, 681–685, 715, 723 at 0.203–0.417, gone on 605, 608, 702, 722, 730 and four leaf
 #: types), no overlaps or violators either way; whole-set KNOWN entries 79 → 44.  Its cost (synth
 #: over the gate region, a loaded 2-core machine): 16 s → 104 s over the 35, 0.6–3× patch's on 20
-#: of them, up to 150× on large tiles (FGDC 603, 990 motifs: 0.1 s → 15 s; 609, 655: 13 s).  Drawn scatters (no period: the bundled exemplars) keep
-#: patch's defaults, their textures byte-identical.
+#: of them, up to 150× on large tiles (FGDC 603, 990 motifs: 0.1 s → 15 s; 609, 655: 13 s).
+#: Drawn scatters (no period: the bundled exemplars) keep patch's defaults, their textures
+#: byte-identical (240 × 160, seed 1).
 RULES: tuple[Rule, ...] = (
     Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
          lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "
