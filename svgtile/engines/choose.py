@@ -95,6 +95,20 @@ def _steps(o: Order) -> str:
 #: the tile's exact period makes patch's copies the tile itself (L 1.000, density 1.000 on the 20
 #: regular FGDC/osm-carto tiles), and growth, which on a tile keeps to the tile's own sites, gives
 #: the same figures (L 1.000, density 1.000–1.001, repetition equal) 20–100 times slower.
+#:
+#: Repeating tiles of scattered marks (``tile-scatter``: a period, no rows or lattice; FGDC
+#: breccias, conglomerates, tills, 601–730, and the osm-carto leaf-type and unpaved symbols, 35
+#: of the 146 gate tiles) go to optimize: with patch's defaults likeness was L −0.04–0.68 (34
+#: below 0.6), with optimize 0.67–0.85 (none below 0.6, 11 at 0.8 or more), mean 0.27 → 0.77
+#: (tests/test_wholeset.py's gates, seed 1, gate_region; benchmarks/wholeset_figures.py).  Its
+#: density stays in 0.9–1.1 on 33 of 35 (32 with patch; 605 0.94 → 0.85, 714 0.99 → 0.87), kind-mix
+#: TV > 0.05 on 7 (9; 605 0.050 → 0.078, 606 0.049 → 0.061 new), repetition > 0.2 on 12 (10; new on
+#: 606, 612–614, 681–685, 715, 723 at 0.203–0.417, gone on 605, 608, 702, 722, 730 and four leaf
+#: types), no overlaps or violators either way; whole-set KNOWN entries 79 → 44.  Its cost (synth
+#: over the gate region, a loaded 2-core machine): 16 s → 104 s over the 35, 0.6–3× patch's on 20
+#: of them, up to 150× on large tiles (FGDC 603, 990 motifs: 0.1 s → 15 s; 609, 655: 13 s).
+#: Drawn scatters (no period: the bundled exemplars) keep patch's defaults, their textures
+#: byte-identical (240 × 160, seed 1).
 RULES: tuple[Rule, ...] = (
     Rule("cellular", lambda o, s, e: e.cellular is not None, "cellular", {},
          lambda o: "a bedded or brick pattern (imported as cells): courses of cells that turn the unit's corners "
@@ -120,6 +134,10 @@ RULES: tuple[Rule, ...] = (
     Rule("drawn-order", lambda o, s, e: o.period is None and o.kind != "scatter", "growth", {},
          lambda o: f"drawn {'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}): grown motif by "
                    "motif from the exemplar's neighbourhoods, so rows and lattices continue"),
+    Rule("tile-scatter", lambda o, s, e: o.period is not None and o.kind == "scatter", "optimize", {},
+         lambda o: "a repeating tile of scattered marks, no rows or lattice to keep: copies of the tile, then "
+                   "every mark's neighbours pulled towards the tile's own, so the marks keep their spacing and "
+                   "mix without the seams and turned copies of the patch engine"),
     Rule("scatter", lambda o, s, e: True, "patch", {},
          lambda o: "no repeating rows or lattice to keep: the patch engine's defaults" if o.kind == "scatter" else
                    f"{'a lattice' if o.kind == 'lattice' else 'rows'} (steps {_steps(o)}), but the options given or "
