@@ -79,3 +79,19 @@ def test_on_real_tiles_auto_is_likelier_than_patch_and_passes_the_likeness_gate(
     _, _, L_auto = W.figures(tile)
     _, _, L_patch = W.figures(tile, "patch")
     assert L_auto >= 0.6 > L_patch and L_auto > L_patch + 0.2
+
+
+#: Gate tiles whose start patches, when they were the tile's whole period (opt14g), repeated the
+#: tile side by side: every pair of neighbouring patches is the whole tile at two phases, so all of
+#: a patch's marks recur at one displacement (repetition 0.60, 0.64, 0.66 on FGDC 684, 686, 715).
+SIDE_BY_SIDE = ["fgdc/684", "fgdc/686"]
+
+
+@pytest.mark.parametrize("tile", SIDE_BY_SIDE)
+def test_start_patches_smaller_than_the_period_do_not_repeat_the_tile_side_by_side(tile):
+    import test_wholeset as W
+
+    if not W.DATA.is_dir():
+        pytest.skip("../shared/data (real symbol sets) is not beside the checkout")
+    s, _, L = W.figures(tile)
+    assert s.repetition <= 0.2 and L >= 0.6, (s.repetition, s.repetition_vector, L)

@@ -37,8 +37,15 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
 #: search (:data:`SEEDED`), overlap 0.25, FGDC's 90 tiles (2 × 2 tiles, seed 1): every bound met
 #: 28 → 42, median L 0.82 → 0.84, L ≥ 0.85 31 → 44; but 642 density / ρ 0.93 → 1.16 (3 large
 #: motifs carry 85 % of its cover: 19 in the region for its 12) and 629 L 0.87 → 0.84, which
-#: :data:`REFILL_OVERLAP` undoes.
-TILE_CELL = 1.0
+#: :data:`REFILL_OVERLAP` undoes.  1.0 → 0.65 (2026-12-05): two patches cut at independent phases
+#: of a tile of period w with side f·w share about f² of their marks, all at one displacement —
+#: at f = 1 every pair of neighbouring patches is the whole tile twice, side by side.  On the gate
+#: regions of issue 12 (3 × 3 periods, tests/test_wholeset.py, seed 1), the 35 tiles auto sends
+#: here, f = 1.0 / 0.8 / 0.72 / 0.65: repetition > 0.2 on 21 / 15 / 15 / 5 (FGDC 684, 686, 715:
+#: 0.60, 0.64, 0.66 at 1.0 → 0.17, 0.17, 0.18), every bound met 14 / 19 / 19 / 21, kind-mix TV
+#: > 0.05 on 4 / 7 / 6 / 11, mean L 0.85 / 0.82 / 0.82 / 0.80 (benchmarks/README.md).  The
+#: 2 × 2-tile figures above saw little of it: their interior holds about one patch.
+TILE_CELL = 0.65
 MAX_CELL = 12.0
 #: How far the start's patches reach past their cells (σ, a fraction of the cell) where the
 #: solver refills: not at all.  The overlap is there so that seams, once culled, are not sparser
