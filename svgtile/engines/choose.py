@@ -107,8 +107,9 @@ def _steps(o: Order) -> str:
 #: types), no overlaps or violators either way; whole-set KNOWN entries 79 → 44.  Its cost (synth
 #: over the gate region, a loaded 2-core machine): 16 s → 104 s over the 35, 0.6–3× patch's on 20
 #: of them, up to 150× on large tiles (FGDC 603, 990 motifs: 0.1 s → 15 s; 609, 655: 13 s).
-#: Since optimize's refilled start takes patches of 0.65 of the period, with no overlap and the
-#: seeded first search (2026-12-05, optimize/engine.py TILE_CELL): L 0.66–0.90, mean 0.80 (19 at
+#: Since optimize's refilled start takes patches of 0.65 of the period, with no overlap (and the
+#: seeded first search on 11 of the 35, the tiles of 18.5 spacings or more; 2026-12-05,
+#: optimize/engine.py TILE_CELL): L 0.66–0.90, mean 0.80 (19 at
 #: 0.8 or more), density in bounds on 34 (606 0.88), TV > 0.05 on 11, repetition > 0.2 on 5
 #: (605, 606, 682, 723, 725 at 0.21–0.25), every bound met on 21 of the 35 (20 before, 14 with
 #: patches of the whole period); KNOWN entries for them 21 → 17; 215 s over the 35.

@@ -29,9 +29,9 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
 
 
 #: Side of the start's patches cut from a repeating tile that the solver refills (:func:`.init.seamless`
-#: is false): this share of the tile's shorter period — the whole of it: the tile's content is
-#: seamless up to its period, so the patch holds no seam of its own — and at most :data:`MAX_CELL`
-#: exemplar spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 /
+#: is false): this share of the tile's shorter period — large, for the tile's content is seamless
+#: up to its period and every seam costs L, but well short of the whole of it, which neighbouring
+#: patches would repeat side by side (below) — and at most :data:`MAX_CELL` exemplar spacings (FGDC 606, 616, 617 at 5, 8 and 12 spacings: L 0.48 / 0.71 / 0.71 → 0.75 /
 #: 0.82 / 0.80 → 0.77 / 0.83 / 0.88; 626 and 641, tiles of 5.6–5.9 spacings, at 12: repetition
 #: 0.50 and 0.25, their tile's period inside each patch).  0.8 → 1.0 with the seeded first
 #: search (:data:`SEEDED`), overlap 0.25, FGDC's 90 tiles (2 × 2 tiles, seed 1): every bound met
@@ -44,7 +44,9 @@ if TYPE_CHECKING:  # the solver (numba, scipy.sparse) is imported when the engin
 #: here, f = 1.0 / 0.8 / 0.72 / 0.65: repetition > 0.2 on 21 / 15 / 15 / 5 (FGDC 684, 686, 715:
 #: 0.60, 0.64, 0.66 at 1.0 → 0.17, 0.17, 0.18), every bound met 14 / 19 / 19 / 21, kind-mix TV
 #: > 0.05 on 4 / 7 / 6 / 11, mean L 0.85 / 0.82 / 0.82 / 0.80 (benchmarks/README.md).  The
-#: 2 × 2-tile figures above saw little of it: their interior holds about one patch.
+#: 2 × 2-tile figures above saw little of it: that region is scored whole, and its dozen pairs of
+#: neighbouring patches, each at its own displacement, dilute the mode that one period of
+#: interior, seeing one or two pairs, finds.
 TILE_CELL = 0.65
 MAX_CELL = 12.0
 #: How far the start's patches reach past their cells (σ, a fraction of the cell) where the
@@ -61,8 +63,12 @@ REFILL_OVERLAP = 0.0
 #: exemplar motif each start motif was copied from (:func:`.init.patch_start` ``sources``,
 #: :func:`.solver.refine` ``first``; §4.1–4.2: a motif copied with its neighbours has its own
 #: source as its best match, which the hashed first candidates, 48 of the tile's motifs, may miss
-#: on a tile of hundreds).  Below it (drawn exemplars at the default ``start_cell``, tiles under
-#: 12 spacings) the first search is unchanged, so are their textures.
+#: on a tile of hundreds).  Below it (drawn exemplars at the default ``start_cell``, tiles whose
+#: :data:`TILE_CELL` share of the period is under 12 spacings — periods under about 18.5
+#: spacings) the first search is unchanged, so are their textures.  Seeding keeps copies as
+#: copies: at 7.8 spacings (what 12 was of a whole-period patch) on the 35 gate tiles of
+#: TILE_CELL's note, 11 → 24 of them seeded, mean L 0.796 → 0.804, repetition > 0.2 on 5 → 9,
+#: every bound met 21 → 20 — kept at 12.
 SEEDED = 12.0
 
 
@@ -122,8 +128,8 @@ def start_side(exemplar: Exemplar, start_cell: float, refill: bool) -> float:
     neighbourhood's extent), or on a repeating tile that the solver refills (``refill``) the
     larger of that and :data:`TILE_CELL` of the tile's shorter period, at most :data:`MAX_CELL`
     spacings.  Each seam of the start loses motifs to culling and L to mismatched neighbourhoods;
-    a tile's own content is seamless up to its period, so patches as large as it allows have the
-    fewest seams without repeating it."""
+    a tile's own content is seamless up to its period, so large patches have few seams; but two
+    patches of the whole period are the whole tile twice, side by side, hence a share of it."""
     spacing = _spacing(exemplar)
     cell = start_cell * spacing
     if refill and exemplar.period is not None:
