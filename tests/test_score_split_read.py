@@ -153,23 +153,26 @@ def test_a_worker_forked_before_the_document_was_read_leaves_its_part_here(tmp_p
 
 
 @pytest.mark.skipif(not FORK, reason="no fork on this system: svgtile score reads in one process")
-def test_the_hand_over_returns_once_the_worker_has_begun_and_leaves_no_descriptor_open(tmp_path):
+def test_this_process_scans_its_part_once_the_worker_has_begun_and_leaves_no_descriptor_open(tmp_path, monkeypatch):
     """The executor's threads need the GIL to pass the task on, and this process's own scan holds
-    it for long stretches: the worker began up to 0.13 s late (score11f).  ``start_block`` now
-    returns only once the worker has said it began (a byte on the lent document's pipe), and
-    the pipe is closed when the document is taken back."""
+    it for long stretches: the worker began up to 0.13 s late (score11f).  ``cut_document`` now
+    scans this process's part only once the worker has said it began (a byte on the lent
+    document's pipe), and the pipe is closed when the document is taken back."""
     import os
     import select
 
     _varied_texture(tmp_path / "t.svg")
     data = (tmp_path / "t.svg").read_bytes()
     fds = sorted(os.listdir("/proc/self/fd")) if Path("/proc/self/fd").is_dir() else None
+    begun = []
     with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
-        block = start_block(data, pool, 1)
+        block = start_block(data, pool, 1)  # the worker is forked here, before the patch below
         assert block is not None and block.far is not None
-        begun = uselines._LENT[3][0]
-        assert select.select([begun], [], [], 0)[0] == [begun], "the worker had not begun"
+        pipe = uselines._LENT[3][0]
+        here = uselines.scan
+        monkeypatch.setattr(uselines, "scan", lambda text: begun.append(select.select([pipe], [], [], 0)[0]) or here(text))
         assert uselines.cut_document(data, block) is not None
+    assert begun == [[pipe]], "this process scanned before the worker had begun"
     assert uselines._LENT is None
     if fds is not None:
         assert sorted(os.listdir("/proc/self/fd")) == fds

@@ -203,10 +203,11 @@ def _await_start(serial: int, far: Future) -> None:
     as ``serial`` (or ``far`` is done, or :data:`START_WAIT` has passed).
 
     The task reaches the worker through the executor's two threads of this process, and each
-    needs the GIL; the caller goes straight on to scan its own part, whose regular expression
-    holds the GIL for ≈ 0.08 s on the 177k-motif texture — the worker began that much later
-    (0.01–0.13 s after the hand-over, benchmarks/README.md "score11f").  Waiting here
-    lets those threads run at once (a few ms)."""
+    needs the GIL; :func:`cut_document` scans this process's part, whose regular expression
+    holds the GIL for ≈ 0.08 s on the 177k-motif texture — the worker began up to that much
+    later (0.01–0.13 s after the hand-over, benchmarks/README.md "score11f").  Waiting there
+    first lets those threads run at once (a few ms), with any task the caller handed the
+    worker after :func:`start_block` (``svgtile score``: the baselines)."""
     lent = _LENT
     if lent is None or lent[0] != serial:
         return
@@ -271,7 +272,6 @@ def start_block(data: bytes, pool: Executor | None, split_above: int) -> Block |
         if far is None:
             take_back(serial)
         else:
-            _await_start(serial, far)
             rest, last = (serial, middle + 1, last), middle
     try:
         body = data[first:last].decode("utf-8")
@@ -286,6 +286,8 @@ def cut_document(data: bytes, block: Block) -> tuple[bytes, OwnLines] | None:
     """The document cut to the first ``<use>`` of each group, and the lines scanned (both
     parts' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it (or
     not UTF-8)."""
+    if block.far is not None:  # the worker first: this thread's scan holds the GIL for long
+        _await_start(block.rest[0], block.far)
     lines = scan(block.body)
     if block.far is None:
         return _cut(data, block, lines) if lines is not None else None
