@@ -153,8 +153,10 @@ START_WAIT = 0.5
 
 
 def lend(data: bytes) -> int:
-    """Put ``data`` where a worker forked from now on finds it (:func:`scan_lent`), and return
-    its serial number, which such a worker holds too; :func:`take_back` releases it here."""
+    """Put ``data`` where a worker forked from now on finds it (:func:`scan_lent`), with a pipe
+    for it to say it has begun (:func:`_await_start`), and return its serial number, which such a
+    worker holds too; :func:`take_back` releases it here (a document lent before and not taken
+    back is released first: one is lent at a time)."""
     global _LENT
     if _LENT is not None:  # one document lent at a time: the one before is not wanted
         take_back(_LENT[0])
@@ -172,6 +174,7 @@ def take_back(serial: int) -> None:
 
 
 def _close(fds: tuple[int, ...]) -> None:
+    """Close the descriptors ``fds``, those already closed left as they are."""
     for fd in fds:
         try:
             os.close(fd)
@@ -200,21 +203,34 @@ def scan_lent(serial: int, start: int, stop: int) -> OwnLines | bool | None:
 
 def _await_start(serial: int, far: Future) -> None:
     """Wait, the GIL released, until the worker has begun :func:`scan_lent` of the document lent
-    as ``serial`` (or ``far`` is done, or :data:`START_WAIT` has passed).
+    as ``serial`` (or ``far`` is done, or :data:`START_WAIT` has passed).  Only a worker forked
+    after :func:`lend` signals: one in this process (a thread) never does, and then this waits
+    until its part is done.
 
     The task reaches the worker through the executor's two threads of this process, and each
     needs the GIL; :func:`cut_document` scans this process's part, whose regular expression
-    holds the GIL for ≈ 0.08 s on the 177k-motif texture — the worker began up to that much
-    later (0.01–0.13 s after the hand-over, benchmarks/README.md "score11f").  Waiting there
-    first lets those threads run at once (a few ms), with any task the caller handed the
-    worker after :func:`start_block` (``svgtile score``: the baselines)."""
+    holds the GIL for ≈ 0.08 s on the 177k-motif texture — the worker's scan began up to 0.13 s
+    after this process's (benchmarks/README.md "score11f").  Waiting there first lets those
+    threads run at once (a few ms), with any task the caller handed the worker after
+    :func:`start_block` (``svgtile score``: the baselines).  Only time is at stake: where the
+    pipe cannot be polled (no ``select.poll``, Windows), this does not wait."""
     lent = _LENT
     if lent is None or lent[0] != serial:
+        return
+    try:
+        poller = select.poll()
+        poller.register(lent[3][0], select.POLLIN)
+    except (AttributeError, OSError, ValueError):
         return
     deadline = time.monotonic() + START_WAIT
     while not far.done():
         left = deadline - time.monotonic()
-        if left <= 0 or select.select([lent[3][0]], [], [], min(left, 0.01))[0]:
+        if left <= 0:
+            return
+        try:
+            if poller.poll(min(left, 0.01) * 1000.0):
+                return
+        except (OSError, ValueError):
             return
 
 
