@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import json
 import multiprocessing
+import os
+import select
 from concurrent.futures import (
     BrokenExecutor,
     Executor,
@@ -150,6 +152,49 @@ def test_a_worker_forked_before_the_document_was_read_leaves_its_part_here(tmp_p
         serial, _ = _read_both(tmp_path / "t.svg", ex, pool)
     assert len(futures) == 1 and futures[0].result() is False and len(serial[0]) > 100
     assert uselines._LENT is None, "the document is not held after the read"
+
+
+@pytest.mark.skipif(not FORK, reason="no fork on this system: svgtile score reads in one process")
+def test_this_process_scans_its_part_once_the_worker_has_begun_and_leaves_no_descriptor_open(tmp_path, monkeypatch):
+    """The executor's threads need the GIL to pass the task on, and this process's own scan holds
+    it for long stretches: the worker's scan began up to 0.13 s after this process's (score11f).  ``cut_document`` now
+    scans this process's part only once the worker has said it began (a byte on the lent
+    document's pipe), and the pipe is closed when the document is taken back."""
+    monkeypatch.setattr(uselines, "START_WAIT", 30.0)  # a slow fork on a loaded machine is no failure
+    _varied_texture(tmp_path / "t.svg")
+    data = (tmp_path / "t.svg").read_bytes()
+    fds = sorted(os.listdir("/proc/self/fd")) if Path("/proc/self/fd").is_dir() else None
+    begun = []
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
+        block = start_block(data, pool, 1)  # the worker is forked here, before the patch below
+        assert block is not None and block.far is not None
+        pipe = uselines._LENT[3][0]
+        here = uselines.scan
+        monkeypatch.setattr(uselines, "scan", lambda text: begun.append(select.select([pipe], [], [], 0)[0]) or here(text))
+        assert uselines.cut_document(data, block) is not None
+    assert begun == [[pipe]], "this process scanned before the worker had begun"
+    assert uselines._LENT is None
+    if fds is not None:
+        assert sorted(os.listdir("/proc/self/fd")) == fds
+
+
+@pytest.mark.skipif(not FORK, reason="no fork on this system: svgtile score reads in one process")
+def test_a_pipe_that_cannot_be_polled_costs_the_wait_not_the_read(tmp_path, monkeypatch):
+    """The wait only saves time: where the pipe cannot be polled (no ``select.poll``, a descriptor
+    ``poll`` refuses) the read goes on at once and reads the same."""
+
+    class NoPoll:
+        POLLIN = select.POLLIN
+
+        @staticmethod
+        def poll():
+            raise OSError("no poll here")
+
+    ex = _varied_texture(tmp_path / "t.svg")
+    monkeypatch.setattr(uselines, "select", NoPoll)
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
+        serial, _ = _read_both(tmp_path / "t.svg", ex, pool)
+    assert len(serial[0]) > 100 and uselines._LENT is None
 
 
 @pytest.mark.parametrize("n", [1, 2, 3, 7])

@@ -17,7 +17,9 @@ import itertools
 import math
 import os
 import re
+import select
 import sys
+import time
 from concurrent.futures import BrokenExecutor, Executor, Future
 from dataclasses import dataclass
 from operator import itemgetter
@@ -139,19 +141,27 @@ class Block:
 
 
 #: The document the worker of ``svgtile score`` finds in its memory, forked after the file was
-#: read (:func:`lend`): ``(serial, data, pid of the lender)``, or None.  The worker scans its part
-#: of the lines there instead of receiving the text through a pipe (≈ 6 MB of the 177k-motif
-#: texture: pickled, written and read back, and the worker started scanning only then).
-_LENT: tuple[int, bytes, int] | None = None
+#: read (:func:`lend`): ``(serial, data, pid of the lender, started)``, or None.  The worker scans
+#: its part of the lines there instead of receiving the text through a pipe (≈ 6 MB of the
+#: 177k-motif texture: pickled, written and read back, and the worker started scanning only then).
+#: ``started`` is the pipe (read end, write end) on which a worker says it has begun
+#: (:func:`_await_start`).
+_LENT: tuple[int, bytes, int, tuple[int, int]] | None = None
 _SERIAL = itertools.count(1)
+#: The longest the lender waits for its worker to say it has begun (:func:`_await_start`), s.
+START_WAIT = 0.5
 
 
 def lend(data: bytes) -> int:
-    """Put ``data`` where a worker forked from now on finds it (:func:`scan_lent`), and return
-    its serial number, which such a worker holds too; :func:`take_back` releases it here."""
+    """Put ``data`` where a worker forked from now on finds it (:func:`scan_lent`), with a pipe
+    for it to say it has begun (:func:`_await_start`), and return its serial number, which such a
+    worker holds too; :func:`take_back` releases it here (a document lent before and not taken
+    back is released first: one is lent at a time)."""
     global _LENT
+    if _LENT is not None:  # one document lent at a time: the one before is not wanted
+        take_back(_LENT[0])
     serial = next(_SERIAL)
-    _LENT = (serial, data, os.getpid())
+    _LENT = (serial, data, os.getpid(), os.pipe())
     return serial
 
 
@@ -159,7 +169,17 @@ def take_back(serial: int) -> None:
     """Release the document lent as ``serial`` (:func:`lend`), if it is still the one lent."""
     global _LENT
     if _LENT is not None and _LENT[0] == serial:
+        _close(_LENT[3])
         _LENT = None
+
+
+def _close(fds: tuple[int, ...]) -> None:
+    """Close the descriptors ``fds``, those already closed left as they are."""
+    for fd in fds:
+        try:
+            os.close(fd)
+        except OSError:
+            pass
 
 
 def scan_lent(serial: int, start: int, stop: int) -> OwnLines | bool | None:
@@ -173,7 +193,45 @@ def scan_lent(serial: int, start: int, stop: int) -> OwnLines | bool | None:
         return False
     if lent[2] != os.getpid():  # a forked worker: the lender's copy is its own to keep
         _LENT = None
+        try:
+            os.write(lent[3][1], b"1")  # begun (_await_start)
+        except OSError:
+            pass
+        _close(lent[3])
     return _scan_bytes(lent[1], start, stop)
+
+
+def _await_start(serial: int, far: Future) -> None:
+    """Wait, the GIL released, until the worker has begun :func:`scan_lent` of the document lent
+    as ``serial`` (or ``far`` is done, or :data:`START_WAIT` has passed).  Only a worker forked
+    after :func:`lend` signals: one in this process (a thread) never does, and then this waits
+    until its part is done.
+
+    The task reaches the worker through the executor's two threads of this process, and each
+    needs the GIL; :func:`cut_document` scans this process's part, whose regular expression
+    holds the GIL for ≈ 0.08 s on the 177k-motif texture — the worker's scan began up to 0.13 s
+    after this process's (benchmarks/README.md "score11f").  Waiting there first lets those
+    threads run at once (a few ms), with any task the caller handed the worker after
+    :func:`start_block` (``svgtile score``: the baselines).  Only time is at stake: where the
+    pipe cannot be polled (no ``select.poll``, Windows), this does not wait."""
+    lent = _LENT
+    if lent is None or lent[0] != serial:
+        return
+    try:
+        poller = select.poll()
+        poller.register(lent[3][0], select.POLLIN)
+    except (AttributeError, OSError, ValueError):
+        return
+    deadline = time.monotonic() + START_WAIT
+    while not far.done():
+        left = deadline - time.monotonic()
+        if left <= 0:
+            return
+        try:
+            if poller.poll(min(left, 0.01) * 1000.0):
+                return
+        except (OSError, ValueError):
+            return
 
 
 def _scan_bytes(data: bytes, start: int, stop: int) -> OwnLines | None:
@@ -244,6 +302,8 @@ def cut_document(data: bytes, block: Block) -> tuple[bytes, OwnLines] | None:
     """The document cut to the first ``<use>`` of each group, and the lines scanned (both
     parts' joined, :func:`joined`); None if a line is not a ``<use>`` as svgtile writes it (or
     not UTF-8)."""
+    if block.far is not None:  # the worker first: this thread's scan holds the GIL for long
+        _await_start(block.rest[0], block.far)
     lines = scan(block.body)
     if block.far is None:
         return _cut(data, block, lines) if lines is not None else None
