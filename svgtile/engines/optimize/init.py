@@ -59,8 +59,9 @@ SIZE = 1.0
 #: about 80 a pass), and tried again up to 0.75 spacings away they gave 620 0.01 of ρ.
 LATTICE_PHASES = True
 #: A lattice whose cell holds fewer motifs than this is not the lattice the motifs stand on (a
-#: short step between the marks of a pair or a cluster): :func:`lattice_steps` gives none.  FGDC 672 (0.36 motifs a cell, a step of 0.22 spacings) snapped to it:
-#: repetition 0.14 → 0.23, density / ρ 0.94 → 0.89; 680 (0.47): density 1.01 → 1.04.
+#: short step between the marks of a pair or a cluster): :func:`lattice_steps` gives none.
+#: FGDC 672 (0.36 motifs a cell, a step of 0.22 spacings) snapped to it: repetition 0.14 →
+#: 0.23, density / ρ 0.94 → 0.89; 680 (0.47): density 1.01 → 1.04.
 MIN_CELL_MOTIFS = 0.5
 
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
