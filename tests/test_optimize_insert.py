@@ -223,18 +223,15 @@ def test_the_start_of_a_refilled_tile_is_cut_in_large_patches_short_of_its_perio
     assert start_side(small, 1.0, True) == pytest.approx(TILE_CELL * min(small.period))
 
 
-@pytest.mark.parametrize("name", [
-    "606", "616",
-    pytest.param("617", marks=pytest.mark.xfail(strict=True, reason=(
-        "density / rho 0.896 measured (L 0.91): since the refilled start's patches are 0.65 of the "
-        "period, not the whole of it, and no longer seeded (0.915 at 1.0; optimize/engine.py TILE_CELL)")))])  # fmt: skip
+@pytest.mark.parametrize("name", ["606", "616", "617"])
 def test_the_light_fgdc_scatter_tiles_reach_the_density_bounds(name):
     """FGDC 606 (61 fragments drawn once among dots), 616 and 617 (dashes among dots): from
     patches of 5 spacings, and with every vote of a dot for a fragment taken, the optimize
     engine left them at 0.73, 0.84 and 0.83 of ρ (L 0.55, 0.74, 0.71; 2 × 2 tiles, seed 1).
     Large patches (:data:`~svgtile.engines.optimize.engine.TILE_CELL` of the period) and no
     shrinking vote where the texture is short bring them into 0.9–1.1 with L ≥ 0.75, no
-    conflict, no repetition (617: 0.896, an xfail since the patches are short of the period)."""
+    conflict, no repetition (617: 0.896 from patches 0.65 of the period at free phases; 0.94 with
+    their phases on its lattice, :func:`~svgtile.engines.optimize.init.lattice_steps`)."""
     from optimize_measure import measure
     from test_optimize_sets import SETS
 
@@ -289,3 +286,42 @@ def test_a_seeded_first_search_keeps_each_copied_motifs_source(monkeypatch):
     matches.clear()
     solver.refine(arr, ex, stats, region, "centroid", iterations=1, key=3)
     assert (matches[0] != src[order]).mean() > 0.1
+
+
+def jittered_lattice(jitter: float, steps: int = 4):
+    """A 24 × 18 tile of dots on a square lattice of step ``24 / steps``, each moved by up to
+    ``jitter`` (a fixed draw): of lattice order, but off any exact lattice, so it is refilled;
+    and the step."""
+    step = 24 / steps
+    sites = (np.stack(np.meshgrid(np.arange(steps), np.arange(round(18 / step))), -1).reshape(-1, 2) + 0.5) * step
+    sites = sites + np.random.default_rng(5).uniform(-jitter, jitter, sites.shape)
+    return parse_exemplar(tile(sites * [W / 24, H / 18], np.zeros(len(sites), int)).replace("#dash", "#dot")), step
+
+
+def test_refilled_patches_of_a_lattice_tile_stand_whole_steps_apart(monkeypatch):
+    """``patch_start(refill=True)`` on a tile of an inexact lattice: every patch is its copy of the
+    tile moved by a whole number of lattice steps (rows run on across the seams); with
+    ``LATTICE_PHASES`` off, at free phases.  A lattice whose cell holds under
+    ``MIN_CELL_MOTIFS`` motifs is none."""
+    import svgtile.engines.optimize.init as init
+    from svgtile.engines.optimize.init import lattice_steps, patch_start, seamless
+
+    ex, step = jittered_lattice(0.4)
+    stats = analyze(ex)
+    steps = lattice_steps(ex)
+    assert not seamless(ex) and steps is not None
+    assert np.allclose(np.abs(steps).max(axis=1), step, atol=0.3)
+    region = Region.rectangle(4 * W, 4 * H)
+
+    def phases():
+        arr, src = patch_start(ex, stats, region, "centroid", key=3, cell=10.0, overlap=0.0, refill=True,
+                               sources=True)  # fmt: skip
+        t = (arr.xy - ex.motifs.xy[src]) @ np.linalg.inv(steps)  # translations in lattice steps
+        return np.abs(t - np.rint(t)).max()
+
+    assert phases() < 1e-3
+    monkeypatch.setattr(init, "LATTICE_PHASES", False)
+    assert phases() > 0.2
+    monkeypatch.setattr(init, "LATTICE_PHASES", True)
+    monkeypatch.setattr(init, "MIN_CELL_MOTIFS", 1.5)  # the 1 motif a cell of this tile: too few
+    assert lattice_steps(ex) is None

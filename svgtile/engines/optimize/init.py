@@ -17,6 +17,14 @@ tile's density.  Patches drawn from random places of the tile met at seams that 
 fifth of the motifs to culling (Equinor: density / ρ 0.74–0.84 on every tile).  Any other
 tile keeps the patches: repeated whole it would repeat at its period, and the solver inserts
 what the seams lost (:mod:`.insert`).
+
+A repeating tile of an inexact lattice — rows of dashes whose positions along the row wander
+(FGDC 616–621) — keeps its patches, but their phases are drawn on its lattice
+(:func:`lattice_steps`): each patch is still cut from a place of the tile drawn by the hash, but
+moved by less than a lattice step so that it stands one whole number of steps from every other
+patch.  Rows then run on across every seam; drawn at free phases, the rows of two neighbouring
+patches met at a seam at different heights, their dashes' ends broke the distance rule and one
+row in two lost its dash there — a gap shorter than a dash, which insertion cannot refill.
 """
 
 from __future__ import annotations
@@ -40,6 +48,21 @@ from svgtile.core.region import Region
 #: centre (over the cell side, ≤ ~0.6) in which of two conflicting start motifs leaves, when
 #: the smaller go first (``patch_start(refill=True)``).
 SIZE = 1.0
+
+#: Whether the start's patches on a refilled repeating tile of lattice order stand a whole
+#: number of lattice steps apart (:func:`lattice_steps`; the module notes).  FGDC's 90 tiles
+#: (benchmarks/optimize_sets.py, 2 × 2 tiles, seed 1): density / ρ 617 0.896 → 0.94, 619 0.88 →
+#: 0.96, 620 0.84 → 0.88, 621 0.89 → 0.93; density in bounds 83 → 86, every bound met 39 → 41
+#: (benchmarks/README.md, opt14h).  Measured where the rows lose motifs: the band of a tenth of
+#: the cell along the seams held 0.66–0.83 of ρ on 617, 619, 620, 621 (the cell's middle
+#: 0.9–1.1); most bins insertion was asked to fill broke the distance rule only (620: 64–69 of
+#: about 80 a pass), and tried again up to 0.75 spacings away they gave 620 0.01 of ρ.
+LATTICE_PHASES = True
+#: A lattice whose cell holds fewer motifs than this is not the lattice the motifs stand on (a
+#: short step between the marks of a pair or a cluster): :func:`lattice_steps` gives none.
+#: FGDC 672 (0.36 motifs a cell, a step of 0.22 spacings) snapped to it: repetition 0.14 →
+#: 0.23, density / ρ 0.94 → 0.89; 680 (0.47): density 1.01 → 1.04.
+MIN_CELL_MOTIFS = 0.5
 
 _SOURCE = 72  # hash streams: where each cell's patch comes from, and culling ties
 _TIE = 73
@@ -67,6 +90,8 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
         the density.  (The thinning that follows is left as it is: thinned by size too, a tile
         of discs and dots kept 34 % discs for the exemplar's 25 %; counting only the motifs
         whose centroid lies in the region, FGDC 612's L fell 0.77 → 0.64 for no density.)
+        And on a tile of lattice order, not turned by a flow field, the patches' phases are
+        drawn on its lattice (:func:`lattice_steps`, the module notes).
     sources : whether to return, with the start, where each of its motifs was copied from
 
     Returns
@@ -99,6 +124,11 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     centre = (np.stack([A, B], -1) + 0.5) * cell
     u = np.stack([cellrng.uniform(key, _SOURCE, A, B, 0), cellrng.uniform(key, _SOURCE, A, B, 1)], -1)
     source = lo + u * (hi - lo)  # (c, 2) window centres in the exemplar
+    steps = lattice_steps(exemplar) if refill and period is not None and flow is None else None
+    if steps is not None:
+        # each patch moved by less than a lattice cell, to a whole number of steps from every other
+        off = centre - source
+        source = centre - np.rint(off @ np.linalg.inv(steps)) @ steps
     # every motif of every window: (cells × motifs) masks, a cell's row at a time is small
     inside = (np.abs(pts[None, :, :] - source[:, None, :]) < win / 2).all(axis=-1)
     ci, mi = np.nonzero(inside)
@@ -124,6 +154,34 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
     arr, e = arr.take(keep), e[keep]
     kept = thin(arr, exemplar, stats, region, key=key, window=2 * cell)
     return (arr.take(kept), e[kept]) if sources else arr.take(kept)
+
+
+def lattice_steps(exemplar: Exemplar) -> np.ndarray | None:
+    """The lattice on which :func:`patch_start` draws its patches' phases on a repeating tile
+    (§4.1's patches, cut where the hash says but whole lattice steps apart).
+
+    Returns
+    -------
+    (2, 2) float, user units, rows the two steps of the tile's lattice order
+    (:func:`~svgtile.analysis.order.read_order`), neither of them its period and its cell
+    holding at least :data:`MIN_CELL_MOTIFS` motifs; None where there is no such lattice (or
+    :data:`LATTICE_PHASES` is off).
+    """
+    if not LATTICE_PHASES:
+        return None
+    order = read_order(exemplar)
+    period = exemplar.period
+    if order.kind != "lattice" or len(order.steps) < 2:
+        return None
+    tol = EXACT_STEP * math.sqrt(exemplar.region.area / len(exemplar.motifs))
+    steps = np.array([st.vector for st in order.steps[:2]], dtype=np.float64)
+    area = abs(float(np.linalg.det(steps)))
+    if any(is_period(g, period, tol) for g in steps) or area < 1e-9:
+        return None
+    # a lattice whose cell holds under MIN_CELL_MOTIFS motifs is not the one they stand on
+    if len(exemplar.motifs) * area / (period[0] * period[1]) < MIN_CELL_MOTIFS:
+        return None
+    return steps
 
 
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
