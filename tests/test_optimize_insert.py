@@ -8,6 +8,8 @@ many places are proposed, a lattice with holes takes as many as it lacks, the be
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from test_optimize_period import H, W, tile
@@ -325,3 +327,6 @@ def test_refilled_patches_of_a_lattice_tile_stand_whole_steps_apart(monkeypatch)
     monkeypatch.setattr(init, "LATTICE_PHASES", True)
     monkeypatch.setattr(init, "MIN_CELL_MOTIFS", 1.5)  # the 1 motif a cell of this tile: too few
     assert lattice_steps(ex) is None
+    monkeypatch.setattr(init, "MIN_CELL_MOTIFS", 0.5)
+    drawn = dataclasses.replace(ex, period=None)  # a drawn exemplar: no period, no lattice phases
+    assert lattice_steps(drawn) is None

@@ -19,10 +19,11 @@ tile keeps the patches: repeated whole it would repeat at its period, and the so
 what the seams lost (:mod:`.insert`).
 
 A repeating tile of an inexact lattice — rows of dashes whose positions along the row wander
-(FGDC 616–621) — keeps its patches, but their phases are drawn on its lattice
-(:func:`lattice_steps`): each patch is still cut from a place of the tile drawn by the hash, but
-moved by less than a lattice step so that it stands one whole number of steps from every other
-patch.  Rows then run on across every seam; drawn at free phases, the rows of two neighbouring
+(FGDC 616–621; 14 FGDC tiles and Equinor 50090 in all) — keeps its patches, but their phases are
+drawn on its lattice (:func:`lattice_steps`): each patch is still cut from a place of the tile
+drawn by the hash, but moved by at most half a step along each lattice direction so that it
+stands a whole number of steps from every other patch (as exactly as the analysis's averaged
+steps: on FGDC 619 the step across the rows reads 2.99–3.00 units for a true 2.977).  Rows then run on across every seam; drawn at free phases, the rows of two neighbouring
 patches met at a seam at different heights, their dashes' ends broke the distance rule and one
 row in two lost its dash there — a gap shorter than a dash, which insertion cannot refill.
 """
@@ -169,8 +170,10 @@ def lattice_steps(exemplar: Exemplar) -> np.ndarray | None:
     """
     if not LATTICE_PHASES:
         return None
+    period = getattr(exemplar, "period", None)
+    if period is None:
+        return None
     order = read_order(exemplar)
-    period = exemplar.period
     if order.kind != "lattice" or len(order.steps) < 2:
         return None
     tol = EXACT_STEP * math.sqrt(exemplar.region.area / len(exemplar.motifs))
