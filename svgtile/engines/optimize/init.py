@@ -23,9 +23,10 @@ A repeating tile of an inexact lattice — rows of dashes whose positions along 
 drawn on its lattice (:func:`lattice_steps`): each patch is still cut from a place of the tile
 drawn by the hash, but moved by at most half a step along each lattice direction so that it
 stands a whole number of steps from every other patch (as exactly as the analysis's averaged
-steps: on FGDC 619 the step across the rows reads 2.99–3.00 units for a true 2.977).  Rows then run on across every seam; drawn at free phases, the rows of two neighbouring
-patches met at a seam at different heights, their dashes' ends broke the distance rule and one
-row in two lost its dash there — a gap shorter than a dash, which insertion cannot refill.
+steps: on FGDC 619 the step across the rows reads 2.99–3.00 units for a true 2.977).  Rows then
+run on across every seam; drawn at free phases, the rows of two neighbouring patches met at a
+seam at different heights, their dashes' ends broke the distance rule and one row in two lost
+its dash there — a gap shorter than a dash, which insertion cannot refill.
 """
 
 from __future__ import annotations
