@@ -13,8 +13,9 @@ lattice, kinds and all, a motif's partner one period away is its neighbour insid
 again — the exemplar's share is read modulo that lattice; and where an exemplar is drawn in rows,
 partners at a whole row offset are as common as motifs thrown at random along a line — that is
 the chance there, not the plane's.  And what the figure cannot resolve it does not charge
-(rep13f): on a repeating tile each kind is read at its own step, and a row or lattice jittered by
-less than the figure's square shows its multiples to the square (:func:`_kind_shares`).
+(rep13f): on a repeating tile each kind is read at its own step, and a row or lattice whose
+motifs' offsets from their sites differ by less than the figure's square, at every multiple of its
+step the tile shows, shows the multiples beyond it (:func:`_kind_shares`).
 Repetition is what is left: the same cluster of irregular content recurring (a tile jittered
 beyond the square stamped, a patch or a run copied).
 """
@@ -55,9 +56,13 @@ REPEAT_EX_MIN = 10
 REPEAT_DIVIDE = DIVIDE_MIN  # the same divisors auto's stamp_repeats tries
 #: … and m at most this.
 REPEAT_DIVIDE_MAX = DIVIDE_MAX
+#: A kind's share of the exemplar's motifs at a shift counts where at least this many of them are
+#: seen (:func:`_kind_shares`; a share of fewer is noise, and a kind never so seen counts as not shown).
+REPEAT_KIND_MIN = 5
 #: A repeating tile shows a displacement v also where a kind repeats at v / m to within the
 #: square at each of the first this many multiples k · v / m (k < m) the tile can show, every one
-#: of them: a row or lattice jittered less than the figure can resolve (:func:`_kind_shares`).
+#: of them (and at every further multiple it can show): a row or lattice jittered less than the
+#: figure can resolve (:func:`_kind_shares`).
 REPEAT_RESOLVED = 3
 
 
@@ -145,7 +150,9 @@ def repetition(
        ``v`` (:func:`_reduced_shares`): in a tile that is its exact lattice, kinds and all, a
        partner one period further on is the same neighbour seen again.  On a repeating tile
        ``P_ex`` is at least :func:`_kind_shares`' reading: each kind at its own divisor of ``v``,
-       and rows or lattices jittered by less than the square shown at every multiple.
+       and rows or lattices whose step holds to the square at every multiple the tile shows.
+       It is asked only at the peaks with an excess left and at the first (the peak reported
+       when none is left), so ``repetition_exemplar`` is the reported peak's, either way.
     6. At random, a reference of kind c has a partner in a square with probability
        ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
        ``window``); ``P0`` is the mean of ``p_c`` over the references.  On a drawn exemplar
@@ -229,7 +236,7 @@ def repetition(
     order = (max(0.0, (raws[0] - chance) / (1.0 - chance)) if chance < 1 else 0.0, vectors[0])
     if total is None:  # _mode_share's figures of the same bin
         total = (order[0], raws[0], vectors[0])
-    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s, by_kind=False)
+    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s)
     base = np.maximum(np.maximum(chance, _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)), shown)
     if exemplar.period is not None:
         # a tile's kinds at their own steps (the reading can only raise P_ex, so it is asked only
@@ -274,9 +281,8 @@ def _peaks(cell: np.ndarray, half: int, most: int) -> np.ndarray:
 
 
 def _reduced_shares(
-    exemplar: Exemplar, shifts: np.ndarray, steps: np.ndarray, half: float, shortest: float, tol: float,
-    by_kind: bool = True,
-) -> np.ndarray:  # fmt: skip
+    exemplar: Exemplar, shifts: np.ndarray, steps: np.ndarray, half: float, shortest: float, tol: float
+) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift, read modulo the exemplar's exact order (step 5).
 
     Where the exemplar has an exact order (``steps``, :func:`svgtile.metrics.order.order_steps`,
@@ -296,12 +302,11 @@ def _reduced_shares(
     order (jittered, irregular) is read as before: its stamped period is never reduced.
 
     ``shifts`` (k, 2) float, user units; ``steps`` (m, 2) float, m ≤ 2; ``half``, ``shortest``
-    as in :func:`_exemplar_shares`; ``tol`` user units, the exact steps' tolerance; ``by_kind`` as
-    in :func:`_exemplar_shares`, for the shifts themselves.
+    as in :func:`_exemplar_shares`; ``tol`` user units, the exact steps' tolerance.
     """
     shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
     if len(steps) == 0 or len(shifts) == 0:
-        return _exemplar_shares(exemplar, shifts, half, shortest, by_kind=by_kind)
+        return _exemplar_shares(exemplar, shifts, half, shortest)
     g = np.asarray(steps[:2], np.float64)
     if len(g) == 1:
         gx, gy = g[0]
@@ -317,7 +322,7 @@ def _reduced_shares(
     owner = np.tile(np.arange(len(shifts)), len(cand))
     cand = np.concatenate(cand)
     keep = np.abs(cand).max(axis=1) > half
-    out = _exemplar_shares(exemplar, shifts, half, shortest, by_kind=by_kind)  # v itself, as before
+    out = _exemplar_shares(exemplar, shifts, half, shortest)  # v itself, as before
     keep[: len(shifts)] = False
     if keep.any():
         xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
@@ -325,7 +330,7 @@ def _reduced_shares(
         on = np.ones(len(xy), dtype=bool)
         for step in g:
             on &= exact_partners(xy, kind, period, step, tol)
-        share = _exemplar_shares(exemplar, cand[keep], half, shortest, partners=on, by_kind=False)
+        share = _exemplar_shares(exemplar, cand[keep], half, shortest, partners=on)
         np.maximum.at(out, owner[keep], share)
     return out
 
@@ -373,9 +378,8 @@ def _rows_floor(exemplar: Exemplar, shifts: np.ndarray, lam_ref: np.ndarray, q: 
 
 
 def _exemplar_shares(
-    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float, partners: np.ndarray | None = None,
-    by_kind: bool = True,
-) -> np.ndarray:  # fmt: skip
+    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float, partners: np.ndarray | None = None
+) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift, step 5 of :func:`repetition`.
 
     ``P_ex(v) = max_m S(v / m, half / m)`` over the whole divisors ``m ≥ 1`` with
@@ -389,9 +393,7 @@ def _exemplar_shares(
     not repeat at a fraction of the period to that precision).
 
     ``shifts`` (k, 2) float, user units, the squares' centres ``v``; ``half`` and ``shortest``
-    user units; ``partners`` (n,) bool or None: only these motifs count as partners (all if None);
-    ``by_kind``: on a repeating tile, at least :func:`_kind_shares`' reading (the shift itself;
-    :func:`_reduced_shares` asks its reductions without it).
+    user units; ``partners`` (n,) bool or None: only these motifs count as partners (all if None).
     """
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     out = np.zeros(len(shifts))
@@ -419,75 +421,77 @@ def _exemplar_shares(
     hits = np.bincount(row, weights=found > 0, minlength=len(m))
     share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
     np.maximum.at(out, peak, share)
-    if by_kind and exemplar.period is not None:
-        out = np.maximum(out, _kind_shares(exemplar, shifts, half, shortest, partners))
     return out
 
 
-def _kind_shares(
-    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float, partners: np.ndarray | None = None
-) -> np.ndarray:
+def _kind_shares(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float) -> np.ndarray:
     """(k,) float: ``P_ex`` of each shift on a repeating tile, each kind read at its own step and
-    to the figure's resolution (a floor under :func:`_exemplar_shares`'s, which it extends).
+    to the figure's resolution (a floor under :func:`_reduced_shares`', which it extends).
 
     :func:`_exemplar_shares` asks one divisor ``m`` of ``v`` to explain every kind, to within
     ``half / m``.  A tile of several kinds in rows has a step per kind (FGDC 670: dots every
-    1.798 units, 26 to the tile's width; dashes every ≈ 9.35, 5 to it, each dash jittered by up to
-    0.17 along its row), and a row jittered by less than the figure's square is, to the figure, a
-    row: a texture that keeps it — stamped or grown anew — meets a partner at the tile's width in
-    the square, as the tile meets one at each step it can show.  So for each kind ``c`` and
-    divisor ``m`` (``|v| / m ≥ shortest``, ``m ≤`` :data:`REPEAT_DIVIDE_MAX`):
+    1.798 units, 26 to the tile's width; dashes every ≈ 9.35, 5 to it, each dash moved by up to
+    0.17 along its row), and a row whose motifs' offsets from their sites differ by less than the
+    figure's square is, to the figure, a row: a texture that keeps it — stamped or grown anew —
+    meets a partner at the tile's width in the square, as the tile meets one at each multiple of
+    its step.  So for each kind ``c`` and divisor ``m`` (``|v| / m ≥ shortest``, ``m ≤``
+    :data:`REPEAT_DIVIDE_MAX`), with ``u = v / m``:
 
-    * *exact*: the share of c's motifs with a same-kind partner within ``half / m`` of ``x + v / m``
+    * *exact*: the share of c's motifs with a same-kind partner within ``half / m`` of ``x + u``
       (among those whose square lies in the tile's box), as in :func:`_exemplar_shares`;
-    * *resolved* (``m ≥ 2``): the share with a partner within ``half`` of ``x + k v / m`` at every
-      ``k = 1 … min(m − 1, REPEAT_RESOLVED)`` whose square lies in the box (at least one does),
-      counted only where the tile shows all :data:`REPEAT_RESOLVED` multiples (each with at least
+    * *resolved* (``m > REPEAT_RESOLVED``): the share with a partner within ``half`` of ``x + k u``
+      for **every** ``k = 1 … m − 1`` whose square lies in the box, counted only where the tile
+      shows at least the first :data:`REPEAT_RESOLVED` multiples (each with at least
       :data:`REPEAT_EX_MIN` motifs of any kind in the box): the step holds to the square at
-      every multiple the tile shows, so its jitter does not add up along the row.
+      every multiple the tile shows, so a texture that keeps it lands at ``v`` in the square.  A
+      step that drifts off ``u`` (a lattice of step 1.92 in a tile of 20: a seam every period,
+      which a texture keeping the step does not repeat at 20) misses a later multiple and is not
+      shown.
 
-    ``S_c(v)`` is the larger over both and every ``m`` (each ``m`` with at least
-    :data:`REPEAT_EX_MIN` motifs of any kind in the box), and a shift with both components beyond
-    the square is also shown as far as both its parts along the tile's axes are, ``min(S_c(v_x, 0),
-    S_c(0, v_y))`` (rows shown along x, stacked along y).  ``P_ex(v) = Σ_c f_c S_c(v)``, ``f_c``
-    the kind's share of the tile's motifs.  A stamp still counts wherever one kind's content is
-    irregular or jittered beyond the square at the tile's period: then ``S_c < 1`` there, while
-    the stamp repeats every motif (Equinor 50090 jittered by a bin: :func:`repetition` ≥ 0.8).
+    ``S_c(v)`` is the larger over both and every ``m``, 0 for a kind with fewer than
+    :data:`REPEAT_KIND_MIN` motifs in the box at every ``m`` (a share of a handful is noise).  A shift with
+    both components beyond the square is also shown as far as its parts along the tile's axes are
+    surely shown together: ``max(0, S_c(v_x, 0) + S_c(0, v_y) − 1)`` (rows shown along x, stacked
+    along y; the bound holds whichever motifs make up each share).  ``P_ex(v) = Σ_c f_c S_c(v)``,
+    ``f_c`` the kind's share of the tile's motifs.  A stamp still counts wherever one kind's
+    content is irregular or scattered beyond the square at the tile's period: then ``S_c < 1``
+    there, while the stamp repeats every motif (Equinor 50090 with every motif moved by up to a
+    bin: :func:`repetition` ≥ 0.8; by half a bin, two motifs' offsets differ by less than the
+    square and it is not charged).
 
-    ``shifts`` (k, 2) float, user units; ``half``, ``shortest`` user units; ``partners`` as in
-    :func:`_exemplar_shares`.
+    ``shifts`` (k, 2) float, user units; ``half`` (the square's half side) and ``shortest`` user units.
     """
     shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     if len(xy) == 0 or len(shifts) == 0:
         return np.zeros(len(shifts))
     freq = np.bincount(kind) / len(kind)
-    part = np.abs(shifts) > half
-    both = part.all(axis=1)
+    both = (np.abs(shifts) > half).all(axis=1)
+    nb = int(both.sum())
     axes = np.r_[shifts, shifts[both] * [1.0, 0.0], shifts[both] * [0.0, 1.0]]
-    per = _kind_resolved(exemplar, axes, half, shortest, partners)  # (k', c)
+    per = _kind_resolved(exemplar, axes, half, shortest)  # (k + 2 nb, c)
     main = per[: len(shifts)]
-    k2 = len(shifts) + np.arange(both.sum())
-    main[both] = np.maximum(main[both], np.minimum(per[k2], per[k2 + both.sum()]))
+    parts = per[len(shifts) : len(shifts) + nb] + per[len(shifts) + nb :] - 1.0
+    main[both] = np.maximum(main[both], parts)
     return main @ freq
 
 
-def _kind_resolved(
-    exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float, partners: np.ndarray | None
-) -> np.ndarray:
+def _kind_resolved(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float) -> np.ndarray:
     """(k, c) float: ``S_c`` of each shift and kind, the larger of :func:`_kind_shares`' two readings.
 
     Asked in the order that leaves least to ask: every divisor's step ``u = v / m`` to the square
     first (``k = 1``); a motif with no partner there has none to the square ÷ m either, and fails
-    the resolved reading; only divisors where some kind could beat the best exact share go on
-    to ``k = 2, 3``, and only for the motifs that have held so far.
+    the resolved reading; only divisors where some kind could beat the best exact share go on to
+    ``k = 2, 3, …``, and only for the motifs that have held so far.  (A motif whose square at
+    ``u`` is outside the tile's box but inside at ``k u`` — within ``half`` of the box's edge —
+    is left out of the resolved reading.)
     """
     xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
     kinds = int(kind.max()) + 1
     x0, y0, x1, y1 = exemplar.region.bounds
-    apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
-    mate = slice(None) if partners is None else partners
-    tree = cKDTree(np.c_[xy[mate, 0] + kind[mate] * apart, xy[mate, 1]])
+    # squares are asked only inside the box: each kind's partners moved apart by more than its size
+    apart = 4 * (x1 - x0 + y1 - y0 + half) + 1
+    tree = cKDTree(np.c_[xy[:, 0] + kind * apart, xy[:, 1]])
     onehot = np.eye(kinds, dtype=np.float64)[kind]  # (n, c)
 
     def probe(u: np.ndarray, e: np.ndarray, ask: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -510,40 +514,44 @@ def _kind_resolved(
     m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
     u = shifts[shift] / m[:, None]
     seen1, found1 = probe(u, np.full(len(m), half))
-    enough1 = seen1.sum(axis=1) >= REPEAT_EX_MIN
     out = np.zeros((len(shifts), kinds))
-    # the exact reading, v / m to the square ÷ m: a partner there is one in the square, and a
-    # square ÷ m near the box's edge may lie inside where the square does not
-    e = half / m
-    ask = found1 | ~seen1
-    seen, found = probe(u, e, ask)
+    # the exact reading, u to the square ÷ m: a partner there is one in the square, and a square
+    # ÷ m near the box's edge may lie inside where the square does not
+    seen, found = probe(u, half / m, found1 | ~seen1)
     ok = seen.sum(axis=1) >= REPEAT_EX_MIN
     if ok.any():
         np.maximum.at(out, shift[ok], _kind_share(found[ok], seen[ok], onehot))
-    # the resolved reading, k v / m to the square for k = 1 … min(m − 1, RESOLVED), where the tile
-    # shows each multiple; a square k u inside the box has x + u's inside too (the box is convex)
-    tries = (m >= 1 + REPEAT_RESOLVED) & enough1
+    # the resolved reading, k u to the square for every k < m (x + u's square is inside the box
+    # wherever x + k u's is, for a motif whose own square is: the box is convex)
+    tries = (m > REPEAT_RESOLVED) & (seen1.sum(axis=1) >= REPEAT_EX_MIN)
     if tries.any():
         bound = _kind_share(found1[tries], seen1[tries], onehot)  # S_c ≤ its share at k = 1
         better = (bound > out[shift[tries]]).any(axis=1)
         tries[np.flatnonzero(tries)[~better]] = False
     held = found1[tries]
-    for step in range(2, REPEAT_RESOLVED + 1):
-        if not tries.any():
+    for step in range(2, int(m[tries].max(initial=0))):
+        live = m[tries] > step  # the divisors with a multiple k = step < m left to ask
+        if not live.any():
             break
-        seen_k, found_k = probe(u[tries] * step, np.full(int(tries.sum()), half), held)
-        keep = seen_k.sum(axis=1) >= REPEAT_EX_MIN
-        held = (held & (found_k | ~seen_k))[keep]
-        tries[np.flatnonzero(tries)[~keep]] = False
+        at = np.flatnonzero(tries)[live]
+        seen_k, found_k = probe(u[at] * step, np.full(len(at), half), held[live])
+        held[live] &= found_k | ~seen_k
+        if step <= REPEAT_RESOLVED:  # the first multiples must be shown, each by enough motifs
+            gone = seen_k.sum(axis=1) < REPEAT_EX_MIN
+            if gone.any():
+                drop = np.flatnonzero(live)[gone]
+                tries[np.flatnonzero(tries)[drop]] = False
+                held = np.delete(held, drop, axis=0)
     if tries.any():
         np.maximum.at(out, shift[tries], _kind_share(held, seen1[tries], onehot))
     return out
 
 
 def _kind_share(hit: np.ndarray, seen: np.ndarray, onehot: np.ndarray) -> np.ndarray:
-    """(t, c) float: per test and kind, the share of the kind's seen motifs that hit (0 if none is seen)."""
+    """(t, c) float: per test and kind, the share of the kind's seen motifs that hit (0 where
+    fewer than :data:`REPEAT_KIND_MIN` of the kind are seen)."""
     hits, sees = (hit & seen).astype(np.float64) @ onehot, seen.astype(np.float64) @ onehot
-    return np.where(sees > 0, hits / np.maximum(sees, 1.0), 0.0)
+    return np.where(sees >= REPEAT_KIND_MIN, hits / np.maximum(sees, 1.0), 0.0)
 
 
 def _mode_share(
