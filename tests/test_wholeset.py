@@ -63,7 +63,7 @@ TILES = [f"{name}/{p.stem}" for name, folder in SETS.items() for p in sorted(fol
 #: (tile, figure) -> what was measured when this list was written (2026-12-02, seed 1; repetition
 #: re-measured with issue 12's figure the same day).  (fgdc/670's repetition 1.000 and fgdc/725's
 #: 0.212 left the list with rep13f, which reads each kind of a tile at its own step and to the
-#: figure's resolution: 0.000 and 0.175; tests/test_repetition_resolved.py.)
+#: figure's resolution: 0.000 and 0.190; tests/test_repetition_resolved.py.)
 KNOWN: dict[tuple[str, str], str] = {
     ("equinor/11026", "overlaps"): "0 overlaps, 0 violators, exemplar 4 overlapping pairs (pebbles and dashes 0.2 apart along each row; joined they would meet their own repeat, the importer's notes say so)",
     ("equinor/11026", "density"): "density/ρ 0.700 (2026-12-04; 0.749 at best with 0 overlaps: each tile must lose one motif of each of its two overlapping pairs, dens12c)",
