@@ -65,9 +65,11 @@ LOW_LIKENESS: dict[str, float] = {}
 #: "Why growth on FGDC 619, 620 and 670 cannot meet the repetition gate").
 #: (FGDC 660 and 668, bedded rows of marks imported as cells, measured 1.000 the same way when grown.)
 #: Issue 13's figure excuses what the exemplar shows inside itself (a row's exact step, and m
-#: steps of it to within 1/m of the box): 619 and 620 pass since (0.000); 670 does not (its
-#: shuffled rows still score ≥ 0.8 by it, test_the_tiles_own_rows_repeat_by_the_figure).
-REPEATS = {"670": 1.000}
+#: steps of it to within 1/m of the box): 619 and 620 pass since (0.000).  670 passes since
+#: rep13f (1.000 → 0.000): on a tile each kind is read at its own step, and its dashes, jittered
+#: along their rows by less than the figure's square, show the tile's width to the square at every
+#: multiple (tests/test_repetition_resolved.py).
+REPEATS: dict[str, float] = {}
 
 
 @cache
@@ -158,7 +160,8 @@ def test_the_tiles_own_rows_repeat_by_the_figure(name):
     ≥ 0.8 by the figure, at a displacement along a row.  When the figure learns to leave a
     row's exact step out this fails: measure the three again.  Issue 13's figure does (it
     excuses what the exemplar shows): 619 and 620's shuffled rows score ≤ 0.2 by it, and the
-    figure before (``repetition_order``) is kept here; 670 still repeats ≥ 0.8."""
+    figure before (``repetition_order``) is kept here; 670's since rep13f, which reads its dashes
+    (jittered along their rows by less than the figure's square) at their own step."""
     ex, st, region = region_of(name)
     per_row = np.bincount(tile_rows(ex, 0.5 * spacing(st)))
     assert len(per_row) == ROWS[name] and per_row.min() >= 5

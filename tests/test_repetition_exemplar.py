@@ -23,7 +23,7 @@ from test_wholeset import gate_region
 from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.apps.load import load_exemplar
 from svgtile.engines import synthesize
-from svgtile.metrics.repeats import _exemplar_shares
+from svgtile.metrics.repeats import _exemplar_shares, _kind_shares
 from svgtile.svg.reader import parse_exemplar
 from svgtile.tiles.importer import import_tile
 
@@ -151,17 +151,38 @@ def test_equinor_50090_is_a_4_by_4_stamp_of_an_exact_tile_so_stamping_it_is_fait
     assert rep.repetition_exemplar >= 0.95
 
 
-@needs_data
-@pytest.mark.parametrize("jitter", [0.4, 0.8])
-def test_equinor_50090_jittered_by_half_a_bin_or_more_and_stamped_is_repetition(jitter):
-    # the same tile with every motif moved by up to ± jitter (the bin is 0.8): no longer a stamp
-    # of a smaller tile, its period is not excused
+def jittered_50090(jitter: float):
+    """Equinor 50090 with every motif moved by up to ± ``jitter`` per axis (fixed draws): (exemplar, box)."""
     ex, box = equinor_50090()
     rng = np.random.default_rng(0)
     xy = ex.motifs.xy + rng.uniform(-jitter, jitter, ex.motifs.xy.shape)
-    jittered = dataclasses.replace(ex, motifs=dataclasses.replace(ex.motifs, xy=xy))
-    rep = stamped(jittered, box)
+    return dataclasses.replace(ex, motifs=dataclasses.replace(ex.motifs, xy=xy)), box
+
+
+@needs_data
+@pytest.mark.parametrize("jitter", [0.8, 1.6])
+def test_equinor_50090_jittered_by_a_bin_or_more_and_stamped_is_repetition(jitter):
+    # the same tile with every motif moved by up to ± jitter (the bin is 0.8, the figure's square
+    # ± 1.2): two motifs' jitters differ by more than the square, so the tile does not show its
+    # steps to the square at every multiple, and its period stamped is not excused
+    rep = stamped(*jittered_50090(jitter))
     assert rep.repetition >= 0.8
+    assert rep.repetition_exemplar < 0.95
+
+
+@needs_data
+def test_equinor_50090_jittered_by_half_a_bin_is_below_the_figures_square_and_not_charged():
+    # ± 0.4: any two motifs' jitters differ by at most 0.8 < 1.2, so the tile shows its steps to
+    # the square at every multiple it can — a texture that keeps its lattice, stamped or grown
+    # anew, meets a partner in the square at the period as the tile does one step on (rep13f;
+    # it was charged 1.000 before, when a step had to hold to the square ÷ m at m steps)
+    ex, box = jittered_50090(0.4)
+    rep = stamped(ex, box)
+    assert rep.repetition_raw == 1.0 and rep.repetition_exemplar == 1.0
+    assert rep.repetition <= 0.05
+    w = ex.region.bounds[2] - ex.region.bounds[0]
+    assert _kind_shares(ex, np.array([[w, 0.0]]), 1.2, 4.0)[0] == 1.0
+    assert _exemplar_shares(ex, np.array([[w, 0.0]]), 1.2, 4.0)[0] < 1.0  # the reading before rep13f
 
 
 def test_a_reference_whose_partners_all_lie_behind_it_scores_zero_not_an_error():

@@ -12,8 +12,12 @@ What a viewer sees, and what the figure therefore leaves out (rep13e): where a t
 lattice, kinds and all, a motif's partner one period away is its neighbour inside the tile seen
 again — the exemplar's share is read modulo that lattice; and where an exemplar is drawn in rows,
 partners at a whole row offset are as common as motifs thrown at random along a line — that is
-the chance there, not the plane's.  Repetition is what is left: the same cluster of irregular
-content recurring (a jittered tile stamped, a patch or a run copied).
+the chance there, not the plane's.  And what the figure cannot resolve it does not charge
+(rep13f): on a repeating tile each kind is read at its own step, and a row or lattice whose
+motifs' offsets from their sites differ by less than the figure's square, at every multiple of its
+step the tile shows, shows the multiples beyond it (:func:`_kind_shares`).
+Repetition is what is left: the same cluster of irregular content recurring (a tile jittered
+beyond the square stamped, a patch or a run copied).
 """
 
 from __future__ import annotations
@@ -52,6 +56,14 @@ REPEAT_EX_MIN = 10
 REPEAT_DIVIDE = DIVIDE_MIN  # the same divisors auto's stamp_repeats tries
 #: … and m at most this.
 REPEAT_DIVIDE_MAX = DIVIDE_MAX
+#: A kind's share of the exemplar's motifs at a shift counts where at least this many of them are
+#: seen (:func:`_kind_shares`; a share of fewer is noise, and a kind never so seen counts as not shown).
+REPEAT_KIND_MIN = 5
+#: A repeating tile shows a displacement v also where a kind repeats at v / m to within the
+#: square at each of the first this many multiples k · v / m (k < m) the tile can show, every one
+#: of them (and at every further multiple it can show): a row or lattice jittered less than the
+#: figure can resolve (:func:`_kind_shares`).
+REPEAT_RESOLVED = 3
 
 
 @dataclass(frozen=True)
@@ -136,7 +148,11 @@ def repetition(
        never excused — unless the exemplar has an exact order (step 2): then ``P_ex(v)`` is read
        modulo it, the most the exemplar shows at ``v − t`` for the lattice points ``t`` around
        ``v`` (:func:`_reduced_shares`): in a tile that is its exact lattice, kinds and all, a
-       partner one period further on is the same neighbour seen again.
+       partner one period further on is the same neighbour seen again.  On a repeating tile
+       ``P_ex`` is at least :func:`_kind_shares`' reading: each kind at its own divisor of ``v``,
+       and rows or lattices whose step holds to the square at every multiple the tile shows.
+       It is asked only at the peaks with an excess left and at the first (the peak reported
+       when none is left), so ``repetition_exemplar`` is the reported peak's, either way.
     6. At random, a reference of kind c has a partner in a square with probability
        ``p_c = 1 − exp(−λ_c · 9 q²)`` (Poisson, λ_c the kind's motifs per unit area in
        ``window``); ``P0`` is the mean of ``p_c`` over the references.  On a drawn exemplar
@@ -207,26 +223,32 @@ def repetition(
             total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     centres = (peaks + 0.5) * q
-    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s)
-    floor = _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)
-    best = None
-    for k, (mx, my) in enumerate(peaks):
+    raws, vectors = [], []
+    for mx, my in peaks:
         near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
         has = np.zeros(len(arr), dtype=bool)
         has[who[near]] = True
-        raw = float(has[ref].mean())
+        raws.append(float(has[ref].mean()))
         vector = disp[near].mean(axis=0)
-        vector = (float(vector[0]), float(vector[1]))
-        if k == 0:  # the single mode against chance alone: the figure of issue 12
-            order = (max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0, vector)
-            if total is None:  # _mode_share's figures of the same bin
-                total = (order[0], raw, vector)
-        base = max(chance, float(floor[k]), float(shown[k]))
-        excess = max(0.0, (raw - base) / (1.0 - base)) if base < 1 else 0.0
-        if best is None or excess > best[0]:
-            best = (excess, raw, vector, float(shown[k]))
+        vectors.append((float(vector[0]), float(vector[1])))
+    raws = np.array(raws)
+    # the single mode against chance alone: the figure of issue 12
+    order = (max(0.0, (raws[0] - chance) / (1.0 - chance)) if chance < 1 else 0.0, vectors[0])
+    if total is None:  # _mode_share's figures of the same bin
+        total = (order[0], raws[0], vectors[0])
+    shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s)
+    base = np.maximum(np.maximum(chance, _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)), shown)
+    if exemplar.period is not None:
+        # a tile's kinds at their own steps (the reading can only raise P_ex, so it is asked only
+        # where there is an excess to lower, and at the first peak, which is reported if none is left)
+        ask = raws > base
+        ask[0] = True
+        shown[ask] = np.maximum(shown[ask], _kind_shares(exemplar, centres[ask], BOX * q, REPEAT_DIVIDE * s))
+        base = np.maximum(base, shown)
+    excess = np.where(base < 1, np.maximum(0.0, (raws - base) / np.where(base < 1, 1.0 - base, 1.0)), 0.0)
+    k = int(np.argmax(excess))  # the first of the largest
     return Repetition(
-        best[0], best[1], best[2], total[0], total[2], own, best[3], order[0], order[1]
+        float(excess[k]), float(raws[k]), vectors[k], total[0], total[2], own, float(shown[k]), order[0], order[1]
     )
 
 
@@ -400,6 +422,136 @@ def _exemplar_shares(
     share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
     np.maximum.at(out, peak, share)
     return out
+
+
+def _kind_shares(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float) -> np.ndarray:
+    """(k,) float: ``P_ex`` of each shift on a repeating tile, each kind read at its own step and
+    to the figure's resolution (a floor under :func:`_reduced_shares`', which it extends).
+
+    :func:`_exemplar_shares` asks one divisor ``m`` of ``v`` to explain every kind, to within
+    ``half / m``.  A tile of several kinds in rows has a step per kind (FGDC 670: dots every
+    1.798 units, 26 to the tile's width; dashes every ≈ 9.35, 5 to it, each dash moved by up to
+    0.17 along its row), and a row whose motifs' offsets from their sites differ by less than the
+    figure's square is, to the figure, a row: a texture that keeps it — stamped or grown anew —
+    meets a partner at the tile's width in the square, as the tile meets one at each multiple of
+    its step.  So for each kind ``c`` and divisor ``m`` (``|v| / m ≥ shortest``, ``m ≤``
+    :data:`REPEAT_DIVIDE_MAX`), with ``u = v / m``:
+
+    * *exact*: the share of c's motifs with a same-kind partner within ``half / m`` of ``x + u``
+      (among those whose square lies in the tile's box), as in :func:`_exemplar_shares`;
+    * *resolved* (``m > REPEAT_RESOLVED``): the share with a partner within ``half`` of ``x + k u``
+      for **every** ``k = 1 … m − 1`` whose square lies in the box, counted only where the tile
+      shows at least the first :data:`REPEAT_RESOLVED` multiples (each with at least
+      :data:`REPEAT_EX_MIN` motifs of any kind in the box): the step holds to the square at
+      every multiple the tile shows, so a texture that keeps it lands at ``v`` in the square.  A
+      step that drifts off ``u`` (a lattice of step 1.92 in a tile of 20: a seam every period,
+      which a texture keeping the step does not repeat at 20) misses a later multiple and is not
+      shown.
+
+    ``S_c(v)`` is the larger over both and every ``m``, 0 for a kind with fewer than
+    :data:`REPEAT_KIND_MIN` motifs in the box at every ``m`` (a share of a handful is noise).  A shift with
+    both components beyond the square is also shown as far as its parts along the tile's axes are
+    surely shown together: ``max(0, S_c(v_x, 0) + S_c(0, v_y) − 1)`` (rows shown along x, stacked
+    along y; the bound holds whichever motifs make up each share).  ``P_ex(v) = Σ_c f_c S_c(v)``,
+    ``f_c`` the kind's share of the tile's motifs.  A stamp still counts wherever one kind's
+    content is irregular or scattered beyond the square at the tile's period: then ``S_c < 1``
+    there, while the stamp repeats every motif (Equinor 50090 with every motif moved by up to a
+    bin: :func:`repetition` ≥ 0.8; by half a bin, two motifs' offsets differ by less than the
+    square and it is not charged).
+
+    ``shifts`` (k, 2) float, user units; ``half`` (the square's half side) and ``shortest`` user units.
+    """
+    shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    if len(xy) == 0 or len(shifts) == 0:
+        return np.zeros(len(shifts))
+    freq = np.bincount(kind) / len(kind)
+    both = (np.abs(shifts) > half).all(axis=1)
+    nb = int(both.sum())
+    axes = np.r_[shifts, shifts[both] * [1.0, 0.0], shifts[both] * [0.0, 1.0]]
+    per = _kind_resolved(exemplar, axes, half, shortest)  # (k + 2 nb, c)
+    main = per[: len(shifts)]
+    parts = per[len(shifts) : len(shifts) + nb] + per[len(shifts) + nb :] - 1.0
+    main[both] = np.maximum(main[both], parts)
+    return main @ freq
+
+
+def _kind_resolved(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float) -> np.ndarray:
+    """(k, c) float: ``S_c`` of each shift and kind, the larger of :func:`_kind_shares`' two readings.
+
+    Asked in the order that leaves least to ask: every divisor's step ``u = v / m`` to the square
+    first (``k = 1``); a motif with no partner there has none to the square ÷ m either, and fails
+    the resolved reading; only divisors where some kind could beat the best exact share go on to
+    ``k = 2, 3, …``, and only for the motifs that have held so far.  (A motif whose square at
+    ``u`` is outside the tile's box but inside at ``k u`` — within ``half`` of the box's edge —
+    is left out of the resolved reading.)
+    """
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    kinds = int(kind.max()) + 1
+    x0, y0, x1, y1 = exemplar.region.bounds
+    # squares are asked only inside the box: each kind's partners moved apart by more than its size
+    apart = 4 * (x1 - x0 + y1 - y0 + half) + 1
+    tree = cKDTree(np.c_[xy[:, 0] + kind * apart, xy[:, 1]])
+    onehot = np.eye(kinds, dtype=np.float64)[kind]  # (n, c)
+
+    def probe(u: np.ndarray, e: np.ndarray, ask: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(t, n) bool each: the squares ``x + u ± e`` inside the box, and those with a same-kind
+        partner (asked only where ``ask``, (t, n) bool, if given)."""
+        tx, ty = xy[None, :, 0] + u[:, 0, None], xy[None, :, 1] + u[:, 1, None]
+        ee = e[:, None]
+        seen = (tx - ee >= x0) & (tx + ee <= x1) & (ty - ee >= y0) & (ty + ee <= y1)
+        row, col = np.nonzero(seen if ask is None else seen & ask)
+        found = np.zeros(seen.shape, dtype=bool)
+        if len(row):  # the nearest same-kind motif (per axis), within the square (its edge included)
+            d = tree.query(np.c_[tx[row, col] + kind[col] * apart, ty[row, col]], p=np.inf,
+                           distance_upper_bound=float(e.max()) * (1 + 1e-9))[0]  # fmt: skip
+            found[row, col] = d <= e[row]
+        return seen, found
+
+    length = np.hypot(shifts[:, 0], shifts[:, 1])
+    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
+    shift = np.repeat(np.arange(len(shifts)), most)
+    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    u = shifts[shift] / m[:, None]
+    seen1, found1 = probe(u, np.full(len(m), half))
+    out = np.zeros((len(shifts), kinds))
+    # the exact reading, u to the square ÷ m: a partner there is one in the square, and a square
+    # ÷ m near the box's edge may lie inside where the square does not
+    seen, found = probe(u, half / m, found1 | ~seen1)
+    ok = seen.sum(axis=1) >= REPEAT_EX_MIN
+    if ok.any():
+        np.maximum.at(out, shift[ok], _kind_share(found[ok], seen[ok], onehot))
+    # the resolved reading, k u to the square for every k < m (x + u's square is inside the box
+    # wherever x + k u's is, for a motif whose own square is: the box is convex)
+    tries = (m > REPEAT_RESOLVED) & (seen1.sum(axis=1) >= REPEAT_EX_MIN)
+    if tries.any():
+        bound = _kind_share(found1[tries], seen1[tries], onehot)  # S_c ≤ its share at k = 1
+        better = (bound > out[shift[tries]]).any(axis=1)
+        tries[np.flatnonzero(tries)[~better]] = False
+    held = found1[tries]
+    for step in range(2, int(m[tries].max(initial=0))):
+        live = m[tries] > step  # the divisors with a multiple k = step < m left to ask
+        if not live.any():
+            break
+        at = np.flatnonzero(tries)[live]
+        seen_k, found_k = probe(u[at] * step, np.full(len(at), half), held[live])
+        held[live] &= found_k | ~seen_k
+        if step <= REPEAT_RESOLVED:  # the first multiples must be shown, each by enough motifs
+            gone = seen_k.sum(axis=1) < REPEAT_EX_MIN
+            if gone.any():
+                drop = np.flatnonzero(live)[gone]
+                tries[np.flatnonzero(tries)[drop]] = False
+                held = np.delete(held, drop, axis=0)
+    if tries.any():
+        np.maximum.at(out, shift[tries], _kind_share(held, seen1[tries], onehot))
+    return out
+
+
+def _kind_share(hit: np.ndarray, seen: np.ndarray, onehot: np.ndarray) -> np.ndarray:
+    """(t, c) float: per test and kind, the share of the kind's seen motifs that hit (0 where
+    fewer than :data:`REPEAT_KIND_MIN` of the kind are seen)."""
+    hits, sees = (hit & seen).astype(np.float64) @ onehot, seen.astype(np.float64) @ onehot
+    return np.where(sees >= REPEAT_KIND_MIN, hits / np.maximum(sees, 1.0), 0.0)
 
 
 def _mode_share(
