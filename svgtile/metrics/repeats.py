@@ -400,10 +400,7 @@ def _exemplar_shares(
     if len(xy) == 0 or len(shifts) == 0:
         return out
     x0, y0, x1, y1 = exemplar.region.bounds
-    length = np.hypot(shifts[:, 0], shifts[:, 1])
-    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
-    peak = np.repeat(np.arange(len(shifts)), most)
-    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    peak, m = _divisors(shifts, shortest)
     u, e = shifts[peak] / m[:, None], half / m
     # every (divisor, motif) pair at once: the shifted square, and whether it lies inside
     tx, ty = xy[None, :, 0] + u[:, 0, None], xy[None, :, 1] + u[:, 1, None]
@@ -422,6 +419,20 @@ def _exemplar_shares(
     share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
     np.maximum.at(out, peak, share)
     return out
+
+
+def _divisors(shifts: np.ndarray, shortest: float) -> tuple[np.ndarray, np.ndarray]:
+    """Every shift's whole divisors: ``(owner, m)``, (t,) int and (t,) float, ``m = 1 … M`` for
+    each shift in turn, ``M = ⌊|v| / shortest⌋`` clipped to 1 … :data:`REPEAT_DIVIDE_MAX`.
+
+    ``shifts`` (k, 2) float, ``shortest`` user units.  The divisors :func:`_exemplar_shares` and
+    :func:`_kind_shares` read the exemplar at (``v / m``).
+    """
+    length = np.hypot(shifts[:, 0], shifts[:, 1])
+    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
+    owner = np.repeat(np.arange(len(shifts)), most)
+    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    return owner, m
 
 
 def _kind_shares(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest: float) -> np.ndarray:
@@ -508,10 +519,7 @@ def _kind_resolved(exemplar: Exemplar, shifts: np.ndarray, half: float, shortest
             found[row, col] = d <= e[row]
         return seen, found
 
-    length = np.hypot(shifts[:, 0], shifts[:, 1])
-    most = np.clip(np.floor(length / shortest), 1, REPEAT_DIVIDE_MAX).astype(np.int64)
-    shift = np.repeat(np.arange(len(shifts)), most)
-    m = (np.arange(most.sum()) - np.repeat(np.cumsum(most) - most, most) + 1).astype(np.float64)
+    shift, m = _divisors(shifts, shortest)
     u = shifts[shift] / m[:, None]
     seen1, found1 = probe(u, np.full(len(m), half))
     out = np.zeros((len(shifts), kinds))
