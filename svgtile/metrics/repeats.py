@@ -231,11 +231,11 @@ def repetition(
         raws.append(float(has[ref].mean()))
         vector = disp[near].mean(axis=0)
         vectors.append((float(vector[0]), float(vector[1])))
-    raws = np.array(raws)
     # the single mode against chance alone: the figure of issue 12
     order = (max(0.0, (raws[0] - chance) / (1.0 - chance)) if chance < 1 else 0.0, vectors[0])
     if total is None:  # _mode_share's figures of the same bin
         total = (order[0], raws[0], vectors[0])
+    raws = np.array(raws)
     shown = _reduced_shares(exemplar, centres, steps, BOX * q, REPEAT_DIVIDE * s, EXACT * s)
     base = np.maximum(np.maximum(chance, _rows_floor(exemplar, centres, lam[arr.kind[ref]], q)), shown)
     if exemplar.period is not None:
