@@ -50,6 +50,9 @@ NOT_PARALLEL = 20.0
 #: (:mod:`svgtile.metrics.order`), and optimize starts from the tile itself only on an exact
 #: lattice (:func:`svgtile.engines.optimize.init.seamless`).
 EXACT_STEP = 0.05
+#: Most cells along a side of the displacement histogram that bounds a candidate step's support
+#: (:func:`_support_bound`): cells of the step's tolerance, wider where the tile is large.
+_BOUND_CELLS = 1024
 #: Strips across the row direction are this many mean spacings wide (banding).
 STRIP = 1.0
 #: Fewest motifs for an order to be read; below this the figures are empty (NaN, no steps).
@@ -282,7 +285,13 @@ def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float]
         return ()
     # one candidate per cell of STEP_TOLERANCE / EXACT_STEP = 4 tolerances: an exact step's
     # displacements all fall in one cell, and the candidates stay few
-    cand = cand[np.sort(np.unique(np.round(cand / (4.0 * tol)), axis=0, return_index=True)[1])]
+    cell = np.round(cand / (4.0 * tol)).astype(np.int64)
+    cell -= cell.min(axis=0)
+    key = cell[:, 0] * (int(cell[:, 1].max()) + 1) + cell[:, 1]  # a cell's number: the first candidate of each
+    cand = cand[np.sort(np.unique(key, return_index=True)[1])]
+    cand = cand[_support_bound(tree, xy, kind, gap, wrapped, reach + 2.0 * tol, cand, tol) / n >= SUPPORT]
+    if not len(cand):
+        return ()
     # exact support: the motif has a motif of its kind at +v or at −v (within tol)
     m = len(cand)
     hits = np.zeros((m, n), dtype=bool)
@@ -309,6 +318,40 @@ def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float]
         ang = np.degrees(np.arctan2(cand[:, 1], cand[:, 0]) - math.atan2(v[1], v[0]))
         alive &= np.abs((ang + 90.0) % 180.0 - 90.0) >= NOT_PARALLEL
     return tuple(steps)
+
+
+def _support_bound(
+    tree: cKDTree, xy: np.ndarray, kind: np.ndarray, gap: float, wrapped: np.ndarray, radius: float,
+    cand: np.ndarray, tol: float,
+) -> np.ndarray:  # fmt: skip
+    """(m,) int: at least the number of motifs :func:`symmetry_steps`' exact test finds a partner
+    for at ``+v`` or ``−v``, for each of its candidates ``cand`` (m, 2): the same-kind
+    displacements within ``radius`` (at least ``|v| + tol``) counted in the cells that a disc of
+    radius ``tol`` about ``v``, and one about ``−v``, reach (cells of ``tol``, fewer on a large
+    tile).  A motif with a partner within ``tol`` of ``x + v`` has a displacement there; one
+    with several is counted more than once, so this bounds the motifs matched from above.
+
+    The exact test costs a neighbour query per motif and candidate, twice; a candidate whose
+    bound is below :data:`SUPPORT` cannot be kept, and is left out before it (FGDC 603, 990
+    motifs: 9,924 candidates, 0 kept, the read 7.2 s → 0.3 s).
+    """
+    pairs = tree.query_ball_point(np.column_stack([xy, kind * gap]), radius)
+    d = np.vstack([wrapped[p] - xy[i] for i, p in enumerate(pairs)])
+    lo = d.min(axis=0) - 2.0 * tol
+    c = max(tol, float((d.max(axis=0) + 2.0 * tol - lo).max()) / _BOUND_CELLS)
+    side = np.floor((d.max(axis=0) + 2.0 * tol - lo) / c).astype(np.int64) + 1
+    count = np.zeros(tuple(side), dtype=np.int64)
+    np.add.at(count, tuple(np.floor((d - lo) / c).astype(np.int64).T), 1)
+    area = np.zeros((side[0] + 1, side[1] + 1), dtype=np.int64)  # summed-area table of the counts
+    area[1:, 1:] = count.cumsum(axis=0).cumsum(axis=1)
+    reach = tol * (1.0 + 1e-6)  # a hair wide: the query's distances round otherwise
+    bound = np.zeros(len(cand), dtype=np.int64)
+    for sign in (1.0, -1.0):
+        v = sign * cand
+        a0 = np.clip(np.floor((v - reach - lo) / c).astype(np.int64), 0, side)
+        a1 = np.clip(np.floor((v + reach - lo) / c).astype(np.int64) + 1, 0, side)
+        bound += area[a1[:, 0], a1[:, 1]] - area[a0[:, 0], a1[:, 1]] - area[a1[:, 0], a0[:, 1]] + area[a0[:, 0], a0[:, 1]]
+    return bound
 
 
 def dominant_steps(v: np.ndarray, owner: np.ndarray, n: int, tol: float) -> tuple[Step, ...]:

@@ -208,6 +208,8 @@ def near_pairs(
         for b in range(a, len(classes)):
             r = reach[np.ix_(present[a], present[b])].max() if np.ndim(reach) == 2 else reach
             bound = rmax[a] + rmax[b] + float(r)
+            if not bound > 0:  # no kind pair of these classes asked for (−inf), or none can be this close:
+                continue  # and a k-d tree given r < 0 searches within |r| (r = −inf: every pair)
             if a == b:
                 pairs = trees[a].query_pairs(bound, output_type="ndarray")
                 i, j = members[a][pairs[:, 0]], members[a][pairs[:, 1]]
@@ -215,6 +217,8 @@ def near_pairs(
                 found = trees[a].sparse_distance_matrix(trees[b], bound, output_type="ndarray")
                 i, j = members[a][found["i"]], members[b][found["j"]]
             parts.append((i, j))
+    if not parts:
+        return empty
     i = np.concatenate([p[0] for p in parts]).astype(np.int64)
     j = np.concatenate([p[1] for p in parts]).astype(np.int64)
     if len(i) == 0:
