@@ -330,3 +330,25 @@ def test_refilled_patches_of_a_lattice_tile_stand_whole_steps_apart(monkeypatch)
     monkeypatch.setattr(init, "MIN_CELL_MOTIFS", 0.5)
     drawn = dataclasses.replace(ex, period=None)  # a drawn exemplar: no period, no lattice phases
     assert lattice_steps(drawn) is None
+
+
+def test_lattice_steps_fit_the_tiles_period(monkeypatch):
+    """``lattice_steps`` gives the steps of which the tile's period is a whole combination, the
+    one nearest the steps as read (``FIT_PERIOD``), where the motifs stand on them at least as
+    often: read steps averaged a little off (as over FGDC 620's wandering dashes) come back to the
+    tile's lattice; off, the steps as read (the period is then no whole number of them, and patches
+    whole steps apart meet a fraction of a step off at their seams)."""
+    from types import SimpleNamespace
+
+    import svgtile.engines.optimize.init as init
+    from svgtile.engines.optimize.init import lattice_steps
+
+    ex, step = jittered_lattice(0.1)
+    scale = np.array([W / 24, H / 18])
+    off = np.array([[step + 0.2, 0.1], [0.05, step - 0.2]]) * scale
+    read = SimpleNamespace(kind="lattice", steps=[SimpleNamespace(vector=tuple(v)) for v in off])
+    monkeypatch.setattr(init, "read_order", lambda exemplar: read)
+    fitted = lattice_steps(ex)
+    assert np.allclose(fitted, np.diag([step, step]) * scale, atol=1e-9)
+    monkeypatch.setattr(init, "FIT_PERIOD", False)
+    assert np.allclose(lattice_steps(ex), off)

@@ -22,8 +22,10 @@ A repeating tile of an inexact lattice — rows of dashes whose positions along 
 (FGDC 616–621; 14 FGDC tiles and Equinor 50090 in all) — keeps its patches, but their phases are
 drawn on its lattice (:func:`lattice_steps`): each patch is still cut from a place of the tile
 drawn by the hash, but moved by at most half a step along each lattice direction so that it
-stands a whole number of steps from every other patch (as exactly as the analysis's averaged
-steps: on FGDC 619 the step across the rows reads 2.99–3.00 units for a true 2.977).  Rows then
+stands a whole number of steps from every other patch — steps solved so that the tile's period
+is a whole number of them where the motifs stand on those as well (:data:`FIT_PERIOD`; the
+analysis's averaged steps do not fit it: on FGDC 619 the step across the rows reads 2.99–3.00
+units for a true 2.977, on 620 the step along the rows 8.77 for 8.93).  Rows then
 run on across every seam; drawn at free phases, the rows of two neighbouring patches met at a
 seam at different heights, their dashes' ends broke the distance rule and one row in two lost
 its dash there — a gap shorter than a dash, which insertion cannot refill.
@@ -60,6 +62,20 @@ SIZE = 1.0
 #: 0.9–1.1); most bins insertion was asked to fill broke the distance rule only (620: 64–69 of
 #: about 80 a pass), and tried again up to 0.75 spacings away they gave 620 0.01 of ρ.
 LATTICE_PHASES = True
+#: Whether :func:`lattice_steps` gives the steps that fit the tile's period — the period
+#: ``(W, 0)``, ``(0, H)`` as the nearest whole combination ``N`` of the steps read by
+#: :func:`~svgtile.analysis.order.read_order`, the steps then ``N⁻¹ · diag(W, H)`` — rather than
+#: the steps as read, averaged over motifs that wander about their sites (FGDC 620: along the rows
+#: 8.77 units for the 53.584 / 6 = 8.93 of its six dashes a row, alternate rows 4.18 / 4.59 apart
+#: for 4.47 / 4.47; a patch a few steps from the next met it up to a dash's gap off, and the seams
+#: across the rows lost a dash in two rows).  Taken where the tile's motifs stand on the fitted
+#: steps at least as often as on the read ones (:func:`~svgtile.analysis.order.exact_support`,
+#: summed over both): elsewhere the read lattice is not one the period fits, its nearest whole
+#: combination another lattice (FGDC 663, fitted regardless: repetition 0.14 → 0.21).  FGDC's 90
+#: tiles (2 × 2 tiles, seed 1; benchmarks/README.md, opt14i), 9 of them fitted: every bound met
+#: 42 → 44 (620 density / ρ 0.88 → 0.92, L 0.89 → 0.97; 664 repetition 0.204 → 0.19), L ≥ 0.85
+#: 46 → 46, no bound lost on any tile.
+FIT_PERIOD = True
 #: A lattice whose cell holds fewer motifs than this is not the lattice the motifs stand on (a
 #: short step between the marks of a pair or a cluster): :func:`lattice_steps` gives none.
 #: FGDC 672 (0.36 motifs a cell, a step of 0.22 spacings) snapped to it: repetition 0.14 →
@@ -166,8 +182,9 @@ def lattice_steps(exemplar: Exemplar) -> np.ndarray | None:
     -------
     (2, 2) float, user units, rows the two steps of the tile's lattice order
     (:func:`~svgtile.analysis.order.read_order`), neither of them its period and its cell
-    holding at least :data:`MIN_CELL_MOTIFS` motifs; None where there is no such lattice (or
-    :data:`LATTICE_PHASES` is off).
+    holding at least :data:`MIN_CELL_MOTIFS` motifs, solved to fit the period (:data:`FIT_PERIOD`:
+    whole steps apart is then whole steps apart at every seam, not a fraction of a dash off);
+    None where there is no such lattice (or :data:`LATTICE_PHASES` is off).
     """
     if not LATTICE_PHASES:
         return None
@@ -185,7 +202,20 @@ def lattice_steps(exemplar: Exemplar) -> np.ndarray | None:
     # a lattice whose cell holds under MIN_CELL_MOTIFS motifs is not the one they stand on
     if len(exemplar.motifs) * area / (period[0] * period[1]) < MIN_CELL_MOTIFS:
         return None
-    return steps
+    if not FIT_PERIOD:
+        return steps
+    # the tile repeats at its period, so the period is a whole number of steps of the lattice its
+    # motifs stand on: the steps solved from the nearest whole combination — where the motifs
+    # stand on them at least as often as on the steps as read (else the read lattice is not one
+    # the period fits, and the nearest whole combination is another lattice)
+    per = np.diag(np.asarray(period, dtype=np.float64))
+    whole = np.rint(per @ np.linalg.inv(steps))
+    if abs(float(np.linalg.det(whole))) < 0.5:
+        return steps
+    fitted = np.linalg.solve(whole, per)
+    xy, kind = exemplar.motifs.xy, exemplar.motifs.kind
+    support = [sum(exact_support(xy, kind, period, g, tol) for g in lat) for lat in (steps, fitted)]
+    return fitted if support[1] >= support[0] else steps
 
 
 def seamless(exemplar: Exemplar, flow: FlowField | None = None) -> bool:
