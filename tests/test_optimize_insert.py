@@ -350,5 +350,11 @@ def test_lattice_steps_fit_the_tiles_period(monkeypatch):
     monkeypatch.setattr(init, "read_order", lambda exemplar: read)
     fitted = lattice_steps(ex)
     assert np.allclose(fitted, np.diag([step, step]) * scale, atol=1e-9)
+    # steps read 1.4 of a step too long: their nearest whole combination is the period itself,
+    # which the motifs always stand on; the fitted steps must pass the read ones' tests, and fail
+    wide = np.array([[24 / 1.4, 0.0], [0.0, 18 / 1.4]]) * scale
+    read.steps = [SimpleNamespace(vector=tuple(v)) for v in wide]
+    assert np.allclose(lattice_steps(ex), wide)
     monkeypatch.setattr(init, "FIT_PERIOD", False)
+    read.steps = [SimpleNamespace(vector=tuple(v)) for v in off]
     assert np.allclose(lattice_steps(ex), off)
