@@ -2,11 +2,26 @@
 (a k-d tree given r = −inf returns every pair; the result was right but O(n²))."""
 
 import numpy as np
+from scipy.spatial import cKDTree
 
+import svgtile.core.footprint as footprint
 from svgtile.core.footprint import near_pairs
 
 
-def test_unasked_class_pairs_are_not_searched():
+class _PositiveReach(cKDTree):
+    """A k-d tree that refuses the searches near_pairs must not ask: r ≤ 0 (r = −inf is every pair)."""
+
+    def query_pairs(self, r, *args, **kwargs):
+        assert r > 0, f"query_pairs asked with r = {r}"
+        return super().query_pairs(r, *args, **kwargs)
+
+    def sparse_distance_matrix(self, other, max_distance, *args, **kwargs):
+        assert max_distance > 0, f"sparse_distance_matrix asked with r = {max_distance}"
+        return super().sparse_distance_matrix(other, max_distance, *args, **kwargs)
+
+
+def test_unasked_class_pairs_are_not_searched(monkeypatch):
+    monkeypatch.setattr(footprint, "cKDTree", _PositiveReach)
     rng = np.random.default_rng(3)
     xy = rng.random((3000, 2)) * 100.0
     kind = (np.arange(3000) % 2).astype(np.int64)

@@ -278,6 +278,7 @@ def symmetry_steps(xy: np.ndarray, kind: np.ndarray, period: tuple[float, float]
     reach = 0.5 * min(period)
     pairs = tree.query_ball_point(np.column_stack([xy, kind * gap]), reach, return_sorted=True)
     cand = np.vstack([wrapped[p] - xy[i] for i, p in enumerate(pairs)])
+    del pairs  # _support_bound asks again, a little wider: not both lists at once
     cand = cand[np.hypot(cand[:, 0], cand[:, 1]) > tol]
     flip = (cand[:, 1] < 0) | ((cand[:, 1] == 0) & (cand[:, 0] < 0))
     cand = np.where(flip[:, None], -cand, cand)
@@ -326,9 +327,9 @@ def _support_bound(
 ) -> np.ndarray:  # fmt: skip
     """(m,) int: at least the number of motifs :func:`symmetry_steps`' exact test finds a partner
     for at ``+v`` or ``−v``, for each of its candidates ``cand`` (m, 2): the same-kind
-    displacements within ``radius`` (at least ``|v| + tol``) counted in the cells that a disc of
-    radius ``tol`` about ``v``, and one about ``−v``, reach (cells of ``tol``, fewer on a large
-    tile).  A motif with a partner within ``tol`` of ``x + v`` has a displacement there; one
+    displacements within ``radius`` (at least ``|v| + tol``) counted in the cells that the square
+    around a disc of radius ``tol`` about ``v``, and one about ``−v``, reaches (cells of ``tol``,
+    fewer on a large tile).  A motif with a partner within ``tol`` of ``x + v`` has a displacement there; one
     with several is counted more than once, so this bounds the motifs matched from above.
 
     The exact test costs a neighbour query per motif and candidate, twice; a candidate whose
@@ -340,11 +341,12 @@ def _support_bound(
     lo = d.min(axis=0) - 2.0 * tol
     c = max(tol, float((d.max(axis=0) + 2.0 * tol - lo).max()) / _BOUND_CELLS)
     side = np.floor((d.max(axis=0) + 2.0 * tol - lo) / c).astype(np.int64) + 1
-    count = np.zeros(tuple(side), dtype=np.int64)
-    np.add.at(count, tuple(np.floor((d - lo) / c).astype(np.int64).T), 1)
+    at = np.ravel_multi_index(tuple(np.floor((d - lo) / c).astype(np.int64).T), tuple(side))
+    count = np.bincount(at, minlength=int(side.prod())).reshape(tuple(side))
     area = np.zeros((side[0] + 1, side[1] + 1), dtype=np.int64)  # summed-area table of the counts
     area[1:, 1:] = count.cumsum(axis=0).cumsum(axis=1)
-    reach = tol * (1.0 + 1e-6)  # a hair wide: the query's distances round otherwise
+    # a hair wide: the query's distances round otherwise, by up to a few ulps of the coordinates
+    reach = tol * (1.0 + 1e-6) + 16.0 * np.finfo(np.float64).eps * float(np.abs(wrapped).max(initial=0.0))
     bound = np.zeros(len(cand), dtype=np.int64)
     for sign in (1.0, -1.0):
         v = sign * cand
