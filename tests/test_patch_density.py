@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-import shapely.affinity
 from scipy.spatial import cKDTree
 
 from svgtile import Region, analyze, read_exemplar
@@ -163,73 +162,3 @@ def test_cross_conflicts_staged_tests_find_what_every_pair_finds(seed):
     staged = cross_conflicts(new, old, protos, rule)
     assert 0 < every.sum() < len(new)
     assert np.array_equal(staged, every)
-
-
-@pytest.mark.parametrize("seed", range(4))
-def test_surely_clashing_candidates_are_in_conflict_and_most_are_found(seed):
-    """_fill drops the candidates a cell table shows surely in conflict before any other test:
-    each one dropped must be one cross_conflicts finds in conflict (or the texture would change),
-    and on a packed texture the table must find most of those whose nearest motif clashes."""
-    from svgtile.core.conflicts import cross_conflicts
-    from svgtile.engines.patch.density import _surely_clashing
-
-    rng = np.random.default_rng(seed)
-    c = shapely.box(-2, -2, 2, 2).difference(shapely.box(-1, -1.5, 3, 1.5))
-    c = Prototype.from_geometry(shapely.affinity.translate(c, -c.centroid.x, -c.centroid.y), tolerance=0.0)
-    assert c.inner == 0.0  # a C: its centroid lies in the opening, outside the footprint
-    protos = [*_scatter(seed)[1], c]
-    n = 600
-    old = Arrangement(rng.integers(0, 4, n), rng.uniform(0, 200, (n, 2)), rng.uniform(-90, 90, n), rng.uniform(0.8, 1.2, n))
-    new = Arrangement(rng.integers(0, 4, 3000), np.round(rng.uniform(-5, 205, (3000, 2)), 4), np.zeros(3000),
-                      np.round(rng.uniform(0.8, 1.2, 3000), 4))  # fmt: skip
-    rule = np.array([[3.0, 2.0, 1.0, 0.5], [2.0, 1.0, 0.5, 0.5], [1.0, 0.5, 0.2, 0.0], [0.5, 0.5, 0.0, 0.3]])
-    clash = _surely_clashing(new.xy, new.kind, new.scale, old, protos, rule)
-    conflict = cross_conflicts(new, old, protos, rule)
-    assert clash.any() and not (clash & ~conflict).any()
-    assert not clash[new.kind == 3].any()  # no inscribed disc: never surely in conflict
-    # those whose nearest motif's inscribed disc clashes: the table finds most of them
-    d, m = cKDTree(old.xy).query(new.xy)
-    inner = np.array([p.inner for p in protos])
-    near = (inner[new.kind] > 0) & (inner[old.kind[m]] > 0) & (
-        d - inner[new.kind] * new.scale - inner[old.kind[m]] * old.scale[m] < rule[new.kind, old.kind[m]] - 0.01)
-    assert clash[near].mean() > 0.7
-
-
-@pytest.mark.parametrize("name", ["till", "marsh"])
-def test_density_repair_is_the_same_without_the_cell_table(name, monkeypatch):
-    """The cell table only spares work: density repair with it gives the texture it gives with
-    every candidate tested as before (the whole engine, a region of a few hundred motifs)."""
-    import svgtile.engines.patch.density as density
-
-    ex = read_exemplar(EXEMPLARS / f"{name}.svg")
-    stats = analyze(ex)
-    region = Region.rectangle(400, 300)
-    table, dropped = density._surely_clashing, []
-
-    def counted(*args):
-        clash = table(*args)
-        dropped.append(int(clash.sum()))
-        return clash
-
-    monkeypatch.setattr(density, "_surely_clashing", counted)
-    with_table = synthesize(ex, region, "patch", seed=5, stats=stats).arrangement
-    monkeypatch.setattr(density, "_surely_clashing", lambda xy, *args: np.zeros(len(xy), dtype=bool))
-    without = synthesize(ex, region, "patch", seed=5, stats=stats).arrangement
-    assert sum(dropped) > len(without) // 10  # the table spared the tests of many candidates
-    for field in ("kind", "xy", "angle", "scale"):
-        assert np.array_equal(getattr(with_table, field), getattr(without, field))
-
-
-def test_surely_clashing_on_a_texture_in_one_row_and_with_no_candidates():
-    """A texture whose centroids lie on one line still gets a small cell table (cells are no
-    narrower than the line's length over its motifs), and no candidates ask nothing."""
-    from svgtile.engines.patch.density import _surely_clashing
-
-    protos = _scatter(0)[1]
-    n = 50
-    row = Arrangement(np.zeros(n, dtype=np.int64), np.stack([np.arange(n) * 10.0, np.full(n, 5.0)], -1),
-                      np.zeros(n), np.ones(n))  # fmt: skip
-    xy = np.array([[20.5, 5.0], [25.0, 30.0], [-400.0, 5.0]])
-    rule = np.full((3, 3), 1.0)
-    assert _surely_clashing(xy, np.zeros(3, dtype=np.int64), np.ones(3), row, protos, rule).tolist() == [True, False, False]
-    assert _surely_clashing(np.zeros((0, 2)), np.zeros(0, dtype=np.int64), np.zeros(0), row, protos, rule).shape == (0,)

@@ -102,12 +102,9 @@ def adjust_density(
     offsets = WINDOW_OFFSETS * size
     protos = exemplar.prototypes
     quiet = 0
-    grids = {}  # the windows of each offset, computed once: rounds take the offsets in turn
     for rnd in range(p.density_rounds):
         progress("density", 0.3 + 0.7 * rnd / p.density_rounds)
-        if rnd % 4 not in grids:
-            grids[rnd % 4] = region_windows(region, size, offsets[rnd % 4])
-        windows = grids[rnd % 4]
+        windows = region_windows(region, size, offsets[rnd % 4])
         if windows is None:
             break
         origin, ids, area = windows
@@ -230,14 +227,6 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     lo = (origin + ids[wid] * size)[:, None, :]
     t_of, e_of = np.nonzero(((xy >= lo) & (xy < lo + size)).all(axis=2))
     xy = xy[t_of, e_of]
-    if len(arr):
-        # most candidates land on a motif of the texture: those a cell table shows surely in
-        # conflict are dropped before anything else is computed for them (the empty disc's may
-        # displace, and stay); the rest meet the tests below as they did without it
-        xy_q, scale_q = np.round(xy, DECIMALS), np.round(ex.scale[e_of], DECIMALS)
-        near_disc = np.hypot(*(xy_q - centre[t_of]).T) <= radius[t_of]
-        gone = ~near_disc & _surely_clashing(xy_q, ex.kind[e_of], scale_q, arr, protos, rule)
-        t_of, e_of, xy = t_of[~gone], e_of[~gone], xy[~gone]
     angle = turn(ex.kind[e_of], ex.angle[e_of], theta[t_of], stats)
     new = Arrangement(ex.kind[e_of], xy, angle, ex.scale[e_of]).quantized(DECIMALS)
     if p.vary_orientation:
@@ -301,52 +290,6 @@ def _fill(arr, exemplar, stats, region, p, boundary, origin, size, ids, deficit,
     take[added[_rank_within(slot) >= room_for.ravel()[slot]]] = False
     removed = np.isin(victim_of, orig[take & displace]) & (victim_of >= 0)
     return new.take(take), removed
-
-
-def _surely_clashing(xy: np.ndarray, kind: np.ndarray, scale: np.ndarray, arr: Arrangement, protos, rule: np.ndarray,
-                     ) -> np.ndarray:  # fmt: skip
-    """(c,) bool: candidates that surely conflict with a motif of ``arr`` near them.
-
-    ``arr``'s centroids are hashed into a table of square cells about one motif each (the last
-    motif of a cell stands for it); a candidate is checked against the motifs standing for its own
-    cell and the eight around it.  A pair whose inscribed discs (both radii > 0) come closer than
-    the rule less its slack — by a margin far above the rounding of the coordinates — is one
-    :func:`svgtile.core.conflicts.cross_conflicts` finds in conflict too (its own first test), so
-    dropping those candidates changes nothing but the work; the others are left to the exact tests.
-
-    Parameters
-    ----------
-    xy : (c, 2) float array, the candidates' centroids, user units (as they will be written)
-    kind, scale : (c,) the candidates' kinds and scales
-    arr : the texture, not empty
-    rule : (k, k) float array, user units, the distances pasted motifs keep from the texture
-    """
-    clash = np.zeros(len(xy), dtype=bool)
-    if not len(xy):
-        return clash
-    inner = np.array([p.inner for p in protos])
-    a_in, b_in = inner[kind] * scale, inner[arr.kind] * arr.scale
-    eps = slack(protos)
-    reach = np.maximum(rule - eps, 0.0)  # (k, k)
-    margin = 1e-9 * (1.0 + float(max(np.abs(xy).max(), np.abs(arr.xy).max())) + max(p.radius for p in protos))
-    lo = arr.xy.min(axis=0)
-    span = np.maximum(arr.xy.max(axis=0) - lo, 1e-12)
-    # about one motif a cell; no more cells along the longer side than motifs (a texture in one
-    # row would otherwise ask for cells without end), so at most ~3n cells
-    side = max(float(np.sqrt(span[0] * span[1] / len(arr))), float(span.max()) / len(arr))
-    shape = np.floor(span / side).astype(np.int64) + 1
-    cell = np.floor((arr.xy - lo) / side).astype(np.int64)
-    table = np.full(shape[0] * shape[1], -1, dtype=np.int64)
-    table[cell[:, 0] * shape[1] + cell[:, 1]] = np.arange(len(arr))
-    q = np.floor((xy - lo) / side).astype(np.int64)
-    for dx, dy in ((0, 0), (-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, -1), (-1, 1), (1, 1)):
-        qx, qy = q[:, 0] + dx, q[:, 1] + dy
-        at = np.flatnonzero(~clash & (a_in > 0) & (qx >= 0) & (qx < shape[0]) & (qy >= 0) & (qy < shape[1]))
-        j = table[qx[at] * shape[1] + qy[at]]
-        at, j = at[j >= 0], j[j >= 0]
-        gap = np.hypot(*(xy[at] - arr.xy[j]).T) - a_in[at] - b_in[j]
-        clash[at[(b_in[j] > 0) & (gap < reach[kind[at], arr.kind[j]] - margin)]] = True
-    return clash
 
 
 def _displacement(new, arr, rule, protos, tree, lack, candidate, window):
@@ -524,35 +467,26 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     # a kind's motifs are exemplar copies: none is larger than the kind at its largest exemplar scale
     trees = [(j, cKDTree(arr.xy[arr.kind == j], balanced_tree=False, compact_nodes=False), float(size_of[j]))
              for j in np.unique(arr.kind)]  # fmt: skip
-    # the most numerous kind first: it is most often the one that binds, so a sample below its
-    # window's floor is left after fewest queries (``measure``)
-    trees.sort(key=lambda tree: -tree[1].n)
     far = float(rule.max() + size_of.max()) + float(size.max())  # beyond: room to spare (+ r_j)
     lo = origin + ids * size  # (w, 2)
 
-    def measure(pts, owner, at=None, floor=None):
-        """room, clear at ``pts`` (all, or the indices ``at``; -inf elsewhere).
-
-        With ``floor`` ((w,) room per window), a sample is left as soon as its room falls below
-        its window's floor (the room can only fall, kind after kind): its room is then an upper
-        bound below the floor, its clear not final — the caller keeps only samples at or above
-        the floor, whose figures are complete (a minimum is exact in any order of the kinds).
-        """
-        at = np.arange(len(pts)) if at is None else at
-        q = at[shapely.contains_xy(region.shape, pts[at, 0], pts[at, 1])]
-        room, clear = np.full(len(pts), -np.inf), np.full(len(pts), -np.inf)
-        room[q] = np.inf
-        clear[q] = np.min(np.concatenate([pts[q] - lo[owner[q]], lo[owner[q]] + size - pts[q]], axis=1), axis=1)
+    def measure(pts, owner, at=None):
+        """room, clear at ``pts`` (all, or the indices ``at``; -inf elsewhere)."""
+        inside = shapely.contains_xy(region.shape, pts[:, 0], pts[:, 1])
+        room = np.where(inside, np.inf, -np.inf)
+        clear = np.min(np.concatenate([pts - lo[owner], lo[owner] + size - pts], axis=1), axis=1)  # window edges
+        clear[~inside] = -np.inf
+        if at is not None:
+            skip = np.ones(len(pts), dtype=bool)
+            skip[at] = False
+            room[skip] = clear[skip] = -np.inf
+        q = np.flatnonzero(inside) if at is None else at[inside[at]]
+        want = kind[owner[q]]
         for j, t, r_j in trees:
-            if not len(q):
-                break
-            want = kind[owner[q]]
             need = size_of[want] + rule[want, j]
             d, _ = t.query(pts[q], k=1, distance_upper_bound=far + r_j, workers=-1)
             clear[q] = np.minimum(clear[q], d - r_j)  # inf beyond the bound
             room[q] = np.minimum(room[q], d - r_j - need)
-            if floor is not None:
-                q = q[room[q] >= floor[owner[q]]]
         return room, clear
 
     def cap(pts, owner, d=None, m=None):
@@ -599,8 +533,7 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
         done[first] = True
         rest = np.flatnonzero(~done & (bound >= floor[owner]))
         if len(rest):
-            # a sample whose room falls below the floor cannot be among the keep best
-            r_rest, c_rest = measure(pts, owner, rest, floor)
+            r_rest, c_rest = measure(pts, owner, rest)
             room[rest], clear[rest] = r_rest[rest], c_rest[rest]
     else:
         room, clear = measure(pts, owner)
@@ -614,8 +547,7 @@ def _roomiest(arr, tree, protos, region: Region, origin, size, ids, kind, rule, 
     if lazy and tree is not None:
         # only where the bound reaches the window's best room so far (ties included)
         best_yet = room.reshape(len(ids), per).max(axis=1)
-        f_room, f_clear = measure(fine, fine_owner, np.flatnonzero(cap(fine, fine_owner) >= best_yet[fine_owner]),
-                                  best_yet)  # fmt: skip
+        f_room, f_clear = measure(fine, fine_owner, np.flatnonzero(cap(fine, fine_owner) >= best_yet[fine_owner]))
     else:
         f_room, f_clear = measure(fine, fine_owner)
     pts, owner = np.concatenate([pts, fine]), np.concatenate([owner, fine_owner])
