@@ -246,11 +246,14 @@ def _turned_field(
             g = np.maximum(np.maximum(lo - q[:, :, None], q[:, :, None] - (lo + side + 2 * pad)), 0.0)
             g[far[sl]] = np.inf
             gap.append(g * g)
-        d = gap[0][:, :, :, None] + gap[1][:, :, None, :]  # (rows, ke, GRID, GRID)
-        every = d.min(axis=1).reshape(len(d), -1) + alpha
-        for c in range(kinds):
-            own = np.where((kq[sl] == c)[:, :, None, None], d, np.inf).min(axis=1).reshape(len(d), -1)
-            field[sl, c, :-1] = np.minimum(own, every)
+        d = (gap[0][:, :, :, None] + gap[1][:, :, None, :]).reshape(len(gap[0]), ke, -1)  # (rows, ke, GRID²)
+        # per kind, the nearest neighbour of that kind: one pass per neighbour, whatever the kinds
+        own = np.full((len(d), kinds + 1, GRID * GRID), np.inf)  # the last for absent neighbours
+        at = np.arange(len(d))
+        for i in range(ke):
+            c = np.where(kq[sl, i] < 0, kinds, kq[sl, i])
+            own[at, c] = np.minimum(own[at, c], d[:, i])
+        field[sl, :, :-1] = np.minimum(own[:, :kinds], d.min(axis=1)[:, None, :] + alpha)
     return field.reshape(n_e * r, kinds * stride), cells, lone
 
 
