@@ -35,6 +35,9 @@ ROUND = 4
 #: ran fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24:
 #: 25 %, 32: 75 %; benchmarks/README.md, "score11j").
 GRID = 16
+#: … fewer where the field (:func:`_turned_field`) would hold more than this many float64 (64 MiB):
+#: an exemplar of many motifs and kinds; a coarser grid is a looser bound, never a wrong one.
+FIELD_MAX = 1 << 23
 
 
 def neighbourhoods(
@@ -194,10 +197,11 @@ def _turned_field(
     :data:`GRID` × :data:`GRID` cells; for each turned exemplar neighbourhood ``(j, t)``, each
     kind ``c`` and each cell the *field* holds ``min_q (|cell − q|² + α·[kind(q) ≠ c])`` — the
     squared distance from the cell (a closed box, a hair wider than the cell so that rounding in
-    either frame cannot make it more) to the nearest exemplar neighbour ``q``, or to the nearest
-    of kind ``c`` without the α.  A texture neighbour of kind ``c`` in that cell then costs at least
+    either frame cannot make it more; the outer cells reach to infinity) to the nearest exemplar
+    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind ``c`` in that cell then costs at least
     the field's value there, or ``|p̂|² + α`` left alone; summed over the neighbours, a bound of
-    the greedy pairing (a matching) under that turn: ``field[:, cells].min(lone).sum()``.
+    the greedy pairing (a matching) under that turn: ``field[:, cells].min(lone).sum()``, the
+    centres' own kinds left to the caller.
 
     Parameters
     ----------
@@ -208,27 +212,18 @@ def _turned_field(
 
     Returns
     -------
-    field : (n_e·r, kinds · (GRID² + 1)) float, squared spacings: row ``j·r + t``; per kind a
-        block of GRID² cells and a last column of 0 (an absent texture neighbour's)
+    field : (n_e·r, kinds · (G² + 1)) float, squared spacings: row ``j·r + t``; per kind (those
+        of the present neighbours, numbered in order) a block of G² cells, G ≤ :data:`GRID`, and
+        a last column of 0 (an absent texture neighbour's)
     cells : (m, k) int, each texture neighbour's column in ``field`` (cell and kind)
     lone : (m, k) float, ``|p̂|² + α``, 0 for an absent neighbour
     """
     n_e, r = phi_e.shape
     ke = k_e.shape[1]
-    kinds = int(max(k_t.max(initial=-1), k_e.max(initial=-1))) + 1
     cos, sin = np.cos(-phi_t)[:, None], np.sin(-phi_t)[:, None]
     x, y = p_t[..., 0], p_t[..., 1]
     tx, ty = cos * x - sin * y, sin * x + cos * y  # (m, k), the texture neighbourhoods' own frame
     absent = np.isnan(tx)
-    half = float(np.abs(np.stack([tx[~absent], ty[~absent]])).max(initial=0.0)) * (1 + 1e-9) + 1e-12
-    side = 2 * half / GRID
-    ix = np.clip(np.floor((np.nan_to_num(tx) + half) / side), 0, GRID - 1).astype(np.intp)
-    iy = np.clip(np.floor((np.nan_to_num(ty) + half) / side), 0, GRID - 1).astype(np.intp)
-    stride = GRID * GRID + 1
-    cells = np.where(absent, GRID * GRID, ix * GRID + iy + np.maximum(k_t, 0) * stride)
-    lone = np.where(absent, 0.0, x * x + y * y + alpha)
-    pad = 1e-9 * (1 + half)
-    lo = -half + side * np.arange(GRID) - pad  # (GRID,) each cell's low edge; high = lo + side + 2·pad
     # the exemplar neighbourhoods turned, (n_e·r, ke); an absent neighbour stays infinitely far
     cos, sin = np.cos(-phi_e)[:, :, None], np.sin(-phi_e)[:, :, None]
     with np.errstate(invalid="ignore"):
@@ -236,22 +231,45 @@ def _turned_field(
         ey = (sin * p_e[:, None, :, 0] + cos * p_e[:, None, :, 1]).reshape(n_e * r, ke)
     far = ~(np.isfinite(ex) & np.isfinite(ey))
     ex, ey = np.where(far, 0.0, ex), np.where(far, 0.0, ey)
-    kq = np.where(far, -1, np.repeat(k_e, r, axis=0))
+    # the kinds of present neighbours numbered 0, 1, … (a kind may be any integer, −1 too)
+    kq = np.repeat(k_e, r, axis=0)
+    labels, dense = np.unique(np.concatenate([k_t[~absent], kq[~far]]), return_inverse=True)
+    kinds = max(len(labels), 1)
+    kt = np.zeros(k_t.shape, np.intp)
+    kt[~absent] = dense[: int((~absent).sum())]
+    kq = np.full(kq.shape, kinds, np.intp)  # absent: a kind of their own, never asked for
+    kq[~far] = dense[int((~absent).sum()) :]
+    # the grid: GRID cells a side, fewer if the field would outgrow FIELD_MAX; it spans 99 % of
+    # the texture neighbours, its outer cells reach to infinity (a stray far neighbour is still
+    # in a cell, and does not coarsen every other's)
+    grid = max(1, min(GRID, math.isqrt(max(FIELD_MAX // max(n_e * r * kinds, 1), 1) - 1)))
+    spread = np.maximum(np.abs(tx[~absent]), np.abs(ty[~absent]))
+    half = (float(np.quantile(spread, 0.99)) if len(spread) else 0.0) + 1e-12
+    side = 2 * half / grid
+    ix = np.clip(np.floor((np.nan_to_num(tx) + half) / side), 0, grid - 1).astype(np.intp)
+    iy = np.clip(np.floor((np.nan_to_num(ty) + half) / side), 0, grid - 1).astype(np.intp)
+    stride = grid * grid + 1
+    cells = np.where(absent, grid * grid, ix * grid + iy + kt * stride)
+    lone = np.where(absent, 0.0, x * x + y * y + alpha)
+    pad = 1e-9 * (1 + half)
+    lo = -half + side * np.arange(grid) - pad  # (grid,) each cell's low and high edges
+    hi = lo + side + 2 * pad
+    lo[0], hi[-1] = -np.inf, np.inf
     field = np.zeros((n_e * r, kinds, stride))
-    rows = max(1, BLOCK // (ke * GRID * GRID))
+    rows = max(1, BLOCK // (ke * grid * grid))
     for a in range(0, n_e * r, rows):
         sl = slice(a, a + rows)
         gap = []
         for q in (ex[sl], ey[sl]):  # per axis, the distance from each cell's span to q (0 inside)
-            g = np.maximum(np.maximum(lo - q[:, :, None], q[:, :, None] - (lo + side + 2 * pad)), 0.0)
+            g = np.maximum(np.maximum(lo - q[:, :, None], q[:, :, None] - hi), 0.0)
             g[far[sl]] = np.inf
             gap.append(g * g)
-        d = (gap[0][:, :, :, None] + gap[1][:, :, None, :]).reshape(len(gap[0]), ke, -1)  # (rows, ke, GRID²)
+        d = (gap[0][:, :, :, None] + gap[1][:, :, None, :]).reshape(len(gap[0]), ke, -1)  # (rows, ke, grid²)
         # per kind, the nearest neighbour of that kind: one pass per neighbour, whatever the kinds
-        own = np.full((len(d), kinds + 1, GRID * GRID), np.inf)  # the last for absent neighbours
+        own = np.full((len(d), kinds + 1, grid * grid), np.inf)
         at = np.arange(len(d))
         for i in range(ke):
-            c = np.where(kq[sl, i] < 0, kinds, kq[sl, i])
+            c = kq[sl, i]
             own[at, c] = np.minimum(own[at, c], d[:, i])
         field[sl, :, :-1] = np.minimum(own[:, :kinds], d.min(axis=1)[:, None, :] + alpha)
     return field.reshape(n_e * r, kinds * stride), cells, lone
