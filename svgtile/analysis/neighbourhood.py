@@ -30,6 +30,14 @@ BLOCK = 1 << 21
 #: Exemplar neighbourhoods (with all their turns) paired per texture neighbourhood and round of
 #: the branch and bound.
 ROUND = 4
+#: Cells per side of the grid on which turned neighbourhoods are bounded (:func:`_turned_field`):
+#: the field costs GRID² per exemplar neighbour and turn, a coarser grid a looser bound; 12–16
+#: ran fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24:
+#: 25 %, 32: 75 %; benchmarks/README.md, "score11j").
+GRID = 16
+#: … fewer where the field (:func:`_turned_field`) would hold more than this many float64 (64 MiB):
+#: an exemplar of many motifs and kinds; a coarser grid is a looser bound, never a wrong one.
+FIELD_MAX = 1 << 23
 
 
 def neighbourhoods(
@@ -176,64 +184,95 @@ def _square_distances(p_t: np.ndarray, p_e: np.ndarray, *, finite: bool = False)
     return d
 
 
-def _bound(d: np.ndarray, p_t: np.ndarray, k_t: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
-    """A lower bound of :func:`_greedy_costs` from its :func:`_square_distances` ``d``, (G,):
-    each texture neighbour pays at least its cheapest partner or being left alone."""
-    low = (d + alpha * (k_t[:, :, None] != k_e[:, None, :])).min(axis=-1)
-    lone = (p_t**2).sum(axis=-1) + alpha
-    return np.where(np.isnan(lone), 0.0, np.minimum(low, lone)).sum(axis=-1)
+def _turned_field(
+    p_t: np.ndarray, k_t: np.ndarray, phi_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, phi_e: np.ndarray,
+    alpha: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """Lower bounds of eq. (1) for every texture neighbourhood under every turn, read off a grid.
 
-
-def _turning_bound(p_t: np.ndarray, k_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
-    """A lower bound of eq. (1) between texture and exemplar neighbourhoods under every turn.
-
-    The greedy pairing is a matching (each neighbour used once), so it costs at least the
-    cheapest matching; a turn keeps distances from the centre and ``|p̂ − R·q̂| ≥ ||p̂| − |q̂||``,
-    so that matching costs at least the cheapest matching of the distances alone — on a line
-    with a convex cost, one that keeps their order, found by dynamic programming over the two
-    sorted lists.  Kinds add at least α per texture neighbour the exemplar's kind counts cannot
-    match.  A texture neighbour may also be left alone (``|p̂|² + α``).
+    A turn (:func:`_turns`) brings the texture neighbourhood's nearest neighbour onto the
+    direction of one of the exemplar neighbourhood's; in the frame where both of those lie on the
+    +x axis (the texture neighbourhood turned by ``−phi_t``, the exemplar one by ``−phi_e[j, t]``)
+    the distances are those of the turn.  There the texture neighbours lie in a square of
+    :data:`GRID` × :data:`GRID` cells; for each turned exemplar neighbourhood ``(j, t)``, each
+    kind ``c`` and each cell the *field* holds ``min_q (|cell − q|² + α·[kind(q) ≠ c])`` — the
+    squared distance from the cell (a closed box, a hair wider than the cell so that rounding in
+    either frame cannot make it more; the outer cells reach to infinity) to the nearest exemplar
+    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind ``c`` in that cell then costs at least
+    the field's value there, or ``|p̂|² + α`` left alone; summed over the neighbours, a bound of
+    the greedy pairing (a matching) under that turn: ``field[:, cells].min(lone).sum()``, the
+    centres' own kinds left to the caller.
 
     Parameters
     ----------
-    p_t : (b, k, 2) texture neighbourhoods, nearest first; k_t : (b, k)
-    p_e : (n_e, ke, 2) exemplar neighbourhoods, nearest first; k_e : (n_e, ke)
+    p_t : (m, k, 2) texture neighbourhoods, spacings (NaN: absent); k_t : (m, k) their kinds
+    phi_t : (m,), phi_e : (n_e, r), radians: :func:`_turns`
+    p_e : (n_e, ke, 2) exemplar neighbourhoods, spacings, ±inf where absent; k_e : (n_e, ke)
     alpha : cost of a kind mismatch
 
     Returns
     -------
-    (b, n_e) float, squared spacings, without the centres' own kinds
+    field : (n_e·r, kinds · (G² + 1)) float, squared spacings: row ``j·r + t``; per kind (those
+        of the present neighbours, numbered in order) a block of G² cells, G ≤ :data:`GRID`, and
+        a last column of 0 (an absent texture neighbour's)
+    cells : (m, k) int, each texture neighbour's column in ``field`` (cell and kind)
+    lone : (m, k) float, ``|p̂|² + α``, 0 for an absent neighbour
     """
-    b, k = k_t.shape
-    n_e, ke = k_e.shape
-    rt = np.hypot(p_t[..., 0], p_t[..., 1])  # (b, k), NaN for an absent neighbour
-    re = np.nan_to_num(np.hypot(p_e[..., 0], p_e[..., 1]), nan=np.inf)  # (n_e, ke)
-    present = ~np.isnan(rt)
-    lone = np.where(present, rt * rt, 0.0)  # the α of a lone neighbour is counted with kinds
-    # cost[j] after texture neighbour i: cheapest order-keeping matching of neighbours 0..i to
-    # exemplar neighbours 0..j-1 of each pair, (b, n_e, ke + 1).
-    cost = np.zeros((b, n_e, ke + 1))
-    for i in range(k):
-        a = rt[:, i, None, None]
-        pair = (a - re[None]) ** 2  # (b, n_e, ke)
-        pair = np.where(present[:, i, None, None], pair, 0.0)
-        new = np.empty_like(cost)
-        new[..., 0] = cost[..., 0] + lone[:, i, None]
-        paired = cost[..., :-1] + pair
-        alone = cost[..., 1:] + lone[:, i, None, None]
-        step = np.minimum(paired, alone)
-        # new[j] = min(new[j − 1], step[j − 1]): exemplar neighbour j − 1 used by i, or not at all
-        new[..., 1:] = step
-        np.minimum.accumulate(new, axis=-1, out=new)
-        cost = new
-    low = cost[..., -1]
-    kinds = int(max(k_t.max(initial=-1), k_e.max(initial=-1))) + 1
-    if kinds > 0:
-        ct = np.stack([(k_t == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (b, kinds)
-        ce = np.stack([(k_e == c).sum(axis=1) for c in range(kinds)], axis=-1)  # (n_e, kinds)
-        shared = np.minimum(ct[:, None, :], ce[None, :, :]).sum(axis=-1)
-        low = low + alpha * (present.sum(axis=1)[:, None] - shared)
-    return low
+    n_e, r = phi_e.shape
+    ke = k_e.shape[1]
+    cos, sin = np.cos(-phi_t)[:, None], np.sin(-phi_t)[:, None]
+    x, y = p_t[..., 0], p_t[..., 1]
+    tx, ty = cos * x - sin * y, sin * x + cos * y  # (m, k), the texture neighbourhoods' own frame
+    absent = np.isnan(tx)
+    # the exemplar neighbourhoods turned, (n_e·r, ke); an absent neighbour stays infinitely far
+    cos, sin = np.cos(-phi_e)[:, :, None], np.sin(-phi_e)[:, :, None]
+    with np.errstate(invalid="ignore"):
+        ex = (cos * p_e[:, None, :, 0] - sin * p_e[:, None, :, 1]).reshape(n_e * r, ke)
+        ey = (sin * p_e[:, None, :, 0] + cos * p_e[:, None, :, 1]).reshape(n_e * r, ke)
+    far = ~(np.isfinite(ex) & np.isfinite(ey))
+    ex, ey = np.where(far, 0.0, ex), np.where(far, 0.0, ey)
+    # the kinds of present neighbours numbered 0, 1, … (a kind may be any integer, −1 too)
+    kq = np.repeat(k_e, r, axis=0)
+    labels, dense = np.unique(np.concatenate([k_t[~absent], kq[~far]]), return_inverse=True)
+    kinds = max(len(labels), 1)
+    kt = np.zeros(k_t.shape, np.intp)
+    kt[~absent] = dense[: int((~absent).sum())]
+    kq = np.full(kq.shape, kinds, np.intp)  # absent: a kind of their own, never asked for
+    kq[~far] = dense[int((~absent).sum()) :]
+    # the grid: GRID cells a side, fewer if the field would outgrow FIELD_MAX; it spans 99 % of
+    # the texture neighbours, its outer cells reach to infinity (a stray far neighbour is still
+    # in a cell, and does not coarsen every other's)
+    grid = max(1, min(GRID, math.isqrt(max(FIELD_MAX // max(n_e * r * kinds, 1), 1) - 1)))
+    spread = np.maximum(np.abs(tx[~absent]), np.abs(ty[~absent]))
+    half = (float(np.quantile(spread, 0.99)) if len(spread) else 0.0) + 1e-12
+    side = 2 * half / grid
+    ix = np.clip(np.floor((np.nan_to_num(tx) + half) / side), 0, grid - 1).astype(np.intp)
+    iy = np.clip(np.floor((np.nan_to_num(ty) + half) / side), 0, grid - 1).astype(np.intp)
+    stride = grid * grid + 1
+    cells = np.where(absent, grid * grid, ix * grid + iy + kt * stride)
+    lone = np.where(absent, 0.0, x * x + y * y + alpha)
+    pad = 1e-9 * (1 + half)
+    lo = -half + side * np.arange(grid) - pad  # (grid,) each cell's low and high edges
+    hi = lo + side + 2 * pad
+    lo[0], hi[-1] = -np.inf, np.inf
+    field = np.zeros((n_e * r, kinds, stride))
+    rows = max(1, BLOCK // (ke * grid * grid))
+    for a in range(0, n_e * r, rows):
+        sl = slice(a, a + rows)
+        gap = []
+        for q in (ex[sl], ey[sl]):  # per axis, the distance from each cell's span to q (0 inside)
+            g = np.maximum(np.maximum(lo - q[:, :, None], q[:, :, None] - hi), 0.0)
+            g[far[sl]] = np.inf
+            gap.append(g * g)
+        d = (gap[0][:, :, :, None] + gap[1][:, :, None, :]).reshape(len(gap[0]), ke, -1)  # (rows, ke, grid²)
+        # per kind, the nearest neighbour of that kind: one pass per neighbour, whatever the kinds
+        own = np.full((len(d), kinds + 1, grid * grid), np.inf)
+        at = np.arange(len(d))
+        for i in range(ke):
+            c = kq[sl, i]
+            own[at, c] = np.minimum(own[at, c], d[:, i])
+        field[sl, :, :-1] = np.minimum(own[:, :kinds], d.min(axis=1)[:, None, :] + alpha)
+    return field.reshape(n_e * r, kinds * stride), cells, lone
 
 
 def _nearest_costs(
@@ -255,10 +294,9 @@ def _nearest_costs(
     cheapest partner, ``min_q |p̂ − q̂|² + α·[kinds differ]``, or being left alone, whichever is
     less — so the pairing is computed in order of increasing bound, a few candidates per round,
     and stops for a centre once its next bound exceeds the best distance found.  Neighbourhoods
-    that may turn are ordered by a bound that holds for every turn (:func:`_turning_bound`),
-    and each turn is bounded by position (:func:`_bound`) before it is paired.  The result is
-    the minimum over every exemplar neighbourhood and turn, bit for bit
-    (``tests/test_neighbourhood.py`` compares it with every pairing).
+    that may turn are bounded per turn on a grid (:func:`_turned_field`).  The result is the
+    minimum over every exemplar neighbourhood and turn, bit for bit (``tests/test_neighbourhood.py``
+    compares it with every pairing): a bound only decides what is paired, never a cost.
 
     Parameters
     ----------
@@ -286,12 +324,15 @@ def _nearest_costs(
     p_far = np.nan_to_num(p_e, nan=np.inf)
     q_x, q_y = p_far[None, :, None, :, 0], p_far[None, :, None, :, 1]
     whole = not np.isnan(p_t).any()
+    if rotate:
+        field, cells, lone_t = _turned_field(p_t, k_t, phi_t, p_far, k_e, phi_e, alpha)
     for start in range(0, m, batch):
         sl = slice(start, start + batch)
         pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
         b = len(pt)
-        if rotate:
-            low = _turning_bound(pt, kt, p_e, k_e, alpha)
+        if rotate:  # (b, n_e·r): every turn of every exemplar neighbourhood, from the grid
+            low = np.minimum(field[:, cells[sl]], lone_t[sl]).sum(axis=-1).T
+            low += np.repeat(alpha * (ct[:, None] != c_e[None, :]), r, axis=1)
         else:  # (b, n_e, k, ke): each texture neighbour pays its cheapest partner or none
             d = pt[:, None, :, None, 0] - q_x
             d *= d
@@ -302,8 +343,7 @@ def _nearest_costs(
             lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
             low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
             del d, dx, lone
-        low += alpha * (ct[:, None] != c_e[None, :])
-        low = np.repeat(low, r, axis=1)  # (b, n_e·r): every turn has its neighbourhood's bound
+            low += alpha * (ct[:, None] != c_e[None, :])
         order = np.argsort(low, axis=1, kind="stable")
         low = np.take_along_axis(low, order, axis=1)
         top = np.full(b, np.inf)
@@ -321,12 +361,8 @@ def _nearest_costs(
                 x, y = pair[..., 0], pair[..., 1]
                 pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
             cost = alpha * (ct[rows] != c_e[je])
-            q, kq = p_far[je], k_e[je]
-            d = _square_distances(pair, q, finite=whole)
-            if rotate:  # bound each turn by position before pairing
-                near = _bound(d, pair, kt[rows], kq, alpha) + cost <= top[rows] * slack
-                rows, pair, q, kq, d, cost = rows[near], pair[near], q[near], kq[near], d[near], cost[near]
-            cost += _greedy_costs(pair, kt[rows], q, kq, alpha, d=d)
+            d = _square_distances(pair, p_far[je], finite=whole)
+            cost += _greedy_costs(pair, kt[rows], p_far[je], k_e[je], alpha, d=d)
             np.minimum.at(top, rows, cost)
         best[sl] = top
     return best
