@@ -184,20 +184,21 @@ def test_one_motif_each_has_no_neighbours_to_compare():
         assert neighbourhood_distance(xy, [0], xy, [0], spacing=1.0, rotate=rotate) == 0.0
 
 
-@pytest.mark.parametrize(("seed", "n_ex", "labels"), [
-    (0, 25, (0, 1, 2)), (1, 25, (0, 1, 2)), (2, 25, (-1, 0, 7)), (3, 4, (0, 1, 2)), (4, 2, (0, 1, 2)),
+@pytest.mark.parametrize(("seed", "n_ex", "labels", "rotate"), [
+    (0, 25, (0, 1, 2), True), (1, 25, (0, 1, 2), True), (2, 25, (-1, 0, 7), True), (3, 4, (0, 1, 2), True),
+    (4, 2, (0, 1, 2), True), (5, 25, (0, 1, 2), False), (6, 4, (-1, 0, 7), False),
 ])  # fmt: skip
-def test_turned_field_bounds_every_turn(seed, n_ex, labels):
+def test_turned_field_bounds_every_turn(seed, n_ex, labels, rotate):
     """The grid bound of a turned pair of neighbourhoods is at most its greedy pairing's cost
     (what makes the pruned search exact), 0 where the texture neighbourhood is an exemplar one
     turned, and not vacuous.  Exemplars of 4 and 2 motifs leave texture neighbours alone; kinds
-    are any integers (−1 and 7 too)."""
+    are any integers (−1 and 7 too).  Without turns (one frame) the same field bounds the pairs."""
     from svgtile.analysis.neighbourhood import _greedy_costs, _turned_field, _turns
 
     rng = np.random.default_rng(seed)
     ex = rng.uniform(0, 40, size=(n_ex, 2))
     ex_kind = rng.choice(labels, size=n_ex)
-    angle = rng.uniform(0, 2 * np.pi)
+    angle = rng.uniform(0, 2 * np.pi) if rotate else 0.0
     turn = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
     tex = np.concatenate([rng.uniform(0, 200, size=(300, 2)), (ex - 20.0) @ turn.T + 400.0])
     tex_kind = np.concatenate([rng.choice(labels, size=300), ex_kind])
@@ -206,7 +207,7 @@ def test_turned_field_bounds_every_turn(seed, n_ex, labels):
     p_t, k_t = neighbourhoods(tex, tex_kind, k, centres=centres)
     p_e, k_e = neighbourhoods(ex, ex_kind, 2 * k)
     p_t, p_e = p_t / s, p_e / s
-    phi_t, phi_e = _turns(p_t, p_e, k, True)  # as _nearest_costs turns them: p_e with NaN
+    phi_t, phi_e = _turns(p_t, p_e, k, rotate)  # as _nearest_costs turns them: p_e with NaN
     p_e = np.nan_to_num(p_e, nan=np.inf)
     field, cells, lone = _turned_field(p_t, k_t, phi_t, p_e, k_e, phi_e, alpha)
     bound = np.minimum(field[:, cells], lone).sum(axis=-1).T  # (m, n_e·r)
