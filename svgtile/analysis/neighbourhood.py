@@ -25,16 +25,17 @@ from scipy.spatial import cKDTree
 #: infinite extent so that it never runs out before the texture's; twice ``k`` also covers
 #: ties at the k-th distance (a square lattice has 4 neighbours at a, 4 at a·√2).
 EXEMPLAR_FACTOR = 2
-#: Neighbourhood pairs are bounded on blocks of at most this many float64 distances.
+#: Arrays of about this many float64 at most: texture neighbourhoods are taken in batches, and the
+#: grid's field built in chunks, that keep each of their arrays within it.
 BLOCK = 1 << 21
 #: (Exemplar neighbourhood, turn) pairs bounded by position and paired per texture neighbourhood and
 #: round of the branch and bound (16 ran fastest of 4–24 over the whole sets; benchmarks/README.md,
 #: "score11k").
 ROUND = 16
-#: Cells per side of the grid on which turned neighbourhoods are bounded (:func:`_turned_field`):
-#: the field costs GRID² per exemplar neighbour and turn, a coarser grid a looser bound; 12–16
-#: ran fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24:
-#: 25 %, 32: 75 %; benchmarks/README.md, "score11j").
+#: Cells per side of the grid on which neighbourhoods are bounded (:func:`_turned_field`): the
+#: field costs GRID² per exemplar neighbour and turn, a coarser grid a looser bound; 12–16 ran
+#: fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24: 25 %,
+#: 32: 75 %; benchmarks/README.md, "score11j"), and 16 serves those whose motifs do not ("score11k").
 GRID = 16
 #: … fewer where the field (:func:`_turned_field`) would hold more than this many float64 (64 MiB):
 #: an exemplar of many motifs and kinds; a coarser grid is a looser bound, never a wrong one.
@@ -207,10 +208,11 @@ def _turned_field(
     kind ``c`` and each cell the *field* holds ``min_q (|cell − q|² + α·[kind(q) ≠ c])`` — the
     squared distance from the cell (a closed box, a hair wider than the cell so that rounding in
     either frame cannot make it more; the outer cells reach to infinity) to the nearest exemplar
-    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind ``c`` in that cell then costs at least
-    the field's value there, or ``|p̂|² + α`` left alone; summed over the neighbours, a bound of
-    the greedy pairing (a matching) under that turn: ``field[:, cells].min(lone).sum()``, the
-    centres' own kinds left to the caller.
+    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind
+    ``c`` in that cell then costs at least the field's value there, or ``|p̂|² + α`` left alone;
+    summed over the neighbours, a bound of the greedy pairing (a matching) under that turn:
+    ``field[:, cells].min(lone).sum()``, the centres' own kinds left to the caller.  Without
+    turns (``phi`` all 0, r = 1) the frame is the neighbourhoods' own, unturned.
 
     Parameters
     ----------
@@ -265,7 +267,7 @@ def _turned_field(
     hi = lo + side + 2 * pad
     lo[0], hi[-1] = -np.inf, np.inf
     field = np.zeros((n_e * r, kinds, stride))
-    rows = max(1, BLOCK // (ke * grid * grid))
+    rows = max(1, BLOCK // ((ke + kinds + 1) * grid * grid))  # d and own within BLOCK floats
     for a in range(0, n_e * r, rows):
         sl = slice(a, a + rows)
         gap = []
@@ -329,7 +331,9 @@ def _nearest_costs(
     # a bound in floating point.
     slack = 1 + 1e-9
     best = np.full(m, np.inf)
-    batch = max(1, BLOCK // max(n_e * r * k, 1))
+    # texture neighbourhoods a batch: their grid bounds (n_e·r, b, k) and a round's distances
+    # (b·ROUND, k, ke), with its copies in the pairing, within BLOCK floats each
+    batch = max(1, BLOCK // max(n_e * r * k, min(ROUND, n_e * r) * k * p_e.shape[1], 1))
     # Exemplar neighbours, an absent one infinitely far; texture neighbourhoods all present
     # (the texture has more than k motifs) need no test for absent ones.
     p_far = np.nan_to_num(p_e, nan=np.inf)
@@ -339,7 +343,7 @@ def _nearest_costs(
         sl = slice(start, start + batch)
         pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
         b = len(pt)
-        # (b, n_e·r): every turn of every exemplar neighbourhood, from the grid
+        # (b, n_e·r): the grid bound of every (exemplar neighbourhood, turn); r = 1 without turns
         low = np.minimum(field[:, cells[sl]], lone_t[sl]).sum(axis=-1).T
         low += np.repeat(alpha * (ct[:, None] != c_e[None, :]), r, axis=1)
         order = np.argsort(low, axis=1, kind="stable")
@@ -428,6 +432,10 @@ def neighbourhood_distance(
     exemplar_kind = np.asarray(exemplar_kind).reshape(-1)
     if not (spacing > 0 and math.isfinite(spacing)):
         raise ValueError(f"spacing must be positive and finite, not {spacing!r}")
+    if k < 1:
+        raise ValueError(f"k must be at least 1, not {k!r}")
+    if not (alpha >= 0 and math.isfinite(alpha)):
+        raise ValueError(f"alpha must be zero or positive and finite, not {alpha!r}")
     centres = np.arange(len(texture_xy)) if centres is None else np.asarray(centres, np.intp)
     if sample is not None and len(centres) > sample:
         if rng is None:
