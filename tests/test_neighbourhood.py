@@ -132,9 +132,21 @@ def brute_force(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate):
     return best
 
 
+@pytest.fixture(params=["one", "default"])
+def rounds(request, monkeypatch):
+    """ROUND as the module has it, and 1: one pair a round, so that every bound decides what is
+    paired from the second candidate on (with the default, a small exemplar is paired whole in
+    the first round, before there is anything to prune against)."""
+    from svgtile.analysis import neighbourhood as nb
+
+    if request.param == "one":
+        monkeypatch.setattr(nb, "ROUND", 1)
+    return nb.ROUND
+
+
 @pytest.mark.parametrize("rotate", [False, True])
 @pytest.mark.parametrize("period", [None, (50.0, 40.0)])
-def test_pruned_search_equals_every_pairing(rotate, period):
+def test_pruned_search_equals_every_pairing(rotate, period, rounds):
     from svgtile.analysis.neighbourhood import _nearest_costs
 
     rng = np.random.default_rng(11)
@@ -155,7 +167,7 @@ def test_pruned_search_equals_every_pairing(rotate, period):
 
 @pytest.mark.parametrize(("n_ex", "n_tex"), [(7, 5), (6, 40)])
 @pytest.mark.parametrize("kinds", [(0, 1), (-1, 0, 3)])
-def test_pruned_search_with_absent_neighbours_equals_every_pairing(n_ex, n_tex, kinds):
+def test_pruned_search_with_absent_neighbours_equals_every_pairing(n_ex, n_tex, kinds, rounds):
     """Texture or exemplar with fewer motifs than a neighbourhood holds: absent neighbours (NaN)
     in both (7, 5), or one texture neighbour of each neighbourhood left without partner, alone
     (6, 40: 5 exemplar neighbours for 6); every turn tried, kinds mixed, any integers."""
@@ -172,7 +184,7 @@ def test_pruned_search_with_absent_neighbours_equals_every_pairing(n_ex, n_tex, 
     present_t = (~np.isnan(p_t[..., 0])).sum(axis=1)
     present_e = (~np.isnan(p_e[..., 0])).sum(axis=1)
     assert (present_e < 2 * k).all() and (present_t.min() < k or present_e.max() < k)
-    assert len(p_e) > 4  # more exemplar neighbourhoods than the first round pairs: the bound prunes
+    assert len(p_e) > rounds or rounds > 1  # with ROUND 1, more than the first round pairs
     for rotate in (False, True):
         args = (p_t / s, k_t, tex_kind, p_e / s, k_e, ex_kind, 1.0)
         np.testing.assert_array_equal(_nearest_costs(*args, rotate=rotate), brute_force(*args, rotate))
@@ -184,20 +196,21 @@ def test_one_motif_each_has_no_neighbours_to_compare():
         assert neighbourhood_distance(xy, [0], xy, [0], spacing=1.0, rotate=rotate) == 0.0
 
 
-@pytest.mark.parametrize(("seed", "n_ex", "labels"), [
-    (0, 25, (0, 1, 2)), (1, 25, (0, 1, 2)), (2, 25, (-1, 0, 7)), (3, 4, (0, 1, 2)), (4, 2, (0, 1, 2)),
+@pytest.mark.parametrize(("seed", "n_ex", "labels", "rotate"), [
+    (0, 25, (0, 1, 2), True), (1, 25, (0, 1, 2), True), (2, 25, (-1, 0, 7), True), (3, 4, (0, 1, 2), True),
+    (4, 2, (0, 1, 2), True), (5, 25, (0, 1, 2), False), (6, 4, (-1, 0, 7), False),
 ])  # fmt: skip
-def test_turned_field_bounds_every_turn(seed, n_ex, labels):
+def test_turned_field_bounds_every_turn(seed, n_ex, labels, rotate):
     """The grid bound of a turned pair of neighbourhoods is at most its greedy pairing's cost
     (what makes the pruned search exact), 0 where the texture neighbourhood is an exemplar one
     turned, and not vacuous.  Exemplars of 4 and 2 motifs leave texture neighbours alone; kinds
-    are any integers (−1 and 7 too)."""
+    are any integers (−1 and 7 too).  Without turns (one frame) the same field bounds the pairs."""
     from svgtile.analysis.neighbourhood import _greedy_costs, _turned_field, _turns
 
     rng = np.random.default_rng(seed)
     ex = rng.uniform(0, 40, size=(n_ex, 2))
     ex_kind = rng.choice(labels, size=n_ex)
-    angle = rng.uniform(0, 2 * np.pi)
+    angle = rng.uniform(0, 2 * np.pi) if rotate else 0.0
     turn = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
     tex = np.concatenate([rng.uniform(0, 200, size=(300, 2)), (ex - 20.0) @ turn.T + 400.0])
     tex_kind = np.concatenate([rng.choice(labels, size=300), ex_kind])
@@ -206,7 +219,7 @@ def test_turned_field_bounds_every_turn(seed, n_ex, labels):
     p_t, k_t = neighbourhoods(tex, tex_kind, k, centres=centres)
     p_e, k_e = neighbourhoods(ex, ex_kind, 2 * k)
     p_t, p_e = p_t / s, p_e / s
-    phi_t, phi_e = _turns(p_t, p_e, k, True)  # as _nearest_costs turns them: p_e with NaN
+    phi_t, phi_e = _turns(p_t, p_e, k, rotate)  # as _nearest_costs turns them: p_e with NaN
     p_e = np.nan_to_num(p_e, nan=np.inf)
     field, cells, lone = _turned_field(p_t, k_t, phi_t, p_e, k_e, phi_e, alpha)
     bound = np.minimum(field[:, cells], lone).sum(axis=-1).T  # (m, n_e·r)
@@ -228,3 +241,31 @@ def test_turned_field_bounds_every_turn(seed, n_ex, labels):
         # not vacuous: a quarter of the cost at least for most pairs (0.80–0.94 of them at these
         # seeds; each neighbour is bounded by its nearest partner, not in a matching)
         assert (bound > 0.25 * cost).mean() > 0.7
+
+
+@pytest.mark.parametrize("n_ex", [25, 4])
+def test_position_bound_is_below_the_pairing(n_ex):
+    """:func:`_bound` of a pair of neighbourhoods never exceeds its greedy pairing's cost, with
+    absent exemplar neighbours and texture neighbours left alone (an exemplar of 4 motifs), and is
+    the cost's own value where each neighbour's nearest partner is its own (a copy)."""
+    from svgtile.analysis.neighbourhood import _bound, _greedy_costs, _square_distances
+
+    rng = np.random.default_rng(n_ex)
+    ex = rng.uniform(0, 40, size=(n_ex, 2))
+    ex_kind = rng.integers(0, 3, size=n_ex)
+    tex = rng.uniform(0, 200, size=(300, 2))
+    tex_kind = rng.integers(0, 3, size=300)
+    k, s, alpha = 6, 8.0, 1.0
+    p_t, k_t = neighbourhoods(tex, tex_kind, k, centres=np.arange(50))
+    p_e, k_e = neighbourhoods(ex, ex_kind, 2 * k)
+    p_e = np.nan_to_num(p_e / s, nan=np.inf)
+    p_t = p_t / s
+    i, j = np.divmod(np.arange(len(p_t) * len(p_e)), len(p_e))
+    d = _square_distances(p_t[i], p_e[j], finite=True)
+    low = _bound(d, p_t[i], k_t[i], k_e[j], alpha)
+    cost = _greedy_costs(p_t[i], k_t[i], p_e[j], k_e[j], alpha, d=d)
+    assert (low <= cost * (1 + 1e-9)).all()
+    assert (low > 0.25 * cost).mean() > (0.7 if n_ex > k else 0.3)
+    if n_ex > 2 * k:  # every exemplar neighbour present: its first k paired with themselves
+        same = _square_distances(p_e[:, :k], p_e, finite=True)
+        assert (_bound(same, p_e[:, :k], k_e[:, :k], k_e, alpha) == 0.0).all()

@@ -25,15 +25,17 @@ from scipy.spatial import cKDTree
 #: infinite extent so that it never runs out before the texture's; twice ``k`` also covers
 #: ties at the k-th distance (a square lattice has 4 neighbours at a, 4 at a·√2).
 EXEMPLAR_FACTOR = 2
-#: Neighbourhood pairs are bounded on blocks of at most this many float64 distances.
+#: Arrays of about this many float64 at most: texture neighbourhoods are taken in batches, and the
+#: grid's field built in chunks, that keep each of their arrays within it.
 BLOCK = 1 << 21
-#: Exemplar neighbourhoods (with all their turns) paired per texture neighbourhood and round of
-#: the branch and bound.
-ROUND = 4
-#: Cells per side of the grid on which turned neighbourhoods are bounded (:func:`_turned_field`):
-#: the field costs GRID² per exemplar neighbour and turn, a coarser grid a looser bound; 12–16
-#: ran fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24:
-#: 25 %, 32: 75 %; benchmarks/README.md, "score11j").
+#: (Exemplar neighbourhood, turn) pairs bounded by position and paired per texture neighbourhood and
+#: round of the branch and bound (16 ran fastest of 4–24 over the whole sets; benchmarks/README.md,
+#: "score11k").
+ROUND = 16
+#: Cells per side of the grid on which neighbourhoods are bounded (:func:`_turned_field`): the
+#: field costs GRID² per exemplar neighbour and turn, a coarser grid a looser bound; 12–16 ran
+#: fastest over the bundled and whole-set exemplars whose motifs turn (8: 4 % slower, 24: 25 %,
+#: 32: 75 %; benchmarks/README.md, "score11j"), and 16 serves those whose motifs do not ("score11k").
 GRID = 16
 #: … fewer where the field (:func:`_turned_field`) would hold more than this many float64 (64 MiB):
 #: an exemplar of many motifs and kinds; a coarser grid is a looser bound, never a wrong one.
@@ -184,6 +186,14 @@ def _square_distances(p_t: np.ndarray, p_e: np.ndarray, *, finite: bool = False)
     return d
 
 
+def _bound(d: np.ndarray, p_t: np.ndarray, k_t: np.ndarray, k_e: np.ndarray, alpha: float) -> np.ndarray:
+    """A lower bound of :func:`_greedy_costs` from its :func:`_square_distances` ``d``, (G,):
+    each texture neighbour pays at least its cheapest partner or being left alone."""
+    low = (d + alpha * (k_t[:, :, None] != k_e[:, None, :])).min(axis=-1)
+    lone = (p_t**2).sum(axis=-1) + alpha
+    return np.where(np.isnan(lone), 0.0, np.minimum(low, lone)).sum(axis=-1)
+
+
 def _turned_field(
     p_t: np.ndarray, k_t: np.ndarray, phi_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, phi_e: np.ndarray,
     alpha: float,
@@ -198,10 +208,11 @@ def _turned_field(
     kind ``c`` and each cell the *field* holds ``min_q (|cell − q|² + α·[kind(q) ≠ c])`` — the
     squared distance from the cell (a closed box, a hair wider than the cell so that rounding in
     either frame cannot make it more; the outer cells reach to infinity) to the nearest exemplar
-    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind ``c`` in that cell then costs at least
-    the field's value there, or ``|p̂|² + α`` left alone; summed over the neighbours, a bound of
-    the greedy pairing (a matching) under that turn: ``field[:, cells].min(lone).sum()``, the
-    centres' own kinds left to the caller.
+    neighbour ``q``, or to the nearest of kind ``c`` without the α.  A texture neighbour of kind
+    ``c`` in that cell then costs at least the field's value there, or ``|p̂|² + α`` left alone;
+    summed over the neighbours, a bound of the greedy pairing (a matching) under that turn:
+    ``field[:, cells].min(lone).sum()``, the centres' own kinds left to the caller.  Without
+    turns (``phi`` all 0, r = 1) the frame is the neighbourhoods' own, unturned.
 
     Parameters
     ----------
@@ -256,7 +267,7 @@ def _turned_field(
     hi = lo + side + 2 * pad
     lo[0], hi[-1] = -np.inf, np.inf
     field = np.zeros((n_e * r, kinds, stride))
-    rows = max(1, BLOCK // (ke * grid * grid))
+    rows = max(1, BLOCK // ((ke + kinds + 1) * grid * grid))  # d and own within BLOCK floats
     for a in range(0, n_e * r, rows):
         sl = slice(a, a + rows)
         gap = []
@@ -293,10 +304,12 @@ def _nearest_costs(
     texture one.  A lower bound of eq. (1) is cheap — each texture neighbour costs at least its
     cheapest partner, ``min_q |p̂ − q̂|² + α·[kinds differ]``, or being left alone, whichever is
     less — so the pairing is computed in order of increasing bound, a few candidates per round,
-    and stops for a centre once its next bound exceeds the best distance found.  Neighbourhoods
-    that may turn are bounded per turn on a grid (:func:`_turned_field`).  The result is the
-    minimum over every exemplar neighbourhood and turn, bit for bit (``tests/test_neighbourhood.py``
-    compares it with every pairing): a bound only decides what is paired, never a cost.
+    and stops for a centre once its next bound exceeds the best distance found.  Candidates are
+    ordered by that bound read off a grid (:func:`_turned_field`, per turn where neighbourhoods
+    may turn), and each is bounded again at its exact positions (:func:`_bound`) before it is
+    paired.  The result is the minimum over every exemplar neighbourhood and turn, bit for bit
+    (``tests/test_neighbourhood.py`` compares it with every pairing): a bound only decides what is
+    paired, never a cost.
 
     Parameters
     ----------
@@ -311,45 +324,33 @@ def _nearest_costs(
     (m,) float, squared spacings
     """
     m, k, _ = p_t.shape
-    n_e, ke = k_e.shape
+    n_e = len(k_e)
     phi_t, phi_e = _turns(p_t, p_e, k, rotate)
     r = phi_e.shape[1]
     # The bound may sum its terms in another order than the pairing: a hair of slack keeps it
     # a bound in floating point.
     slack = 1 + 1e-9
     best = np.full(m, np.inf)
-    batch = max(1, BLOCK // max(n_e * k * ke, 1))
+    # texture neighbourhoods a batch: their grid bounds (n_e·r, b, k) and a round's distances
+    # (b·ROUND, k, ke), with its copies in the pairing, within BLOCK floats each
+    batch = max(1, BLOCK // max(n_e * r * k, min(ROUND, n_e * r) * k * p_e.shape[1], 1))
     # Exemplar neighbours, an absent one infinitely far; texture neighbourhoods all present
     # (the texture has more than k motifs) need no test for absent ones.
     p_far = np.nan_to_num(p_e, nan=np.inf)
-    q_x, q_y = p_far[None, :, None, :, 0], p_far[None, :, None, :, 1]
     whole = not np.isnan(p_t).any()
-    if rotate:
-        field, cells, lone_t = _turned_field(p_t, k_t, phi_t, p_far, k_e, phi_e, alpha)
+    field, cells, lone_t = _turned_field(p_t, k_t, phi_t, p_far, k_e, phi_e, alpha)
     for start in range(0, m, batch):
         sl = slice(start, start + batch)
         pt, kt, ct = p_t[sl], k_t[sl], c_t[sl]
         b = len(pt)
-        if rotate:  # (b, n_e·r): every turn of every exemplar neighbourhood, from the grid
-            low = np.minimum(field[:, cells[sl]], lone_t[sl]).sum(axis=-1).T
-            low += np.repeat(alpha * (ct[:, None] != c_e[None, :]), r, axis=1)
-        else:  # (b, n_e, k, ke): each texture neighbour pays its cheapest partner or none
-            d = pt[:, None, :, None, 0] - q_x
-            d *= d
-            dx = pt[:, None, :, None, 1] - q_y
-            dx *= dx
-            d += dx
-            d += alpha * (kt[:, None, :, None] != k_e[None, :, None, :])
-            lone = (pt**2).sum(axis=-1)[:, None, :] + alpha
-            low = np.where(np.isnan(lone), 0.0, np.minimum(d.min(axis=-1), lone)).sum(axis=-1)
-            del d, dx, lone
-            low += alpha * (ct[:, None] != c_e[None, :])
+        # (b, n_e·r): the grid bound of every (exemplar neighbourhood, turn); r = 1 without turns
+        low = np.minimum(field[:, cells[sl]], lone_t[sl]).sum(axis=-1).T
+        low += np.repeat(alpha * (ct[:, None] != c_e[None, :]), r, axis=1)
         order = np.argsort(low, axis=1, kind="stable")
         low = np.take_along_axis(low, order, axis=1)
         top = np.full(b, np.inf)
-        step = ROUND * r
-        for pos in range(0, n_e * r, step):
-            live = low[:, pos : pos + step] <= top[:, None] * slack
+        for pos in range(0, n_e * r, ROUND):
+            live = low[:, pos : pos + ROUND] <= top[:, None] * slack
             if not live.any():
                 break
             rows, cols = np.nonzero(live)
@@ -361,8 +362,12 @@ def _nearest_costs(
                 x, y = pair[..., 0], pair[..., 1]
                 pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
             cost = alpha * (ct[rows] != c_e[je])
-            d = _square_distances(pair, p_far[je], finite=whole)
-            cost += _greedy_costs(pair, kt[rows], p_far[je], k_e[je], alpha, d=d)
+            q, kq = p_far[je], k_e[je]
+            d = _square_distances(pair, q, finite=whole)
+            # bounded by position before pairing: the grid's cells blur what this sees
+            near = _bound(d, pair, kt[rows], kq, alpha) + cost <= top[rows] * slack
+            rows, pair, q, kq, d, cost = rows[near], pair[near], q[near], kq[near], d[near], cost[near]
+            cost += _greedy_costs(pair, kt[rows], q, kq, alpha, d=d)
             np.minimum.at(top, rows, cost)
         best[sl] = top
     return best
@@ -427,6 +432,10 @@ def neighbourhood_distance(
     exemplar_kind = np.asarray(exemplar_kind).reshape(-1)
     if not (spacing > 0 and math.isfinite(spacing)):
         raise ValueError(f"spacing must be positive and finite, not {spacing!r}")
+    if k < 1:
+        raise ValueError(f"k must be at least 1, not {k!r}")
+    if not (alpha >= 0 and math.isfinite(alpha)):
+        raise ValueError(f"alpha must be zero or positive and finite, not {alpha!r}")
     centres = np.arange(len(texture_xy)) if centres is None else np.asarray(centres, np.intp)
     if sample is not None and len(centres) > sample:
         if rng is None:
