@@ -194,6 +194,11 @@ def _bound(d: np.ndarray, p_t: np.ndarray, k_t: np.ndarray, k_e: np.ndarray, alp
     return np.where(np.isnan(lone), 0.0, np.minimum(low, lone)).sum(axis=-1)
 
 
+def _turned(x: np.ndarray, y: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Points ``(x, y)`` turned by the angle of ``cos``, ``sin`` (arrays that broadcast together)."""
+    return cos * x - sin * y, sin * x + cos * y
+
+
 def _turned_field(
     p_t: np.ndarray, k_t: np.ndarray, phi_t: np.ndarray, p_e: np.ndarray, k_e: np.ndarray, phi_e: np.ndarray,
     alpha: float,
@@ -223,50 +228,49 @@ def _turned_field(
 
     Returns
     -------
-    field : (n_e·r, kinds · (G² + 1)) float, squared spacings: row ``j·r + t``; per kind (those
-        of the present neighbours, numbered in order) a block of G² cells, G ≤ :data:`GRID`, and
-        a last column of 0 (an absent texture neighbour's)
+    field : (n_e·r, kinds · G² + 1) float, squared spacings: row ``j·r + t``; per kind (those
+        of the present neighbours, numbered in order) a block of G² cells, G ≤ :data:`GRID`; a
+        last column of 0 (an absent texture neighbour's)
     cells : (m, k) int, each texture neighbour's column in ``field`` (cell and kind)
     lone : (m, k) float, ``|p̂|² + α``, 0 for an absent neighbour
     """
     n_e, r = phi_e.shape
     ke = k_e.shape[1]
-    cos, sin = np.cos(-phi_t)[:, None], np.sin(-phi_t)[:, None]
     x, y = p_t[..., 0], p_t[..., 1]
-    tx, ty = cos * x - sin * y, sin * x + cos * y  # (m, k), the texture neighbourhoods' own frame
+    # (m, k), the texture neighbourhoods' own frame
+    tx, ty = _turned(x, y, np.cos(-phi_t)[:, None], np.sin(-phi_t)[:, None])
     absent = np.isnan(tx)
     # the exemplar neighbourhoods turned, (n_e·r, ke); an absent neighbour stays infinitely far
-    cos, sin = np.cos(-phi_e)[:, :, None], np.sin(-phi_e)[:, :, None]
     with np.errstate(invalid="ignore"):
-        ex = (cos * p_e[:, None, :, 0] - sin * p_e[:, None, :, 1]).reshape(n_e * r, ke)
-        ey = (sin * p_e[:, None, :, 0] + cos * p_e[:, None, :, 1]).reshape(n_e * r, ke)
+        ex, ey = _turned(p_e[:, None, :, 0], p_e[:, None, :, 1], np.cos(-phi_e)[:, :, None], np.sin(-phi_e)[:, :, None])
+    ex, ey = ex.reshape(n_e * r, ke), ey.reshape(n_e * r, ke)
     far = ~(np.isfinite(ex) & np.isfinite(ey))
     ex, ey = np.where(far, 0.0, ex), np.where(far, 0.0, ey)
     # the kinds of present neighbours numbered 0, 1, … (a kind may be any integer, −1 too)
     kq = np.repeat(k_e, r, axis=0)
     labels, dense = np.unique(np.concatenate([k_t[~absent], kq[~far]]), return_inverse=True)
     kinds = max(len(labels), 1)
+    present = int((~absent).sum())
     kt = np.zeros(k_t.shape, np.intp)
-    kt[~absent] = dense[: int((~absent).sum())]
+    kt[~absent] = dense[:present]
     kq = np.full(kq.shape, kinds, np.intp)  # absent: a kind of their own, never asked for
-    kq[~far] = dense[int((~absent).sum()) :]
+    kq[~far] = dense[present:]
     # the grid: GRID cells a side, fewer if the field would outgrow FIELD_MAX; it spans 99 % of
     # the texture neighbours, its outer cells reach to infinity (a stray far neighbour is still
     # in a cell, and does not coarsen every other's)
-    grid = max(1, min(GRID, math.isqrt(max(FIELD_MAX // max(n_e * r * kinds, 1), 1) - 1)))
+    grid = max(1, min(GRID, math.isqrt(max((FIELD_MAX // max(n_e * r, 1) - 1) // kinds, 1))))
     spread = np.maximum(np.abs(tx[~absent]), np.abs(ty[~absent]))
     half = (float(np.quantile(spread, 0.99)) if len(spread) else 0.0) + 1e-12
     side = 2 * half / grid
     ix = np.clip(np.floor((np.nan_to_num(tx) + half) / side), 0, grid - 1).astype(np.intp)
     iy = np.clip(np.floor((np.nan_to_num(ty) + half) / side), 0, grid - 1).astype(np.intp)
-    stride = grid * grid + 1
-    cells = np.where(absent, grid * grid, ix * grid + iy + kt * stride)
+    cells = np.where(absent, kinds * grid * grid, ix * grid + iy + kt * grid * grid)
     lone = np.where(absent, 0.0, x * x + y * y + alpha)
     pad = 1e-9 * (1 + half)
     lo = -half + side * np.arange(grid) - pad  # (grid,) each cell's low and high edges
     hi = lo + side + 2 * pad
     lo[0], hi[-1] = -np.inf, np.inf
-    field = np.zeros((n_e * r, kinds, stride))
+    field = np.zeros((n_e * r, kinds * grid * grid + 1))  # the last column an absent neighbour's
     rows = max(1, BLOCK // ((ke + kinds + 1) * grid * grid))  # d and own within BLOCK floats
     for a in range(0, n_e * r, rows):
         sl = slice(a, a + rows)
@@ -282,8 +286,8 @@ def _turned_field(
         for i in range(ke):
             c = kq[sl, i]
             own[at, c] = np.minimum(own[at, c], d[:, i])
-        field[sl, :, :-1] = np.minimum(own[:, :kinds], d.min(axis=1)[:, None, :] + alpha)
-    return field.reshape(n_e * r, kinds * stride), cells, lone
+        field[sl, :-1] = np.minimum(own[:, :kinds], d.min(axis=1)[:, None, :] + alpha).reshape(len(d), -1)
+    return field, cells, lone
 
 
 def _nearest_costs(
@@ -358,9 +362,7 @@ def _nearest_costs(
             pair = pt[rows]
             if rotate:  # each texture neighbourhood turned for the exemplar one
                 turn = (phi_e[je, jr] - phi_t[start + rows])[:, None]
-                cos, sin = np.cos(turn), np.sin(turn)
-                x, y = pair[..., 0], pair[..., 1]
-                pair = np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
+                pair = np.stack(_turned(pair[..., 0], pair[..., 1], np.cos(turn), np.sin(turn)), axis=-1)
             cost = alpha * (ct[rows] != c_e[je])
             q, kq = p_far[je], k_e[je]
             d = _square_distances(pair, q, finite=whole)
