@@ -113,23 +113,30 @@ def test_sample_needs_rng_and_is_reproducible():
     assert a != c
 
 
-def brute_force(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate):
-    """Every exemplar neighbourhood and turn paired greedily: what the branch and bound prunes."""
+def every_pairing(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate):
+    """(m, n_e·r): every texture neighbourhood paired greedily with every exemplar neighbourhood
+    and turn (column ``j·r + t``), the centres' kinds included."""
     from svgtile.analysis.neighbourhood import _greedy_costs, _turns
 
     m, k, _ = p_t.shape
     phi_t, phi_e = _turns(p_t, p_e, k, rotate)
-    best = np.full(m, np.inf)
+    r = phi_e.shape[1]
+    cost = np.empty((m, len(p_e) * r))
     for j in range(len(p_e)):
-        for t in range(phi_e.shape[1]):
+        for t in range(r):
             turn = (phi_e[j, t] - phi_t)[:, None]
             pr = p_t
             if rotate:
                 cos, sin = np.cos(turn), np.sin(turn)
                 pr = np.stack([cos * p_t[..., 0] - sin * p_t[..., 1], sin * p_t[..., 0] + cos * p_t[..., 1]], axis=-1)
-            cost = _greedy_costs(pr, k_t, np.repeat(p_e[j : j + 1], m, 0), np.repeat(k_e[j : j + 1], m, 0), alpha)
-            best = np.minimum(best, cost + alpha * (c_t != c_e[j]))
-    return best
+            pairing = _greedy_costs(pr, k_t, np.repeat(p_e[j : j + 1], m, 0), np.repeat(k_e[j : j + 1], m, 0), alpha)
+            cost[:, j * r + t] = pairing + alpha * (c_t != c_e[j])
+    return cost
+
+
+def brute_force(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate):
+    """Every exemplar neighbourhood and turn paired greedily: what the branch and bound prunes."""
+    return every_pairing(p_t, k_t, c_t, p_e, k_e, c_e, alpha, rotate).min(axis=1)
 
 
 @pytest.fixture(params=["one", "default"])
@@ -208,7 +215,7 @@ def test_turned_field_bounds_every_turn(seed, n_ex, labels, rotate, spread):
     are any integers (−1 and 7 too).  Without turns (one frame) the same field bounds the pairs.
     A sparse exemplar (``spread`` 400) copied beside a dense texture puts the copy's neighbours
     beyond the grid's span (99 % of the texture neighbours): the outer cells must still hold them."""
-    from svgtile.analysis.neighbourhood import _greedy_costs, _turned_field, _turns
+    from svgtile.analysis.neighbourhood import _turned_field, _turns
 
     rng = np.random.default_rng(seed)
     ex = rng.uniform(0, spread, size=(n_ex, 2))
@@ -224,18 +231,10 @@ def test_turned_field_bounds_every_turn(seed, n_ex, labels, rotate, spread):
     p_e, k_e = neighbourhoods(ex, ex_kind, 2 * k)
     p_t, p_e = p_t / s, p_e / s
     phi_t, phi_e = _turns(p_t, p_e, k, rotate)  # as _nearest_costs turns them: p_e with NaN
-    p_e = np.nan_to_num(p_e, nan=np.inf)
-    field, cells, lone = _turned_field(p_t, k_t, phi_t, p_e, k_e, phi_e, alpha)
+    field, cells, lone = _turned_field(p_t, k_t, phi_t, np.nan_to_num(p_e, nan=np.inf), k_e, phi_e, alpha)
     bound = np.minimum(field[:, cells], lone).sum(axis=-1).T  # (m, n_e·r)
-    n_e, r = phi_e.shape
-    m = len(p_t)
-    je, jr = np.divmod(np.arange(n_e * r), r)
-    cost = np.empty((m, n_e * r))
-    for i in range(m):
-        t = (phi_e[je, jr] - phi_t[i])[:, None]
-        x, y = p_t[i, :, 0], p_t[i, :, 1]
-        pair = np.stack([np.cos(t) * x - np.sin(t) * y, np.sin(t) * x + np.cos(t) * y], axis=-1)
-        cost[i] = _greedy_costs(pair, np.repeat(k_t[i : i + 1], len(je), 0), p_e[je], k_e[je], alpha)
+    same = np.zeros(len(p_t), int)  # the centres' kinds left out, as the field leaves them
+    cost = every_pairing(p_t, k_t, same, p_e, k_e, np.zeros(len(p_e), int), alpha, rotate)
     assert (bound <= cost * (1 + 1e-9)).all()
     # the exemplar turned, apart from the rest: its neighbourhoods are the exemplar's, at a turn
     # that costs 0 (to rounding), and the bound must not rule that turn out
