@@ -48,6 +48,11 @@ class Stats:
         Each kind's smallest arc of orientations ``[start, start + width]`` (§3.5).
     frequency : (k,) float array
         Fraction of the motifs that are of each kind.
+    classes : (k,) int array
+        Each kind's shape class (:func:`svgtile.analysis.classes.shape_classes`, issue 12.3):
+        kinds drawn fewer than :data:`~svgtile.analysis.classes.RARE_BELOW` times share a class
+        with rare kinds of like shape, every other kind is its own class.  The distance rule and
+        the kind mix are kept per class.
     overlaps : int
         Pairs of exemplar motifs whose footprints share area (the paper assumes none).
     """
@@ -59,6 +64,7 @@ class Stats:
     arc_start: np.ndarray
     arc_width: np.ndarray
     frequency: np.ndarray
+    classes: np.ndarray
     overlaps: int
 
     @property
@@ -88,7 +94,8 @@ def analyze(exemplar: Exemplar) -> Stats:
         distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
     counts = np.bincount(motifs.kind, minlength=k)
     # rare kinds keep the distances of their shape class, not of their few instances
-    distance, measured = pooled_distance(distance, measured, shape_classes(protos, counts))
+    classes = shape_classes(protos, counts)
+    distance, measured = pooled_distance(distance, measured, classes)
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
     start, width = orientation_arcs(motifs.angle, motifs.kind, k)
@@ -100,6 +107,7 @@ def analyze(exemplar: Exemplar) -> Stats:
         arc_start=start,
         arc_width=width,
         frequency=counts / max(int(counts.sum()), 1),  # a cellular exemplar may have no motifs
+        classes=classes,
         overlaps=overlaps,
     )
 
