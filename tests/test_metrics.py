@@ -22,6 +22,7 @@ from conftest import stamp
 
 from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.analysis.stats import nearest_gaps
+from svgtile.apps.compare import format_score
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import world_footprints
 from svgtile.metrics import pattern
@@ -276,6 +277,11 @@ def test_kind_mix_pools_rare_kinds_of_like_shape(one_offs):
     assert s.kind_mix_tv == pytest.approx(0.0, abs=1e-12)
     assert s.kind_mix_tv_kinds == pytest.approx(2 / 25)  # d1 holds 3/25 for 1/25; d2, d3 lack 1/25 each
     assert s.kind_mix_noise == pytest.approx(metrics.kind_mix_noise(s.motifs, stats.frequency))
+    # svgtile score prints both readings where kinds pool, the per-kind one under the other
+    lines = format_score(s).splitlines()
+    at = next(i for i, line in enumerate(lines) if line.startswith("kind mix TV"))
+    assert lines[at].split()[-1] == "0.000" and lines[at + 1].split() == ["per", "kind", f"{2 / 25:.3f}"]
+    assert lines[at + 2].split()[:3] == ["its", "sampling", "noise"]
     # the discs gone: both readings miss their whole share
     s = metrics.score(ex, stats, arr.take(arr.kind == sq), region)
     assert s.kind_mix_tv == pytest.approx(3 / 25) and s.kind_mix_tv_kinds == pytest.approx(3 / 25)

@@ -5,7 +5,7 @@ the rectangle of :func:`gate_region` (an interior of whole tiles).
 Bounds: 0 overlaps, 0 violators, density / ρ in 0.9–1.1, kind-mix TV ≤ 0.05 (over the kinds'
 shape classes, issue 12.3: kinds drawn fewer than 13 times count with rare kinds of like shape;
 where kinds pool, each kind's TV also no more than 0.05 or what a fair draw of as many motifs from
-the exemplar's mix gives, :func:`svgtile.metrics.kind_mix_noise`), repetition ≤ 0.2,
+the exemplar's mix gives on average, :func:`svgtile.metrics.kind_mix_noise`), repetition ≤ 0.2,
 likeness L ≥ 0.6 (Ma, Wei & Tong 2011 neighbourhood distance between the ``tile`` and ``random``
 baselines, :func:`svgtile.analysis.neighbourhood.likeness`).  A bound a tile does not meet is an
 ``xfail(strict=True)`` that names the tile and the figure measured when it was written
@@ -219,8 +219,10 @@ def test_kind_mix_is_close(tile):
     s = measured(tile)[0]
     assert s.kind_mix_tv <= 0.05
     # where rare kinds pool into shape classes, each kind's share is still no further off than a
-    # fair draw of as many motifs from the exemplar's mix (a tile whose kinds all pool into one
-    # class would otherwise pass on any mix of them)
+    # fair draw of as many motifs from the exemplar's mix is on average (a tile whose kinds all
+    # pool into one class would otherwise pass on any mix of them); the mean, not an upper
+    # quantile, so a fair draw itself would fail about half the time: auto's textures keep the
+    # tile's counts better than chance (0.01-0.08 under it, benchmarks/README.md "mix12")
     if s.kind_mix_tv_kinds is not None:
         assert s.kind_mix_tv_kinds <= max(0.05, s.kind_mix_noise)
 

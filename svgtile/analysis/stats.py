@@ -48,13 +48,14 @@ class Stats:
         Each kind's smallest arc of orientations ``[start, start + width]`` (§3.5).
     frequency : (k,) float array
         Fraction of the motifs that are of each kind.
-    classes : (k,) int array
+    overlaps : int
+        Pairs of exemplar motifs whose footprints share area (the paper assumes none).
+    classes : (k,) int array or None
         Each kind's shape class (:func:`svgtile.analysis.classes.shape_classes`, issue 12.3):
         kinds drawn fewer than :data:`~svgtile.analysis.classes.RARE_BELOW` times share a class
         with rare kinds of like shape, every other kind is its own class.  The distance rule and
-        the kind mix are kept per class.
-    overlaps : int
-        Pairs of exemplar motifs whose footprints share area (the paper assumes none).
+        the kind mix are kept per class.  None (a :class:`Stats` made by hand): every kind is its
+        own class.
     """
 
     distance: np.ndarray
@@ -64,8 +65,13 @@ class Stats:
     arc_start: np.ndarray
     arc_width: np.ndarray
     frequency: np.ndarray
-    classes: np.ndarray
     overlaps: int
+    classes: np.ndarray | None = None
+
+    @property
+    def kind_classes(self) -> np.ndarray:
+        """(k,) int, :attr:`classes`, or each kind its own class where it is None."""
+        return np.arange(len(self.frequency)) if self.classes is None else np.asarray(self.classes)
 
     @property
     def spacing(self) -> float:
@@ -107,8 +113,8 @@ def analyze(exemplar: Exemplar) -> Stats:
         arc_start=start,
         arc_width=width,
         frequency=counts / max(int(counts.sum()), 1),  # a cellular exemplar may have no motifs
-        classes=classes,
         overlaps=overlaps,
+        classes=classes,
     )
 
 

@@ -56,7 +56,7 @@ def kind_mix_tv(
     bool, if already known): 0 is the exemplar's mix, 1 if no motif is counted.
 
     With ``classes`` (the default) the frequencies are those of the kinds' shape classes
-    (:attr:`Stats.classes`, issue 12.3): kinds drawn fewer than
+    (:attr:`Stats.classes <svgtile.analysis.stats.Stats.classes>`, issue 12.3): kinds drawn fewer than
     :data:`~svgtile.analysis.classes.RARE_BELOW` times are counted with the rare kinds of like
     shape.  Per kind, a one-off fragment is 1/n of the exemplar, and which of them a window holds
     is chance: FGDC 606 draws 60 of its 246 motifs once each, and a fair draw of one tile's worth
@@ -72,7 +72,7 @@ def kind_mix_tv(
         return 1.0
     k = len(stats.frequency)
     if classes:
-        cls = np.asarray(stats.classes)
+        cls = stats.kind_classes
         c = int(cls.max(initial=-1)) + 1
         freq = np.bincount(cls[kind], minlength=c) / len(kind)
         want = np.bincount(cls, weights=stats.frequency, minlength=c)

@@ -335,7 +335,7 @@ def score(
     conflicts, r_tex, r_ex = worker_result(far) or _footprint_figures(*apart, geoms=geoms)
     motifs = int(inside.sum())
     # per kind only where rare kinds are pooled into classes; the two readings agree otherwise
-    pooled = len(np.unique(stats.classes)) < len(stats.classes)
+    pooled = len(np.unique(stats.kind_classes)) < len(stats.frequency)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
