@@ -19,7 +19,7 @@ import svgtile.cli.compare
 import svgtile.cli.main
 from svgtile import metrics
 from svgtile.analysis.stats import analyze
-from svgtile.apps.compare import FIGURES, compare, format_table
+from svgtile.apps.compare import FIGURES, OPTIONAL, compare, format_table
 from svgtile.cli.main import main
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.region import Region
@@ -156,7 +156,7 @@ def test_compare_library_columns_and_errors():
     assert [r.engine for r in results] == ["tile", "random"]
     table = format_table(results).splitlines()
     assert table[0].split()[-2:] == ["tile", "random"]
-    assert len(table) == 1 + len(FIGURES)
+    assert len(table) == 1 + len(FIGURES) - len(OPTIONAL)  # sand pools no kinds: no per-kind rows
     assert results[0].score.repetition > 0.9 > results[1].score.repetition
     for bad in (["tile", "nope"], [], ["tile", "tile"]):
         with pytest.raises(ParameterError, match="--engines"):

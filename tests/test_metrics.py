@@ -22,6 +22,7 @@ from conftest import stamp
 
 from svgtile import Region, analyze, metrics, read_exemplar
 from svgtile.analysis.stats import nearest_gaps
+from svgtile.apps.compare import format_score
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.footprint import world_footprints
 from svgtile.metrics import pattern
@@ -33,6 +34,10 @@ SYMBOLS = {
     "dot": '<symbol id="dot" overflow="visible"><circle r="1"/></symbol>',
     "sq": '<symbol id="sq" overflow="visible"><rect x="-1" y="-1" width="2" height="2"/></symbol>',
     "bar": '<symbol id="bar" overflow="visible"><rect x="-1.5" y="-0.4" width="3" height="0.8"/></symbol>',
+    # discs of like size, each drawn once below: one shape class (issue 12.3)
+    "d1": '<symbol id="d1" overflow="visible"><circle r="1"/></symbol>',
+    "d2": '<symbol id="d2" overflow="visible"><circle r="1.15"/></symbol>',
+    "d3": '<symbol id="d3" overflow="visible"><circle r="1.3"/></symbol>',
 }
 
 
@@ -246,6 +251,61 @@ def test_kind_mix_counts_a_missing_kind(grid16):
     bar = name_index(ex, "bar")
     s = metrics.score(ex, stats, arr.take(arr.kind != bar), region)
     assert s.kind_mix_tv == pytest.approx(5 / 16)  # all of the bars' share is missing
+
+
+@pytest.fixture(scope="module")
+def one_offs():
+    """22 squares and three discs of like size drawn once each (d1, d2, d3) on a 5 × 5 grid of
+    6-unit cells in a 30 × 30 region: the discs are rare kinds of one shape class."""
+    uses = [("sq", (a + 0.5) * 6, (b + 0.5) * 6, 0.0) for b in range(5) for a in range(5)]
+    for n, name in zip((6, 12, 18), ("d1", "d2", "d3"), strict=True):
+        uses[n] = (name, *uses[n][1:])
+    ex = make_exemplar(uses, size=30.0)
+    return ex, analyze(ex)
+
+
+def test_kind_mix_pools_rare_kinds_of_like_shape(one_offs):
+    ex, stats = one_offs
+    d1, d2, d3, sq = (name_index(ex, n) for n in ("d1", "d2", "d3", "sq"))
+    assert stats.classes[d1] == stats.classes[d2] == stats.classes[d3] != stats.classes[sq]
+    arr, region = stamp(ex, 6, 6)
+    s = metrics.score(ex, stats, arr, region)
+    assert s.kind_mix_tv == pytest.approx(0.0, abs=1e-12) and s.kind_mix_tv_kinds == pytest.approx(0.0, abs=1e-12)
+    # every one-off disc drawn as d1: the class mix is the exemplar's, each kind's is not
+    kind = np.where(np.isin(arr.kind, [d2, d3]), d1, arr.kind)
+    s = metrics.score(ex, stats, Arrangement(kind, arr.xy, arr.angle, arr.scale), region)
+    assert s.kind_mix_tv == pytest.approx(0.0, abs=1e-12)
+    assert s.kind_mix_tv_kinds == pytest.approx(2 / 25)  # d1 holds 3/25 for 1/25; d2, d3 lack 1/25 each
+    assert s.kind_mix_noise == pytest.approx(metrics.kind_mix_noise(s.motifs, stats.frequency))
+    # svgtile score prints both readings where kinds pool, the per-kind one under the other
+    lines = format_score(s).splitlines()
+    at = next(i for i, line in enumerate(lines) if line.startswith("kind mix TV"))
+    assert lines[at].split()[-1] == "0.000" and lines[at + 1].split() == ["per", "kind", f"{2 / 25:.3f}"]
+    assert lines[at + 2].split()[:3] == ["its", "sampling", "noise"]
+    # the discs gone: both readings miss their whole share
+    s = metrics.score(ex, stats, arr.take(arr.kind == sq), region)
+    assert s.kind_mix_tv == pytest.approx(3 / 25) and s.kind_mix_tv_kinds == pytest.approx(3 / 25)
+
+
+def test_kind_mix_per_kind_is_left_out_where_no_kind_is_pooled(grid16):
+    ex, stats = grid16
+    assert len(np.unique(stats.classes)) == len(ex.kinds)
+    arr, region = stamp(ex, 6, 6)
+    bar = name_index(ex, "bar")
+    s = metrics.score(ex, stats, arr.take(arr.kind != bar), region)
+    assert s.kind_mix_tv_kinds is None and s.kind_mix_noise is None
+    assert metrics.kind_mix_tv(arr, stats, classes=False) == metrics.kind_mix_tv(arr, stats)
+
+
+def test_kind_mix_noise_is_the_mean_tv_of_a_fair_draw():
+    rng = np.random.default_rng(7)
+    for n, f in ((214, np.r_[np.full(61, 1.0), np.full(3, 51.0)]), (50, np.array([5.0, 3, 2])), (7, np.array([9.0, 1]))):
+        f = f / f.sum()
+        draws = rng.multinomial(n, f, size=40_000) / n
+        chance = float((0.5 * np.abs(draws - f).sum(axis=1)).mean())
+        assert metrics.kind_mix_noise(n, f) == pytest.approx(chance, rel=0.02)
+    assert metrics.kind_mix_noise(1, np.array([0.5, 0.5])) == pytest.approx(0.5)  # one coin: always half off
+    assert metrics.kind_mix_noise(100, np.array([1.0])) == 0.0 == metrics.kind_mix_noise(0, np.array([0.5, 0.5]))
 
 
 def test_wrong_orientations_are_counted(grid16):

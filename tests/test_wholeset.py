@@ -2,7 +2,10 @@
 symbols and Equinor, imported and synthesized with the default engine (``auto``), seed 1, over
 the rectangle of :func:`gate_region` (an interior of whole tiles).
 
-Bounds: 0 overlaps, 0 violators, density / ρ in 0.9–1.1, kind-mix TV ≤ 0.05, repetition ≤ 0.2,
+Bounds: 0 overlaps, 0 violators, density / ρ in 0.9–1.1, kind-mix TV ≤ 0.05 (over the kinds'
+shape classes, issue 12.3: kinds drawn fewer than 13 times count with rare kinds of like shape;
+where kinds pool, each kind's TV also no more than 0.05 or what a fair draw of as many motifs from
+the exemplar's mix gives on average, :func:`svgtile.metrics.kind_mix_noise`), repetition ≤ 0.2,
 likeness L ≥ 0.6 (Ma, Wei & Tong 2011 neighbourhood distance between the ``tile`` and ``random``
 baselines, :func:`svgtile.analysis.neighbourhood.likeness`).  A bound a tile does not meet is an
 ``xfail(strict=True)`` that names the tile and the figure measured when it was written
@@ -67,7 +70,7 @@ TILES = [f"{name}/{p.stem}" for name, folder in SETS.items() for p in sorted(fol
 KNOWN: dict[tuple[str, str], str] = {
     ("equinor/11026", "overlaps"): "0 overlaps, 0 violators, exemplar 4 overlapping pairs (pebbles and dashes 0.2 apart along each row; joined they would meet their own repeat, the importer's notes say so)",
     ("equinor/11026", "density"): "density/ρ 0.700 (2026-12-04; 0.749 at best with 0 overlaps: each tile must lose one motif of each of its two overlapping pairs, dens12c)",
-    ("equinor/11026", "kind mix"): "TV 0.203 (2026-12-04)",
+    ("equinor/11026", "kind mix"): "TV 0.000 over its one shape class, 0.203 per kind against a fair draw's 0.055 (2026-12-06)",
     ("fgdc/610", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/611", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/616", "repetition"): "0.727 (2026-12-04, auto's tile-jitter: rows at phases redrawn per band, 1.000 stamped; the phases that keep the distance rule with the next rows are few, so bands take near the tile's: partners at (w + 0.5, h) for 0.75 of the motifs)",
@@ -87,20 +90,11 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/724", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/726", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/732", "repetition"): "1.000 (auto stamps the tile; every motif its own kind, so the period is no order of it)",
-    ("fgdc/605", "kind mix"): "TV 0.067 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/605", "repetition"): "0.234 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/606", "density"): "density/ρ 0.883 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/606", "kind mix"): "TV 0.078 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/606", "repetition"): "0.249 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/666", "kind mix"): "TV 0.057 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/681", "kind mix"): "TV 0.052 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/682", "repetition"): "0.226 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/683", "kind mix"): "TV 0.051 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/684", "kind mix"): "TV 0.115 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/685", "kind mix"): "TV 0.120 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/686", "kind mix"): "TV 0.124 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/714", "kind mix"): "TV 0.068 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/715", "kind mix"): "TV 0.088 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
+    ("fgdc/686", "kind mix"): "TV 0.083 over shape classes, 0.124 per kind against a fair draw's 0.133 (2026-12-06, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/723", "repetition"): "0.217 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("osm-symbols/leaftype_leafless", "kind mix"): "TV 0.066 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
 }
@@ -222,7 +216,15 @@ def test_density_is_within_ten_percent(tile):
 
 @pytest.mark.parametrize("tile", cases("kind mix"))
 def test_kind_mix_is_close(tile):
-    assert measured(tile)[0].kind_mix_tv <= 0.05
+    s = measured(tile)[0]
+    assert s.kind_mix_tv <= 0.05
+    # where rare kinds pool into shape classes, each kind's share is still no further off than a
+    # fair draw of as many motifs from the exemplar's mix is on average (a tile whose kinds all
+    # pool into one class would otherwise pass on any mix of them); the mean, not an upper
+    # quantile, so a fair draw itself would fail about half the time: auto's textures keep the
+    # tile's counts better than chance (0.01-0.08 under it, benchmarks/README.md "mix12")
+    if s.kind_mix_tv_kinds is not None:
+        assert s.kind_mix_tv_kinds <= max(0.05, s.kind_mix_noise)
 
 
 @pytest.mark.parametrize("tile", cases("repetition"))

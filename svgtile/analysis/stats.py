@@ -50,6 +50,12 @@ class Stats:
         Fraction of the motifs that are of each kind.
     overlaps : int
         Pairs of exemplar motifs whose footprints share area (the paper assumes none).
+    classes : (k,) int array or None
+        Each kind's shape class (:func:`svgtile.analysis.classes.shape_classes`, issue 12.3):
+        kinds drawn fewer than :data:`~svgtile.analysis.classes.RARE_BELOW` times share a class
+        with rare kinds of like shape, every other kind is its own class.  The distance rule and
+        the kind mix are kept per class.  None (a :class:`Stats` made by hand): every kind is its
+        own class.
     """
 
     distance: np.ndarray
@@ -60,6 +66,12 @@ class Stats:
     arc_width: np.ndarray
     frequency: np.ndarray
     overlaps: int
+    classes: np.ndarray | None = None
+
+    @property
+    def kind_classes(self) -> np.ndarray:
+        """(k,) int, :attr:`classes`, or each kind its own class where it is None."""
+        return np.arange(len(self.frequency)) if self.classes is None else np.asarray(self.classes)
 
     @property
     def spacing(self) -> float:
@@ -88,7 +100,8 @@ def analyze(exemplar: Exemplar) -> Stats:
         distance, measured, overlaps = periodic_distance_matrix(motifs, protos, period)
     counts = np.bincount(motifs.kind, minlength=k)
     # rare kinds keep the distances of their shape class, not of their few instances
-    distance, measured = pooled_distance(distance, measured, shape_classes(protos, counts))
+    classes = shape_classes(protos, counts)
+    distance, measured = pooled_distance(distance, measured, classes)
     area = footprint_areas(motifs, protos)
     region_area = exemplar.region.area
     start, width = orientation_arcs(motifs.angle, motifs.kind, k)
@@ -101,6 +114,7 @@ def analyze(exemplar: Exemplar) -> Stats:
         arc_width=width,
         frequency=counts / max(int(counts.sum()), 1),  # a cellular exemplar may have no motifs
         overlaps=overlaps,
+        classes=classes,
     )
 
 

@@ -29,6 +29,8 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
     ("density_min_ratio", "window density min / ρ", ".3f"),
     ("density_max_ratio", "window density max / ρ", ".3f"),
     ("kind_mix_tv", "kind mix TV", ".3f"),
+    ("kind_mix_tv_kinds", "  per kind", ".3f"),
+    ("kind_mix_noise", "  its sampling noise", ".3f"),
     ("orientation_outside", "orientation outside arcs", ".3f"),
     ("gap_distance", "structure: nearest-gap W1", ".3f"),
     ("gap_noise", "  its sampling noise", ".3f"),
@@ -39,6 +41,14 @@ FIGURES: tuple[tuple[str, str, str], ...] = (
     ("neighbourhood_distance", "neighbourhood distance", ".3f"),
     ("likeness", "likeness L", ".2f"),
 )
+#: Rows left out of a table where no texture has the figure (the per-kind mix and its noise are
+#: measured only where rare kinds are pooled into shape classes).
+OPTIONAL = frozenset({"kind_mix_tv_kinds", "kind_mix_noise"})
+
+
+def _rows(scores: Sequence[Score]) -> list[tuple[str, str, str]]:
+    """The rows of :data:`FIGURES` that at least one of ``scores`` has, or that are never left out."""
+    return [row for row in FIGURES if row[0] not in OPTIONAL or any(getattr(s, row[0]) is not None for s in scores)]
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,7 +111,7 @@ def format_table(results: Sequence[EngineScore]) -> str:
     label = max(len(lab) for _, lab, _ in FIGURES)
     width = max(9, *(len(r.engine) for r in results))
     lines = [f"{'figure':<{label}}  " + "  ".join(f"{r.engine:>{width}}" for r in results)]
-    for key, lab, spec in FIGURES:
+    for key, lab, spec in _rows([r.score for r in results]):
         lines.append(f"{lab:<{label}}  " + "  ".join(f"{_cell(getattr(r.score, key), spec):>{width}}" for r in results))
     return "\n".join(lines)
 
@@ -109,7 +119,7 @@ def format_table(results: Sequence[EngineScore]) -> str:
 def format_markdown(results: Sequence[EngineScore]) -> str:
     """:func:`format_table` as a Markdown table."""
     lines = ["| figure | " + " | ".join(r.engine for r in results) + " |", "|---" * (len(results) + 1) + "|"]
-    for key, lab, spec in FIGURES:
+    for key, lab, spec in _rows([r.score for r in results]):
         lines.append(f"| {lab} | " + " | ".join(_cell(getattr(r.score, key), spec) for r in results) + " |")
     return "\n".join(lines)
 
@@ -119,7 +129,7 @@ def format_score(score: Score) -> str:
     label = max(len(lab) for _, lab, _ in FIGURES)
     lines = [f"measured on the {score.window} ({score.window_area:.6g} square units, "
              f"mean spacing s = {_cell(score.spacing, '.4g')})"]  # fmt: skip
-    lines += [f"{lab:<{label}}  {_cell(getattr(score, key), spec):>9}" for key, lab, spec in FIGURES]
+    lines += [f"{lab:<{label}}  {_cell(getattr(score, key), spec):>9}" for key, lab, spec in _rows([score])]
     lines.append(f"{'  of tile · random':<{label}}  {_cell(score.neighbourhood_tile, '.3f'):>9}"
                  f"  {_cell(score.neighbourhood_random, '.3f')}")  # fmt: skip
     pairs = [p for p in score.kind_pairs if p.gap_distance is not None or p.pair_correlation_distance is not None]

@@ -44,7 +44,10 @@ def score(exemplar, texture, as_json, exact, jobs):
       distance-rule violators      motifs closer than the exemplar allows       0
       density / ρ                  ink over the exemplar's                      1
       density CV, min, max         the same in exemplar-sized windows           0; 1; 1
-      kind mix TV                  kind frequencies against the exemplar's      0
+      kind mix TV                  kind frequencies against the exemplar's,     0
+                                   kinds drawn a few times each pooled by shape
+        per kind, its noise        each kind apart, and what a fair draw of     near the noise:
+                                   as many motifs gives (where kinds pool)      chance
       orientation outside arcs     motifs turned as the exemplar never does     0
       structure: nearest-gap W1    gaps to the nearest neighbour of each kind   0 (below its noise:
                                    against the exemplar's                       as good as can be told)

@@ -22,7 +22,7 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 from __future__ import annotations
 
 from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
-from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
+from svgtile.metrics.amounts import density, kind_mix_noise, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import largest_empty_disc
 from svgtile.metrics.likeness import Likeness, baseline_distances, texture_distance, turns_allowed
 from svgtile.metrics.pattern import (
@@ -51,6 +51,7 @@ __all__ = [
     "conflict_counts",
     "density",
     "interior",
+    "kind_mix_noise",
     "kind_mix_tv",
     "largest_empty_disc",
     "likeness",

@@ -62,7 +62,7 @@ from svgtile.core.footprint import world_footprints
 from svgtile.core.region import Region
 from svgtile.core.worker import worker_result, worker_submit
 from svgtile.metrics import window as _window
-from svgtile.metrics.amounts import density, kind_mix_tv, window_densities
+from svgtile.metrics.amounts import density, kind_mix_noise, kind_mix_tv, window_densities
 from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
@@ -136,8 +136,17 @@ class Score:
     density_max_ratio : float or None
         ``max_w D_w / ρ``; 1 is right, well above it is a crowded window.
     kind_mix_tv : float
-        Total variation distance ``½ Σ_i |f'_i − f_i|`` of the kind frequencies in ``I``, in
-        [0, 1]; 0 is right, 1 if ``I`` holds no motif.
+        Total variation distance ``½ Σ_c |f'_c − f_c|`` of the frequencies of the kinds' shape
+        classes in ``I`` (:attr:`~svgtile.analysis.stats.Stats.classes`: kinds drawn a few times
+        each are counted with the rare kinds of like shape, issue 12.3; every other kind is its
+        own class), in [0, 1]; 0 is right, 1 if ``I`` holds no motif.
+    kind_mix_tv_kinds : float or None
+        The same per kind, each one-off fragment on its own; None when no kinds are pooled
+        (then it equals ``kind_mix_tv``).
+    kind_mix_noise : float or None
+        What ``kind_mix_tv_kinds`` is on average for a fair draw of ``motifs`` motifs from the
+        exemplar's exact mix (:func:`~svgtile.metrics.amounts.kind_mix_noise`); a per-kind TV
+        near it is chance, not a skew.  None when no kinds are pooled.
     orientation_outside : float or None
         Fraction of the motifs in ``I`` whose orientation lies outside their kind's exemplar
         arc; 0 is right.
@@ -214,6 +223,8 @@ class Score:
     density_min_ratio: float | None
     density_max_ratio: float | None
     kind_mix_tv: float
+    kind_mix_tv_kinds: float | None
+    kind_mix_noise: float | None
     orientation_outside: float | None
     gap_distance: float | None
     gap_noise: float | None
@@ -322,10 +333,13 @@ def score(
     mean = float(windows.mean()) if len(windows) else 0.0
     ratio = windows / stats.density if stats.density > 0 and len(windows) else None
     conflicts, r_tex, r_ex = worker_result(far) or _footprint_figures(*apart, geoms=geoms)
+    motifs = int(inside.sum())
+    # per kind only where rare kinds are pooled into classes; the two readings agree otherwise
+    pooled = len(np.unique(stats.kind_classes)) < len(stats.frequency)
     return Score(
         window=kind_of_window,
         window_area=float(window.area),
-        motifs=int(inside.sum()),
+        motifs=motifs,
         spacing=finite_or_none(spacing(stats)),
         **dataclasses.asdict(conflicts),
         density_ratio=density_ratio,
@@ -334,6 +348,8 @@ def score(
         density_min_ratio=finite_or_none(float(ratio.min())) if ratio is not None else None,
         density_max_ratio=finite_or_none(float(ratio.max())) if ratio is not None else None,
         kind_mix_tv=kind_mix_tv(arr, stats, window, inside=inside),
+        kind_mix_tv_kinds=kind_mix_tv(arr, stats, window, inside=inside, classes=False) if pooled else None,
+        kind_mix_noise=kind_mix_noise(motifs, stats.frequency) if pooled else None,
         orientation_outside=finite_or_none(orientation_outside(arr, stats, window, inside=inside)),
         gap_distance=found.gap_distance,
         gap_noise=found.gap_noise,
