@@ -155,7 +155,8 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
         if found is None:
             raise ExemplarError(
                 f"motif kind {kind.name!r} is not in the exemplar {exemplar.source} "
-                "(was the texture made from another exemplar?)",
+                "(was the texture made from another exemplar, or from this one imported as a pattern tile? "
+                "then pass --import)",
                 source=source,
             )
         mapping[t] = found
