@@ -388,10 +388,24 @@ def test_score_imports_the_tile_a_texture_was_made_from(tmp_path, capsys):
     # its run record says the tile was imported: score imports it too, and says so
     assert main(["score", str(src), str(made), "--json"]) == 0
     out, err = capsys.readouterr()
-    assert "imported as a pattern tile" in err and "importing it here too" in err
+    assert "(synth --import): importing" in err and "--no-import" in err
     assert main(["score", str(src), str(made), "--json", "--import"]) == 0
     again, err = capsys.readouterr()
-    assert again == out and "importing it here too" not in err  # asked for: the same figures, no note
+    assert again == out and "(synth --import)" not in err  # asked for: the same figures, no note
+    # svgtile's import of the tile under the tile's own name is not imported again: the same figures
+    (tmp_path / "imported").mkdir()
+    same_name = tmp_path / "imported" / "tile.svg"
+    assert main(["import", str(src), "-o", str(same_name)]) == 0
+    capsys.readouterr()
+    assert main(["score", str(same_name), str(made), "--json"]) == 0
+    mine, err = capsys.readouterr()
+    assert "(synth --import)" not in err
+    strip = lambda text: re.sub(r'"exemplar": "[^"]*"', "", text)  # noqa: E731
+    assert strip(mine) == strip(out)
+    # --no-import: the raw tile as drawn, whose kinds are not the texture's
+    assert main(["score", str(src), str(made), "--no-import"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "made.svg" in err[0] and "pass --import" in err[0]
     # a texture made from the imported file records no import: the raw tile needs --import, and
     # without it the one-line error says so
     ex = tmp_path / "ex.svg"
@@ -408,8 +422,17 @@ def test_score_imports_the_tile_a_texture_was_made_from(tmp_path, capsys):
     other.write_bytes(src.read_bytes())
     capsys.readouterr()
     assert main(["score", str(other), str(made)]) == 1
-    assert "importing it here too" not in capsys.readouterr().err
+    assert "(synth --import)" not in capsys.readouterr().err
     assert src.read_bytes() == before
+
+
+def test_synth_import_records_the_import_alike_whole_and_tiled(tmp_path):
+    src = _tile(tmp_path)
+    whole, tiled = tmp_path / "whole.svg", tmp_path / "tiled.svg"
+    args = ["synth", str(src), "--import", "--size", "60", "--seed", "3"]
+    assert main([*args, "-o", str(whole)]) == 0
+    assert main([*args, "-o", str(tiled), "--tile-size", "25"]) == 0
+    assert 'imported="tile"' in whole.read_text() and tiled.read_bytes() == whole.read_bytes()
 
 
 def test_compare_imports_a_tile_and_its_textures_say_so(tmp_path, capsys):
@@ -421,7 +444,7 @@ def test_compare_imports_a_tile_and_its_textures_say_so(tmp_path, capsys):
     texture = folder / "random.svg"
     assert 'imported="tile"' in texture.read_text()
     assert main(["score", str(src), str(texture)]) == 0
-    assert "importing it here too" in capsys.readouterr().err
+    assert "(synth --import): importing" in capsys.readouterr().err
 
 
 def test_cli_refused_tile_is_one_line(tmp_path, capsys):
