@@ -19,6 +19,11 @@ class ExemplarError(SvgtileError):
     """The exemplar SVG cannot be read or does not describe an arrangement of motifs."""
 
 
+class TextureKindError(ExemplarError):
+    """A texture's motif kind is not among the exemplar's (made from another exemplar, or from
+    this one imported as a pattern tile)."""
+
+
 class RegionError(SvgtileError):
     """The input or output region is missing, degenerate or unusable."""
 

@@ -355,10 +355,16 @@ def test_osm_flattened_patterns_recover_the_ground_truth(name):
 # ----------------------------------------------------------------------------- command line
 
 
-def test_cli_import_and_synth_import(tmp_path, capsys):
+def _tile(tmp_path):
+    """A 10 × 10 tile of two triangles and a dash cut by its edge (3 motifs, 2 kinds)."""
     src = tmp_path / "tile.svg"
     src.write_text(HEAD + f'<polygon points="1,1 4,1 1,2" {STROKE}/><polygon points="7,6 7,9 6,6" {STROKE}/>'
                    f'<line x1="8" y1="4" x2="10" y2="4" {STROKE}/><line x1="0" y1="4" x2="1" y2="4" {STROKE}/></svg>')  # fmt: skip
+    return src
+
+
+def test_cli_import_and_synth_import(tmp_path, capsys):
+    src = _tile(tmp_path)
     before = src.read_bytes()
     out = tmp_path / "ex.svg"
     assert main(["import", str(src), "-o", str(out)]) == 0
@@ -367,9 +373,78 @@ def test_cli_import_and_synth_import(tmp_path, capsys):
     a, b = tmp_path / "a.svg", tmp_path / "b.svg"
     assert main(["synth", str(src), "--import", "--size", "40", "--seed", "3", "-o", str(a)]) == 0
     assert main(["synth", str(out), "--size", "40", "--seed", "3", "-o", str(b)]) == 0
-    strip = lambda p: re.sub(r'exemplar="[^"]*"', "", p.read_text())  # noqa: E731
+    assert 'imported="tile"' in a.read_text() and "imported=" not in b.read_text()  # for svgtile score
+    strip = lambda p: re.sub(r' imported="tile"|exemplar="[^"]*"', "", p.read_text())  # noqa: E731
     assert strip(a) == strip(b)
     assert src.read_bytes() == before
+
+
+def test_score_imports_the_tile_a_texture_was_made_from(tmp_path, capsys):
+    src = _tile(tmp_path)
+    before = src.read_bytes()
+    made = tmp_path / "made.svg"
+    assert main(["synth", str(src), "--import", "--size", "60", "--seed", "3", "-o", str(made)]) == 0
+    capsys.readouterr()
+    # its run record says the tile was imported: score imports it too, and says so
+    assert main(["score", str(src), str(made), "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert "(synth --import): importing" in err and "--no-import" in err
+    assert main(["score", str(src), str(made), "--json", "--import"]) == 0
+    again, err = capsys.readouterr()
+    assert again == out and "(synth --import)" not in err  # asked for: the same figures, no note
+    # svgtile's import of the tile under the tile's own name is not imported again: the same figures
+    (tmp_path / "imported").mkdir()
+    same_name = tmp_path / "imported" / "tile.svg"
+    assert main(["import", str(src), "-o", str(same_name)]) == 0
+    capsys.readouterr()
+    assert main(["score", str(same_name), str(made), "--json"]) == 0
+    mine, err = capsys.readouterr()
+    assert "(synth --import)" not in err
+    strip = lambda text: re.sub(r'"exemplar": "[^"]*"', "", text)  # noqa: E731
+    assert strip(mine) == strip(out)
+    # --no-import: the raw tile as drawn, whose kinds are not the texture's
+    assert main(["score", str(src), str(made), "--no-import"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "made.svg" in err[0] and "pass --import" in err[0]
+    # a texture made from the imported file records no import: the raw tile needs --import, and
+    # without it the one-line error says so
+    ex = tmp_path / "ex.svg"
+    assert main(["import", str(src), "-o", str(ex)]) == 0
+    plain = tmp_path / "plain.svg"
+    assert main(["synth", str(ex), "--size", "60", "--seed", "3", "-o", str(plain)]) == 0
+    capsys.readouterr()
+    assert main(["score", str(src), str(plain)]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "plain.svg" in err[0] and "--import" in err[0]
+    assert main(["score", str(src), str(plain), "--import"]) == 0
+    # a record of another file's import is not this exemplar's: no import is made for it
+    other = tmp_path / "other.svg"
+    other.write_bytes(src.read_bytes())
+    capsys.readouterr()
+    assert main(["score", str(other), str(made)]) == 1
+    assert "(synth --import)" not in capsys.readouterr().err
+    assert src.read_bytes() == before
+
+
+def test_synth_import_records_the_import_alike_whole_and_tiled(tmp_path):
+    src = _tile(tmp_path)
+    whole, tiled = tmp_path / "whole.svg", tmp_path / "tiled.svg"
+    args = ["synth", str(src), "--import", "--size", "60", "--seed", "3"]
+    assert main([*args, "-o", str(whole)]) == 0
+    assert main([*args, "-o", str(tiled), "--tile-size", "25"]) == 0
+    assert 'imported="tile"' in whole.read_text() and tiled.read_bytes() == whole.read_bytes()
+
+
+def test_compare_imports_a_tile_and_its_textures_say_so(tmp_path, capsys):
+    pytest.importorskip("resvg_py")
+    src = _tile(tmp_path)
+    folder = tmp_path / "cmp"
+    assert main(["compare", str(src), "--import", "--size", "60", "--engines", "tile,random", "--png", str(folder)]) == 0
+    assert "likeness L" in capsys.readouterr().out
+    texture = folder / "random.svg"
+    assert 'imported="tile"' in texture.read_text()
+    assert main(["score", str(src), str(texture)]) == 0
+    assert "(synth --import): importing" in capsys.readouterr().err
 
 
 def test_cli_refused_tile_is_one_line(tmp_path, capsys):

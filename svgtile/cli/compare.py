@@ -32,7 +32,9 @@ MIN_SCALE = 2.0
 @click.option("--png", "png_dir", type=click.Path(file_okay=False),
               help="Also write each texture as SVG and PNG into this folder, and a contact sheet: the exemplar beside every texture.")
 @click.option("--json", "as_json", is_flag=True, help="Print machine-readable JSON.")
-def compare(exemplar, size, engines, seed, png_dir, as_json):
+@click.option("--import", "as_tile", is_flag=True,
+              help="EXEMPLAR is a seamless pattern tile (FGDC, OSM fill …): import it first, as 'svgtile import' does.")
+def compare(exemplar, size, engines, seed, png_dir, as_json, as_tile):
     """Synthesize EXEMPLAR with each engine and print their figures side by side."""
     width, height = parse_size(size)
     names = [e.strip() for e in engines.split(",") if e.strip()]
@@ -43,7 +45,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         require_renderer()
         planned = [folder / f"{n}.{suffix}" for n in (*names, "contact-sheet") for suffix in ("svg", "png")]
         check_paths([exemplar], planned)  # before any of them is written
-    ex, stats = load(exemplar)
+    ex, stats = load(exemplar, as_tile=as_tile)
     region = Region.rectangle(width, height)
     estimate = check_motif_count(ex, stats, region, f"--size {size}", limit=MAX_MOTIFS)  # every engine holds them
     check_work(estimate, names, f"--size {size}")
@@ -51,7 +53,7 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
     Stderr.clear()
     warn_if_few(min(r.score.motifs for r in results), f"--size {size}")
     if png_dir is not None:
-        _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed)
+        _write_previews(Path(png_dir), Path(exemplar), ex, region, results, seed, imported=as_tile)
     if as_json:
         out = {"exemplar": Path(exemplar).name, "size": f"{fmt(width)}x{fmt(height)}", "seed": seed,
                "engines": {r.engine: r.score.to_dict() for r in results}}  # fmt: skip
@@ -65,8 +67,10 @@ def compare(exemplar, size, engines, seed, png_dir, as_json):
         click.echo(format_table(results))
 
 
-def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) -> None:
-    """``ENGINE.svg``/``.png`` per texture and ``contact-sheet.svg``/``.png`` in ``folder``."""
+def _write_previews(folder: Path, path: Path, ex, region, results, seed: int, *, imported: bool = False) -> None:
+    """``ENGINE.svg``/``.png`` per texture and ``contact-sheet.svg``/``.png`` in ``folder``; each
+    texture's run record says ``imported="tile"`` when the exemplar was imported (``--import``),
+    as ``synth --import``'s does, so that ``svgtile score`` imports it too."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -76,7 +80,8 @@ def _write_previews(folder: Path, path: Path, ex, region, results, seed: int) ->
     ex_text = _svg_text(read_input(path, error=ExemplarError))
     panels = [(f"exemplar {path.stem}", ex_text)]
     for r in results:
-        meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement)}
+        meta = {"engine": r.engine, "seed": seed, "exemplar": path.name, "motifs": len(r.arrangement),
+                **({"imported": "tile"} if imported else {})}  # fmt: skip
         text = svg_document(ex, r.arrangement, region, boundary="clip", params=meta)
         write_file(text, folder / f"{r.engine}.svg", protect=(path,))
         png = render_png(text, round(scale * (x1 - x0)))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ctypes
 import gc
+import html
 import json
 import multiprocessing
 import os
@@ -33,7 +34,9 @@ _PR_SET_PDEATHSIG = 1
               help="Measure every figure on every motif, however large the texture (slower).")  # fmt: skip
 @click.option("--jobs", type=click.IntRange(min=1), default=None,
               help="Processes to read and measure in: 2 reads half of a large texture and measures half of the figures in a second one (on Linux; the default where a second core is idle), 1 all of them in this one. The figures are the same.")  # fmt: skip
-def score(exemplar, texture, as_json, exact, jobs):
+@click.option("--import/--no-import", "as_tile", default=None,
+              help="EXEMPLAR is a seamless pattern tile: import it first, as 'synth --import' did. By default it is imported when TEXTURE's run record says it was made so from a file of EXEMPLAR's name and EXEMPLAR is not itself svgtile's import of a tile.")  # fmt: skip
+def score(exemplar, texture, as_json, exact, jobs, as_tile):
     """Measure how well TEXTURE (an SVG svgtile made from EXEMPLAR) reproduces EXEMPLAR.
 
     Figures are measured on the texture's interior (the region shrunk by one exemplar width);
@@ -71,7 +74,13 @@ def score(exemplar, texture, as_json, exact, jobs):
     other figure, overlaps and violators first, is measured over every motif as always.
     --exact measures everything on every motif.
     """
-    _check_order(exemplar, texture)
+    heads = _heads(exemplar, texture)
+    _check_order(exemplar, texture, heads)
+    if as_tile is None:
+        as_tile = heads is not None and _made_from_imported(heads[1], exemplar) and not _IMPORTED.search(heads[0])
+        if as_tile:
+            click.echo(f"svgtile: {texture} was made from a tile named {Path(exemplar).name} imported as a pattern "
+                       f"(synth --import): importing {exemplar} too (--no-import not to)", err=True)  # fmt: skip
     # the collector paused from the heavy imports on (they alone ran it ≈ 130 times, ≈ 0.05 s) to
     # the process's end: all is printed and no file written, the interpreter's teardown would
     # only free memory (Ending)
@@ -82,18 +91,24 @@ def score(exemplar, texture, as_json, exact, jobs):
         # 0.6–1.5 s slower where none was, benchmarks/README.md, "score11d")
         from svgtile.apps.compare import format_score
         from svgtile.cli.common import json_safe, load, warn_if_few
+        from svgtile.errors import TextureKindError
         from svgtile.metrics import score as measure
         from svgtile.metrics.likeness import baseline_distances
         from svgtile.svg.texture import start_reading
 
         with _second_process(jobs) as pool:
-            ex, stats = load(exemplar)
+            ex, stats = load(exemplar, as_tile=as_tile)
             # the worker, forked once the file is read (it finds its part of the <use> lines in its
             # own memory), scans the last 40 % of them first, then measures the baselines while this
             # process scans the rest and measures the figures up to E
             reading = start_reading(texture, pool=pool)
             baselines = worker_submit(pool, baseline_distances, ex, stats)
-            arr, region = reading.finish(ex)
+            try:
+                arr, region = reading.finish(ex)
+            except TextureKindError as exc:
+                if as_tile:
+                    raise
+                raise TextureKindError(f"{exc} (or from this one imported as a pattern tile? then pass --import)") from None
             del reading  # the document's bytes and text (twice 19 MB on 177k motifs): not needed again
             result = measure(ex, stats, arr, region, exact=exact, pool=pool, baselines=baselines)
         warn_if_few(result.motifs, texture)
@@ -116,24 +131,48 @@ def score(exemplar, texture, as_json, exact, jobs):
 SWAPPED_ABOVE = 2_000
 #: svgtile's run record at the head of every texture it writes (:func:`svgtile.svg.writer.svg_document_parts`).
 _RUN = re.compile(rb'<svgtile:run\b[^>]*?\bmotifs="(\d+)"')
+_RUN_TAG = re.compile(rb"<svgtile:run\b[^>]*>")
+#: What marks an exemplar that is already svgtile's import of a tile (svgtile.tiles.write): its
+#: note, or the period on its region; such a file is never imported again.
+_IMPORTED = re.compile(rb'Imported by svgtile from|:period="')
 _HEAD = 1 << 16
 
 
-def _check_order(exemplar: str, texture: str) -> None:
-    """Refuse ``svgtile score TEXTURE EXEMPLAR`` at once: EXEMPLAR is a texture svgtile wrote
-    (its run record, in the file's first 64 KiB) of more than :data:`SWAPPED_ABOVE` motifs and
-    TEXTURE has no run record.  Both textures (a texture scored against itself, or made from a
-    texture) and large drawn exemplars (no run record) go on; unreadable files are left to
-    their readers (which also refuse what is not a regular file)."""
+def _heads(exemplar: str, texture: str) -> tuple[bytes, bytes] | None:
+    """The first 64 KiB of both files, where svgtile's run record is; None if either is not a
+    regular file or cannot be read (left to their readers, which also refuse what is not a
+    regular file: a pipe or a device would block here)."""
     heads = []
     for path in (exemplar, texture):
         try:
-            if not stat.S_ISREG(os.stat(path).st_mode):  # a pipe or a device would block here
-                return
+            if not stat.S_ISREG(os.stat(path).st_mode):
+                return None
             with open(path, "rb") as f:
                 heads.append(f.read(_HEAD))
         except OSError:
-            return
+            return None
+    return heads[0], heads[1]
+
+
+def _made_from_imported(head: bytes, exemplar: str) -> bool:
+    """Whether a texture's run record (in ``head``) says it was made from a file of
+    ``exemplar``'s name imported as a pattern tile (``synth --import``)."""
+    run = _RUN_TAG.search(head)
+    if run is None or not re.search(rb'\simported="tile"', run.group(0)):
+        return False
+    named = re.search(rb'\bexemplar="([^"]*)"', run.group(0))
+    return named is not None and html.unescape(named.group(1).decode("utf-8", "replace")) == Path(exemplar).name
+
+
+def _check_order(exemplar: str, texture: str, heads: tuple[bytes, bytes] | None = None) -> None:
+    """Refuse ``svgtile score TEXTURE EXEMPLAR`` at once: EXEMPLAR is a texture svgtile wrote
+    (its run record, in the file's first 64 KiB) of more than :data:`SWAPPED_ABOVE` motifs and
+    TEXTURE has no run record.  Both textures (a texture scored against itself, or made from a
+    texture) and large drawn exemplars (no run record) go on; unreadable files are left to their
+    readers.  ``heads``: :func:`_heads` of the two, if already read."""
+    heads = heads or _heads(exemplar, texture)
+    if heads is None:
+        return
     made = _RUN.search(heads[0])
     if made is None or int(made.group(1)) <= SWAPPED_ABOVE or b"<svgtile:run" in heads[1]:
         return

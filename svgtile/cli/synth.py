@@ -136,7 +136,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
             raise ParameterError("--flow, --barrier and --grow-within do not go with --scheduler or --tile-size yet")
         _tiled(output, kind, ex, stats, region, engine, seed=seed, boundary=boundary, params=params, refine=refine,
                tile_size=tile_size, scheduler=scheduler or "local", jobs=jobs, where=where, region_spec=region_spec,
-               exemplar_path=exemplar, size=size, crs=crs, protect=inputs)  # fmt: skip
+               exemplar_path=exemplar, size=size, crs=crs, protect=inputs, as_tile=as_tile)  # fmt: skip
         if with_style:
             write_style(output, {None: ex}, protect=inputs)
         return
@@ -145,8 +145,7 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
     Stderr.clear()
     if len(result) == 0 and (result.cells is None or len(result.cells) == 0):
         warn(f"no motif fits in {size or region_spec} with --boundary {boundary}; writing an empty texture")
-    x0, y0, x1, y1 = region.bounds
-    where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+    where_meta = _where_meta(region, region_spec, as_tile)
     if kind in POINT_FORMATS and result.cells is not None:  # cells are polygons: GeoJSON or SVG
         if not (output == "-" or str(output).lower().endswith(".geojson")) or crs is not None:
             raise ParameterError(f"{output}: a cellular texture's cells are written to .svg or .geojson without a CRS")
@@ -159,18 +158,27 @@ def synth(ctx, exemplar, output, size, region_spec, avoid, avoid_margin, flow, b
         return
     data = result_document(result, exemplar=Path(exemplar).name, **where_meta)
     if kind == "png":
+        x0, _, x1, _ = region.bounds
         data = render_png(data, png_width(x1 - x0))
     write_file(data, output, protect=inputs)
 
 
+def _where_meta(region, region_spec: str | None, as_tile: bool) -> dict[str, str]:
+    """The run record's say on where and from what: ``region`` (the --region spec) or ``size``,
+    and ``imported="tile"`` when EXEMPLAR was imported first (``--import``), so that ``svgtile
+    score EXEMPLAR TEXTURE`` imports it too."""
+    x0, y0, x1, y1 = region.bounds
+    where = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+    return {**where, "imported": "tile"} if as_tile else where
+
+
 def _tiled(output, kind, ex, stats, region, engine, *, seed, boundary, params, refine, tile_size, scheduler, jobs,
-           where, region_spec, exemplar_path, size, crs, protect) -> None:  # fmt: skip
+           where, region_spec, exemplar_path, size, crs, protect, as_tile) -> None:  # fmt: skip
     """``synth --scheduler``: the region's tiles on Dask, written as they finish (same bytes)."""
     check_scheduler(scheduler)
     if kind == "png" or (kind == "gis" and not str(output).lower().endswith(".geojson")) or crs is not None:
         raise ParameterError(f"{output}: --scheduler writes .svg or .geojson without a CRS (write those, then convert)")
-    x0, y0, x1, y1 = region.bounds
-    where_meta = {"region": region_spec} if region_spec else {"size": f"{fmt(x1 - x0)}x{fmt(y1 - y0)}"}
+    where_meta = _where_meta(region, region_spec, as_tile)
 
     def on_plan(tiles) -> None:
         if tile_size is not None and len(tiles) == 1 and tiles[0].whole:

@@ -32,7 +32,7 @@ import shapely
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
 from svgtile.core.region import Region
-from svgtile.errors import ExemplarError, RegionError
+from svgtile.errors import ExemplarError, RegionError, TextureKindError
 from svgtile.files import MAX_TEXTURE_BYTES, read_input
 from svgtile.svg import uselines
 from svgtile.svg.dialect import SVG_NS, XLINK_NS, drawable_children
@@ -153,7 +153,7 @@ def _kind_mapping(kinds: tuple[Kind, ...], exemplar: Exemplar, source: str) -> n
         if found is None:  # a residual written to 4 decimals may round the other way when read back
             found = _nearest_kind(kind, exemplar.kinds)
         if found is None:
-            raise ExemplarError(
+            raise TextureKindError(
                 f"motif kind {kind.name!r} is not in the exemplar {exemplar.source} "
                 "(was the texture made from another exemplar?)",
                 source=source,
