@@ -8,6 +8,7 @@ import re
 import stat
 import sys
 import types
+import warnings
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -66,6 +67,15 @@ def canonical(el: ET.Element):
 )  # fmt: skip
 def test_fmt(value, text):
     assert fmt(value) == text
+
+
+def test_fmt_writes_the_largest_floats_without_overflow():
+    # np.round(v, 4) scales by 1e4 and overflowed to inf near the largest floats (a 1e308 tile)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        texts = fmt_array(np.array([1e308, -1e308, 2.0**53 + 2, 2.0**50 + 0.25]))
+    assert [float(t) for t in texts[:2]] == [1e308, -1e308] and not any("e" in t or "inf" in t for t in texts)
+    assert texts[2:] == ["9007199254740994", "1125899906842624.25"]
 
 
 def test_fmt_array_matches_fmt_and_rounds_to_four_decimals():

@@ -9,6 +9,8 @@ from svgtile.core.arrangement import DECIMALS
 
 # Below this magnitude np.round(v, 4) has a short repr with at most 4 decimals and no exponent.
 _FAST_LIMIT = 1e11
+#: From this magnitude on a float64 has no fraction: rounding to 4 decimals leaves it as it is.
+_ROUND_LIMIT = 2.0**53
 
 
 def fmt(v: float) -> str:
@@ -25,9 +27,13 @@ def fmt_array(values: np.ndarray) -> list[str]:
 
     Values are rounded with ``np.round(v, 4)``; the shortest repr of such a float is its decimal
     value with at most four decimals, so only the ``.0`` of whole numbers needs removing.  Huge or
-    non-finite values (never written in practice) take the slow path.
+    non-finite values (never written in practice) take the slow path; from :data:`_ROUND_LIMIT` on
+    a float has no fraction to round (its spacing is 0.125 or more), and ``np.round``'s scaling by
+    10⁴ would overflow near the largest floats (1e308 written as ``inf``).
     """
-    v = np.round(np.asarray(values, dtype=np.float64).reshape(-1), DECIMALS) + 0.0  # + 0.0: no -0
+    v = np.asarray(values, dtype=np.float64).reshape(-1)
+    rounded = np.round(np.clip(v, -_ROUND_LIMIT, _ROUND_LIMIT), DECIMALS)
+    v = np.where(np.abs(v) < _ROUND_LIMIT, rounded, v) + 0.0  # + 0.0: no -0
     out = [s[:-2] if s[-2:] == ".0" else s for s in map(repr, v.tolist())]
     for i in np.flatnonzero(~(np.abs(v) < _FAST_LIMIT)).tolist():
         s = f"{v[i]:.{DECIMALS}f}".rstrip("0").rstrip(".")
