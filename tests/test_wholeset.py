@@ -91,7 +91,6 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/726", "repetition"): "1.000 (auto stamps the tile, whose motifs are jittered off any exact lattice)",
     ("fgdc/732", "repetition"): "1.000 (auto stamps the tile; every motif its own kind, so the period is no order of it)",
     ("fgdc/605", "repetition"): "0.234 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
-    ("fgdc/606", "density"): "density/ρ 0.883 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/606", "repetition"): "0.249 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/682", "repetition"): "0.226 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/686", "kind mix"): "TV 0.083 over shape classes, 0.124 per kind against a fair draw's 0.133 (2026-12-06, auto's tile-scatter: optimize, start patches 0.65 of the period)",

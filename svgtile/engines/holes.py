@@ -3,7 +3,8 @@ largest first, dropped into its empty places (issue 12).  Shared with the densit
 (:mod:`svgtile.engines.windows`) outside the patch engine so that another engine can use the same
 implementation: the optimize engine (Ma, Wei & Tong 2011) loses the same large kinds at its
 start's seams, but filling after its solver lowered its likeness too much to be its default
-(measured, not merged: benchmarks/README.md, "optdens14").
+(measured, not merged: benchmarks/README.md, "optdens14"); it fills only a refilled texture that
+is light as a whole (:func:`svgtile.engines.optimize.engine.fill_light`, "optfill").
 
 Density repair (almeraj2013 §3.4, :func:`svgtile.engines.patch.density.adjust_density`) pastes
 discs of the exemplar: an exemplar motif lands where the disc puts it or not at all.  On FGDC
