@@ -70,15 +70,11 @@ def kind_mix_tv(
         kind = kind[in_window(arr, window)]
     if len(kind) == 0:
         return 1.0
-    k = len(stats.frequency)
-    if classes:
-        cls = stats.kind_classes
-        c = int(cls.max(initial=-1)) + 1
-        freq = np.bincount(cls[kind], minlength=c) / len(kind)
-        want = np.bincount(cls, weights=stats.frequency, minlength=c)
-        return float(0.5 * np.abs(freq - want).sum())
-    freq = np.bincount(kind, minlength=k) / len(kind)
-    return float(0.5 * np.abs(freq - stats.frequency).sum())
+    cls = stats.kind_classes if classes else np.arange(len(stats.frequency))
+    c = int(cls.max(initial=-1)) + 1
+    freq = np.bincount(cls[kind], minlength=c) / len(kind)
+    want = np.bincount(cls, weights=stats.frequency, minlength=c)  # the frequencies themselves per kind
+    return float(0.5 * np.abs(freq - want).sum())
 
 
 def kind_mix_noise(motifs: int, frequency: np.ndarray) -> float:
