@@ -1,7 +1,8 @@
 """How much the texture holds: the covered fraction, globally and per window, and the kind mix.
 
 almeraj2013 §3.4 keeps the density ρ (the covered fraction) and the kind frequencies ``f_i`` of
-the exemplar; these figures say how close a texture comes.
+the exemplar; these figures say how close a texture comes.  :func:`density`, the covered fraction
+counted by centroid, is :func:`svgtile.analysis.window.density`, named here too.
 """
 
 from __future__ import annotations
@@ -13,33 +14,10 @@ import shapely
 from scipy.special import gammaln
 
 from svgtile.analysis.stats import Stats, footprint_areas
+from svgtile.analysis.window import density as density
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.metrics.window import exemplar_size, in_window
-
-
-def density(
-    arr: Arrangement, exemplar: Exemplar, window: shapely.Geometry, *, inside: np.ndarray | None = None
-) -> float:
-    """Footprint area of the motifs whose centroid lies in ``window``, over its area.
-
-    Counting by centroid is an unbiased estimate of the covered fraction (motifs cut by the
-    window's edge are counted in full as often as they are missed).
-
-    Parameters
-    ----------
-    arr : Arrangement of n motifs
-    exemplar : gives the prototypes
-    window : shapely geometry, user units
-    inside : (n,) bool, :func:`~svgtile.metrics.window.in_window` of ``window`` if already known
-
-    Returns
-    -------
-    float, the covered fraction (dimensionless)
-    """
-    if inside is None:
-        inside = in_window(arr, window)
-    return float(footprint_areas(arr, exemplar.prototypes)[inside].sum() / window.area)
 
 
 def kind_mix_tv(

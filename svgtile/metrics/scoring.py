@@ -56,6 +56,7 @@ import numpy as np
 import shapely
 
 from svgtile.analysis.stats import Stats
+from svgtile.analysis.window import measured_window
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import world_footprints
@@ -72,7 +73,6 @@ from svgtile.metrics.window import (
     Sample,
     finite_or_none,
     in_window,
-    interior,
     sample_windows,
     spacing,
 )
@@ -300,10 +300,7 @@ def score(
     """
     arr = arrangement
     protos = exemplar.prototypes
-    window = interior(exemplar, region)
-    kind_of_window = "interior"
-    if window.is_empty or window.area <= 0:
-        window, kind_of_window = region.shape, "region"
+    window, kind_of_window = measured_window(exemplar, region)
     inside = in_window(arr, window)
     plan = None if exact else sample_windows(
         window, arr.xy, inside, above=sample_above if sample_above is not None else _window.SAMPLE_ABOVE,

@@ -9,6 +9,10 @@ their motifs where a figure is a distribution (:func:`motif_sample`), and a text
 :data:`SAMPLE_ABOVE` motifs has its structure figures (nearest gaps, pair correlation:
 :data:`svgtile.metrics.scoring.SAMPLED`) measured on a few windows spread over its interior
 (:func:`sample_windows`).
+
+:func:`interior`, :func:`in_window` and :func:`exemplar_size` are those of
+:mod:`svgtile.analysis.window`, named here too: an engine that reads density as the figures do
+(:func:`svgtile.engines.optimize.engine.fill_light`) may not import this later stage.
 """
 
 from __future__ import annotations
@@ -20,33 +24,17 @@ import numpy as np
 import shapely
 
 from svgtile.analysis.stats import Stats
+from svgtile.analysis.window import exemplar_size as exemplar_size
+from svgtile.analysis.window import in_window as in_window
+from svgtile.analysis.window import interior as interior
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.cellrng import hash64
-from svgtile.core.exemplar import Exemplar
-from svgtile.core.region import Region
-
-
-def interior(exemplar: Exemplar, region: Region) -> shapely.Geometry:
-    """The output region shrunk by the larger side of the input region's bounding box."""
-    x0, y0, x1, y1 = exemplar.region.bounds
-    return region.interior(max(x1 - x0, y1 - y0))
 
 
 def spacing(stats: Stats) -> float:
     """The exemplar's mean spacing ``s = 1 / sqrt(λ)``, λ its motifs per unit area (user units):
     :attr:`~svgtile.analysis.stats.Stats.spacing`."""
     return stats.spacing
-
-
-def exemplar_size(exemplar: Exemplar) -> tuple[float, float]:
-    """Width and height of the input region's bounding box, user units."""
-    x0, y0, x1, y1 = exemplar.region.bounds
-    return x1 - x0, y1 - y0
-
-
-def in_window(arr: Arrangement, window: shapely.Geometry) -> np.ndarray:
-    """(n,) bool: the motifs whose centroid lies in ``window``."""
-    return shapely.contains_xy(window, arr.xy[:, 0], arr.xy[:, 1])
 
 
 def motif_sample(arr: Arrangement, index: np.ndarray, most: int) -> np.ndarray:

@@ -194,17 +194,12 @@ def fill_light(arr: Arrangement, ctx: Context) -> Arrangement:
 def _interior_density(arr: Arrangement, ctx: Context) -> float:
     """The covered fraction of the region's interior (shrunk by the exemplar's larger side; the
     whole region if that is empty): the footprint area of the motifs centred in it over its area,
-    as :func:`svgtile.metrics.score` reads density."""
-    import shapely
+    as :func:`svgtile.metrics.score` reads density (:func:`svgtile.analysis.window.measured_window`,
+    :func:`svgtile.analysis.window.density`)."""
+    from svgtile.analysis.window import density, measured_window
 
-    from svgtile.analysis.stats import footprint_areas
-
-    x0, y0, x1, y1 = ctx.exemplar.region.bounds
-    window = ctx.region.interior(max(x1 - x0, y1 - y0))
-    if window.is_empty or window.area <= 0:
-        window = ctx.region.shape
-    inside = shapely.contains_xy(window, arr.xy[:, 0], arr.xy[:, 1])
-    return float(footprint_areas(arr, ctx.exemplar.prototypes)[inside].sum() / window.area)
+    window, _ = measured_window(ctx.exemplar, ctx.region)
+    return density(arr, ctx.exemplar, window)
 
 
 def _spacing(exemplar: Exemplar) -> float:
