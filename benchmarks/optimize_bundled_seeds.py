@@ -1,0 +1,67 @@
+"""Issue 14's bounds on the bundled exemplars over several seeds, for variants of the optimize engine's
+parameters.
+
+Each variant (a JSON object of engine parameters; ``{}`` is the defaults) runs on every bundled
+exemplar over a square of 4 exemplar widths (as benchmarks/optimize_sets.py), seeds 1–3; L, repetition
+and density / ρ as tests/optimize_measure.py measures them, against the tile and random baselines of
+the same region and seed.  One line per variant: how many of the 30 runs meet L ≥ 0.85, repetition ≤
+0.2 and density in 0.9–1.1, mean and least L, the misses, and each exemplar's mean L.
+
+Run by hand:  python benchmarks/optimize_bundled_seeds.py '{}' '{"passes": 20}' '{"start_cell": 7.0}'
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "tests"))
+from optimize_measure import distance, measure  # noqa: E402
+
+from svgtile import analyze, read_exemplar  # noqa: E402
+from svgtile.core.region import Region  # noqa: E402
+from svgtile.engines import synthesize  # noqa: E402
+
+SEEDS = (1, 2, 3)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("variants", nargs="*", default=["{}"], help="engine parameters as JSON objects")
+    args = parser.parse_args()
+    variants = [json.loads(v) for v in args.variants]
+    runs: dict[str, list[tuple[str, float, float, float, int]]] = {json.dumps(v): [] for v in variants}
+    for path in sorted((REPO / "exemplars").glob("*.svg")):
+        ex = read_exemplar(path)
+        stats = analyze(ex)
+        x0, y0, x1, y1 = ex.region.bounds
+        side = 4 * max(x1 - x0, y1 - y0)
+        region = Region.rectangle(side, side, x0, y0)
+        for seed in SEEDS:
+            baselines = tuple(distance(ex, stats, region, synthesize(ex, region, b, seed=seed, stats=stats).arrangement)
+                              for b in ("tile", "random"))  # fmt: skip
+            for v in variants:
+                m = measure(ex, stats, region, seed=seed, baselines=baselines, **v)
+                runs[json.dumps(v)].append((path.stem, m.likeness, m.repetition, m.density_ratio,
+                                            m.overlaps + m.violators))  # fmt: skip
+    for name, rows in runs.items():
+        L = np.array([r[1] for r in rows])
+        rep = np.array([r[2] for r in rows])
+        dens = np.array([r[3] for r in rows])
+        ok = (L >= 0.85) & (rep <= 0.2) & (dens >= 0.9) & (dens <= 1.1)
+        by = {}
+        for r in rows:
+            by.setdefault(r[0], []).append(r[1])
+        print(f"{name}: ok {ok.sum()}/{len(rows)}, mean L {L.mean():.3f}, least L {L.min():.2f}, "
+              f"repetition > 0.2 {(rep > 0.2).sum()}, density out {((dens < 0.9) | (dens > 1.1)).sum()}, "
+              f"conflicts {sum(r[4] for r in rows)}")
+        print("   ", " ".join(f"{k} {np.mean(v):.2f}" for k, v in by.items()))
+
+
+if __name__ == "__main__":
+    main()
