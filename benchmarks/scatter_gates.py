@@ -3,7 +3,8 @@
 For every gate tile (tests/test_wholeset.py's ``TILES``) that :func:`svgtile.engines.choose.choose`
 sends to optimize: density / ρ, kind-mix TV (over shape classes, and per kind with its chance where
 kinds pool), repetition, L, overlaps and violators, as ``test_wholeset.figures`` measures them (gate
-region, seed 1); one JSON line per tile.  ``--set MODULE:NAME=VALUE`` overrides a module constant
+region, seed 1; overlaps and violators over the whole texture and the exemplar's own overlaps, as the
+gates count them); one JSON line per tile.  ``--set MODULE:NAME=VALUE`` overrides a module constant
 first (an experiment without a branch); ``--compare BASE.jsonl HEAD.jsonl`` prints the tiles whose
 figures changed, which bounds they gained (+) or lost (−), and a summary of both.
 
@@ -39,7 +40,7 @@ def bounds(row: dict) -> dict[str, bool]:
         "kind mix": row["tv"] <= TV and per_kind,
         "repetition": row["rep"] <= REPETITION,
         "likeness": row["L"] >= LIKENESS,
-        "conflicts": row["ov"] == 0 and row["viol"] == 0,
+        "conflicts": row["ov"] == 0 and row["viol"] == 0 and row.get("exemplar_ov", 0) == 0,
     }
 
 
@@ -47,11 +48,13 @@ def compare(base_path: str, head_path: str) -> None:
     base = {r["tile"]: r for r in map(json.loads, open(base_path))}
     head = {r["tile"]: r for r in map(json.loads, open(head_path))}
     both = [t for t in base if t in head]
+    for t in sorted(set(base) ^ set(head)):
+        print(f"{t:34s} only in {'base' if t in base else 'head'}")
     for t in both:
         a, b = base[t], head[t]
-        if all(abs(a[f] - b[f]) <= 1e-12 for f in ("density", "tv", "rep", "L")):
-            continue
         ma, mb = bounds(a), bounds(b)
+        if ma == mb and all(a[f] == b[f] for f in ("density", "tv", "tvk", "rep", "L", "ov", "viol")):
+            continue
         moved = " ".join(f"{f} {'+' if mb[f] else '−'}" for f in ma if ma[f] != mb[f])
         print(f"{t:34s} density {a['density']:.3f} → {b['density']:.3f}  TV {a['tv']:.3f} → {b['tv']:.3f}  "
               f"rep {a['rep']:.3f} → {b['rep']:.3f}  L {a['L']:.3f} → {b['L']:.3f}  {moved}")
@@ -69,26 +72,35 @@ def main() -> None:
     parser.add_argument("--compare", nargs=2, metavar=("BASE", "HEAD"))
     args = parser.parse_args()
     if args.compare:
+        if args.set or args.tiles:
+            parser.error("--compare reads two JSONL files; it takes no tiles and no --set")
         compare(*args.compare)
         return
     for spec in args.set:
         module, assignment = spec.split(":", 1)
         name, value = assignment.split("=", 1)
-        setattr(importlib.import_module(module), name, ast.literal_eval(value))
+        target = importlib.import_module(module)
+        # a typo would run the defaults; a name another module imported by value is not reached
+        if not hasattr(target, name):
+            parser.error(f"--set {spec}: {module} has no {name}")
+        setattr(target, name, ast.literal_eval(value))
     sys.path.insert(0, str(HERE.parent / "tests"))
     import test_wholeset as W
 
     from svgtile.engines.choose import choose
 
+    if not (args.tiles or W.TILES):
+        parser.error(f"no gate tiles: {W.DATA} is not there (set SVGTILE_DATA)")
     for tile in args.tiles or W.TILES:
         loaded = W.motif_tile(tile)
         if not isinstance(loaded, tuple) or choose(loaded[1], loaded[2]).engine != "optimize":
             continue
         cpu = time.process_time()
-        s, _, L = W.figures(tile)
+        s, exemplar_overlaps, L = W.figures(tile)
         print(json.dumps({"tile": tile, "density": s.density_ratio, "tv": s.kind_mix_tv, "tvk": s.kind_mix_tv_kinds,
-                          "noise": s.kind_mix_noise, "rep": s.repetition, "L": L, "ov": s.overlaps,
-                          "viol": s.violators, "cpu": round(time.process_time() - cpu, 2)}), flush=True)
+                          "noise": s.kind_mix_noise, "rep": s.repetition, "L": L, "ov": s.overlaps_total,
+                          "viol": s.violators_total, "exemplar_ov": exemplar_overlaps,
+                          "cpu": round(time.process_time() - cpu, 2)}), flush=True)
 
 
 if __name__ == "__main__":

@@ -145,7 +145,7 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
 
     The plane is cut into world-anchored square windows of side ``window``; a window's room is
     ``ρ · area(window ∩ region)`` less the footprint area of the motifs of ``arr`` whose centroid
-    lies in it (as :func:`svgtile.metrics.amounts.density` counts).  The elements of ``new`` in a
+    lies in it (as :func:`svgtile.analysis.window.density` counts).  The elements of ``new`` in a
     window are taken by decreasing ``rank`` as long as each brings the window's covered fraction
     nearer to ρ (the room left before it is more than half its area); the first that would not
     ends the window's list.
