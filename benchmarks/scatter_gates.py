@@ -2,7 +2,7 @@
 
 For every gate tile (tests/test_wholeset.py's ``TILES``) that :func:`svgtile.engines.choose.choose`
 sends to optimize: density / ρ, kind-mix TV (over shape classes, and per kind with its chance where
-kinds pool), repetition, L, overlaps and violators, as ``test_wholeset.figures`` measures them (gate
+kinds pool), repetition, coverage, L, overlaps and violators, as ``test_wholeset.figures`` measures them (gate
 region, seed 1; overlaps and violators over the whole texture and the exemplar's own overlaps, as the
 gates count them); one JSON line per tile.  ``--set MODULE:NAME=VALUE`` overrides a module constant
 first (an experiment without a branch); ``--compare BASE.jsonl HEAD.jsonl`` prints the tiles whose
@@ -98,7 +98,7 @@ def main() -> None:
         cpu = time.process_time()
         s, exemplar_overlaps, L = W.figures(tile)
         print(json.dumps({"tile": tile, "density": s.density_ratio, "tv": s.kind_mix_tv, "tvk": s.kind_mix_tv_kinds,
-                          "noise": s.kind_mix_noise, "rep": s.repetition, "L": L, "ov": s.overlaps_total,
+                          "noise": s.kind_mix_noise, "rep": s.repetition, "cov": s.coverage, "L": L, "ov": s.overlaps_total,
                           "viol": s.violators_total, "exemplar_ov": exemplar_overlaps,
                           "cpu": round(time.process_time() - cpu, 2)}), flush=True)
 
