@@ -64,7 +64,13 @@ from svgtile.core.region import Region
 from svgtile.core.worker import worker_result, worker_submit
 from svgtile.metrics import window as _window
 from svgtile.metrics.amounts import density, kind_mix_noise, kind_mix_tv, window_densities
-from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, exemplar_empty_disc, largest_empty_disc
+from svgtile.metrics.coverage import (
+    COVER_LEVELS,
+    COVER_STEP,
+    Footprints,
+    exemplar_empty_disc,
+    largest_empty_disc,
+)
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import Conflicts, conflict_counts, orientation_outside
