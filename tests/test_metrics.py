@@ -530,6 +530,27 @@ def test_a_big_hole_has_coverage_far_above_one(grid16):
     assert full.coverage < 2
 
 
+def test_a_repeating_tile_has_its_holes_measured_across_its_edges():
+    """A tile's holes run on into the next copy.  One dot at (3, 4) in a 20 × 20 tile of that
+    period is a square lattice of dots 20 apart: its largest hole is the lattice's, centred at
+    (13, 14), √200 − r across (the disc the tile's own sides cut is about 9.2), and a stamp of the
+    tile — the same holes — scores coverage 1 (it scored 1.47–1.71 on osm-carto's stamped tiles
+    while the exemplar's disc was cut at the tile's sides)."""
+    ex = dataclasses.replace(make_exemplar([("dot", 3.0, 4.0, 0.0)]), period=(20.0, 20.0))
+    proto = ex.prototypes[0]
+    r_out = proto.radius
+    r_in = float(shapely.distance(shapely.Point(0, 0), shapely.polygons(proto.rings[0]).exterior))
+    radius = metrics.exemplar_empty_disc(ex, step=1.0)
+    assert math.sqrt(200) - r_out - 0.05 <= radius <= math.sqrt(200) - r_in + 1e-9
+    # a drawn exemplar (no period) keeps the disc inside its region
+    drawn = metrics.exemplar_empty_disc(dataclasses.replace(ex, period=None), step=1.0)
+    assert drawn == metrics.largest_empty_disc(ex.motifs, ex.prototypes, ex.region, ex.region, step=1.0)[0]
+    assert drawn < 0.75 * radius
+    arr, region = stamp(ex, 6)
+    s = metrics.score(ex, analyze(ex), arr, region)
+    assert s.coverage == pytest.approx(1.0, abs=0.03)
+
+
 @pytest.mark.parametrize(
     ("dots", "expected"),
     [

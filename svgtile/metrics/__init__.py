@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance, neighbourhoods
 from svgtile.metrics.amounts import density, kind_mix_noise, kind_mix_tv, window_densities
-from svgtile.metrics.coverage import largest_empty_disc
+from svgtile.metrics.coverage import exemplar_empty_disc, largest_empty_disc
 from svgtile.metrics.likeness import Likeness, baseline_distances, texture_distance, turns_allowed
 from svgtile.metrics.pattern import (
     KindPair,
@@ -50,6 +50,7 @@ __all__ = [
     "baseline_distances",
     "conflict_counts",
     "density",
+    "exemplar_empty_disc",
     "interior",
     "kind_mix_noise",
     "kind_mix_tv",

@@ -64,7 +64,13 @@ from svgtile.core.region import Region
 from svgtile.core.worker import worker_result, worker_submit
 from svgtile.metrics import window as _window
 from svgtile.metrics.amounts import density, kind_mix_noise, kind_mix_tv, window_densities
-from svgtile.metrics.coverage import COVER_LEVELS, COVER_STEP, Footprints, largest_empty_disc
+from svgtile.metrics.coverage import (
+    COVER_LEVELS,
+    COVER_STEP,
+    Footprints,
+    exemplar_empty_disc,
+    largest_empty_disc,
+)
 from svgtile.metrics.likeness import measure as measure_likeness
 from svgtile.metrics.pattern import KindPair, kind_trees, repetition, structure
 from svgtile.metrics.rules import Conflicts, conflict_counts, orientation_outside
@@ -397,7 +403,7 @@ def _footprint_figures(
         disc = {"step": step, "geoms": geoms}
     conflicts = conflict_counts(arr, protos, stats, inside, geoms)
     r_tex, _ = largest_empty_disc(arr, protos, window, shape, **disc)
-    r_ex, _ = largest_empty_disc(exemplar.motifs, protos, exemplar.region, exemplar.region, step=step)
+    r_ex = exemplar_empty_disc(exemplar, step=step)
     return conflicts, r_tex, r_ex
 
 
