@@ -192,7 +192,9 @@ class Score:
         Radius of the largest disc centred in ``I``, inside the region, that meets no
         footprint, user units.
     exemplar_empty_disc_radius : float
-        The same for the exemplar: centred in and inside its input region, user units.
+        The same for the exemplar: centred in and inside its input region; for a repeating tile,
+        centred in the tile and measured across its edges, on the tile and its eight copies
+        (:func:`~svgtile.metrics.coverage.exemplar_empty_disc`), user units.
     coverage : float or None
         ``empty_disc_radius / exemplar_empty_disc_radius``: ≈ 1 or below is as well covered as
         the exemplar, ≫ 1 is a hole; lower is better.
