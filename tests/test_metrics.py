@@ -530,25 +530,52 @@ def test_a_big_hole_has_coverage_far_above_one(grid16):
     assert full.coverage < 2
 
 
-def test_a_repeating_tile_has_its_holes_measured_across_its_edges():
-    """A tile's holes run on into the next copy.  One dot at (3, 4) in a 20 × 20 tile of that
-    period is a square lattice of dots 20 apart: its largest hole is the lattice's, centred at
-    (13, 14), √200 − r across (the disc the tile's own sides cut is about 9.2), and a stamp of the
-    tile — the same holes — scores coverage 1 (it scored 1.47–1.71 on osm-carto's stamped tiles
-    while the exemplar's disc was cut at the tile's sides)."""
-    ex = dataclasses.replace(make_exemplar([("dot", 3.0, 4.0, 0.0)]), period=(20.0, 20.0))
+def _one_dot_tile(w: float, h: float, x: float, y: float):
+    """A ``w × h`` repeating tile of one dot at (x, y): a rectangular lattice of dots."""
+    svg = (
+        '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+        f'viewBox="0 0 {w:g} {h:g}"><defs>{SYMBOLS["dot"]}</defs>'
+        f'<rect id="region" x="0" y="0" width="{w:g}" height="{h:g}" fill="none"/>'
+        f'<use xlink:href="#dot" transform="translate({x:g} {y:g})"/></svg>'
+    )
+    return dataclasses.replace(parse_exemplar(svg), period=(w, h))
+
+
+@pytest.mark.parametrize(("w", "h"), [(20.0, 20.0), (60.0, 10.0)])
+def test_a_repeating_tile_has_its_holes_measured_across_its_edges(w, h):
+    """A tile's holes run on into the next copy.  One dot at (3, 4) in a ``w × h`` tile of that
+    period is a rectangular lattice of dots: its largest hole is the lattice's, centred half a
+    period from the dot both ways, of radius half the period's diagonal less the dot's radius
+    (20 × 20: the disc the tile's own sides cut is about 9.2; 60 × 10: a 3 × 3 block of copies
+    cuts it at 15).  A stamp of the tile — the same holes — scores coverage 1 (it scored
+    1.47–1.71 on osm-carto's stamped tiles while the exemplar's disc was cut at the tile's sides)."""
+    ex = _one_dot_tile(w, h, 3.0, 4.0)
     proto = ex.prototypes[0]
     r_out = proto.radius
     r_in = float(shapely.distance(shapely.Point(0, 0), shapely.polygons(proto.rings[0]).exterior))
+    half = math.hypot(w, h) / 2
     radius = metrics.exemplar_empty_disc(ex, step=1.0)
-    assert math.sqrt(200) - r_out - 0.05 <= radius <= math.sqrt(200) - r_in + 1e-9
+    assert half - r_out - 0.05 <= radius <= half - r_in + 1e-9
     # a drawn exemplar (no period) keeps the disc inside its region
     drawn = metrics.exemplar_empty_disc(dataclasses.replace(ex, period=None), step=1.0)
     assert drawn == metrics.largest_empty_disc(ex.motifs, ex.prototypes, ex.region, ex.region, step=1.0)[0]
     assert drawn < 0.75 * radius
-    arr, region = stamp(ex, 6)
+    arr, region = stamp(ex, 6, 6 * max(1, round(w / h)))
     s = metrics.score(ex, analyze(ex), arr, region)
     assert s.coverage == pytest.approx(1.0, abs=0.03)
+
+
+def test_a_tiles_hole_is_found_at_its_edge_off_the_raster():
+    """The tile's largest hole may be centred on its side, where the raster (of a step the period
+    is no multiple of) has no point; the disc is searched a step beyond the tile too (the same
+    hole one period on), so the figure keeps its precision there: one dot at the tile's centre of
+    a 20 × 20 tile has its hole at the corners, √200 − r, found at a step of 2.7."""
+    ex = _one_dot_tile(20.0, 20.0, 10.0, 10.0)
+    proto = ex.prototypes[0]
+    r_in = float(shapely.distance(shapely.Point(0, 0), shapely.polygons(proto.rings[0]).exterior))
+    radius = metrics.exemplar_empty_disc(ex, step=2.7)
+    bound = 2.7 / 4**2 / math.sqrt(2)  # largest_empty_disc's: the last grid's step over √2
+    assert math.sqrt(200) - proto.radius - bound - 1e-9 <= radius <= math.sqrt(200) - r_in + 1e-9
 
 
 @pytest.mark.parametrize(

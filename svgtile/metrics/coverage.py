@@ -12,7 +12,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.analysis.stats import nearest_distances
+from svgtile.analysis.stats import nearest_distances, periodic_block
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.footprint import Prototype, motif_radius, world_footprints
@@ -116,16 +116,22 @@ def exemplar_empty_disc(exemplar: Exemplar, *, step: float | None = None) -> flo
     """The exemplar's largest empty disc, the hole a texture's is held against (``coverage``).
 
     A drawn exemplar's disc lies in its input region, as :func:`largest_empty_disc` measures it.
-    A repeating tile (``exemplar.period``) has no edge: its holes run across the tile's sides into
-    the next copy, so its disc is centred in the tile and may reach into the eight copies around
-    it, and is measured on the tile and those copies.  Measured inside the tile alone, a hole that
-    the tile's side cuts counted only its part inside, and a stamp of the tile itself — the same
-    holes — scored coverage 1.47–1.71 (osm-carto allotments, grave yards, orchard).
+    A repeating tile (``exemplar.period``, its input region one period, as ``svgtile import``
+    writes it) has no edge: its holes run across the tile's sides into the next copy, and a copy's
+    footprint may reach in across them.  Its disc is centred in the tile (or within one raster
+    step of it: the same hole one period on) and measured among the copies around it, as many
+    rings of them as a disc so centred can reach — its radius is at most half the period's
+    diagonal plus the largest motif radius (every point of the pattern is that close to a copy of
+    any motif's centroid), and copies up to a motif radius beyond it can bound it.  Measured
+    inside the tile alone, a hole the tile's side cuts counted only its part inside, and a stamp
+    of the tile itself — the same holes — scored coverage 1.47–1.71 (osm-carto allotments, grave
+    yards, orchard).  A tile without motifs is measured as a drawn exemplar.
 
     Parameters
     ----------
     exemplar : the exemplar (its motifs, prototypes, region and period)
-    step : first raster step, user units (:func:`largest_empty_disc`)
+    step : first raster step, user units (:func:`largest_empty_disc`; default a 40th of the
+        region's larger side)
 
     Returns
     -------
@@ -135,11 +141,16 @@ def exemplar_empty_disc(exemplar: Exemplar, *, step: float | None = None) -> flo
     if exemplar.period is None or len(motifs) == 0:
         return largest_empty_disc(motifs, protos, region, region, step=step)[0]
     px, py = exemplar.period
-    shift = np.array([(i * px, j * py) for j in (-1, 0, 1) for i in (-1, 0, 1)])  # (9, 2)
-    copies = Arrangement(np.tile(motifs.kind, 9), (motifs.xy[None] + shift[:, None]).reshape(-1, 2),
-                         np.tile(motifs.angle, 9), np.tile(motifs.scale, 9))  # fmt: skip
     x0, y0, x1, y1 = region.bounds
-    return largest_empty_disc(copies, protos, region, shapely.box(x0 - px, y0 - py, x1 + px, y1 + py), step=step)[0]
+    if step is None or not (step > 0 and math.isfinite(step)):
+        step = max(x1 - x0, y1 - y0) / 40
+    r_max = float(motif_radius(motifs, protos).max())
+    reach = math.hypot(px, py) / 2 + 2 * r_max + step  # the disc's radius bound, a motif beyond it, the pad
+    a, b = math.ceil(reach / px), math.ceil(reach / py)
+    copies = periodic_block(motifs, (px, py), (a, b))
+    centres = shapely.box(x0 - step, y0 - step, x1 + step, y1 + step)
+    within = shapely.box(x0 - a * px, y0 - b * py, x1 + a * px, y1 + b * py)
+    return largest_empty_disc(copies, protos, centres, within, step=step)[0]
 
 
 class Footprints:
