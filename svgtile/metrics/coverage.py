@@ -69,9 +69,7 @@ def largest_empty_disc(
         return 0.0, np.full(2, np.nan)
     x0, y0, x1, y1 = centres.bounds
     size = max(x1 - x0, y1 - y0)
-    if step is None or not (step > 0 and math.isfinite(step)):
-        step = size / 40
-    step = max(step, size / 2000)  # at most ~4M pixels
+    step = max(first_step(step, centres), size / 2000)  # at most ~4M pixels
     edge = within.boundary
     if len(arr):
         if geoms is None:
@@ -112,6 +110,15 @@ def largest_empty_disc(
     return float(max(c[best], 0.0)), p[best].copy()
 
 
+def first_step(step: float | None, centres: shapely.Geometry) -> float:
+    """The first raster step of :func:`largest_empty_disc`: ``step`` if it is a positive number,
+    else a 40th of the larger side of ``centres``' bounding box, user units."""
+    if step is not None and step > 0 and math.isfinite(step):
+        return step
+    x0, y0, x1, y1 = centres.bounds
+    return max(x1 - x0, y1 - y0) / 40
+
+
 def exemplar_empty_disc(exemplar: Exemplar, *, step: float | None = None) -> float:
     """The exemplar's largest empty disc, the hole a texture's is held against (``coverage``).
 
@@ -142,8 +149,7 @@ def exemplar_empty_disc(exemplar: Exemplar, *, step: float | None = None) -> flo
         return largest_empty_disc(motifs, protos, region, region, step=step)[0]
     px, py = exemplar.period
     x0, y0, x1, y1 = region.bounds
-    if step is None or not (step > 0 and math.isfinite(step)):
-        step = max(x1 - x0, y1 - y0) / 40
+    step = first_step(step, region)
     r_max = float(motif_radius(motifs, protos).max())
     reach = math.hypot(px, py) / 2 + 2 * r_max + step  # the disc's radius bound, a motif beyond it, the pad
     a, b = math.ceil(reach / px), math.ceil(reach / py)

@@ -193,7 +193,7 @@ class Score:
         footprint, user units.
     exemplar_empty_disc_radius : float
         The same for the exemplar: centred in and inside its input region; for a repeating tile,
-        centred in the tile and measured across its edges, on the tile and its eight copies
+        centred in the tile and measured across its edges, among the copies around it
         (:func:`~svgtile.metrics.coverage.exemplar_empty_disc`), user units.
     coverage : float or None
         ``empty_disc_radius / exemplar_empty_disc_radius``: ≈ 1 or below is as well covered as
