@@ -4,8 +4,9 @@ Each variant (a JSON object of engine parameters; ``{}`` is the defaults) runs o
 exemplar over a square of 4 exemplar widths (as benchmarks/optimize_sets.py), seeds 1–3; L, repetition
 and density / ρ as tests/optimize_measure.py measures them, against the tile and random baselines of
 the same region and seed.  Two lines per variant: how many of the 30 runs meet the bounds of
-tests/test_optimize_sets.py (``misses``: L ≥ 0.85, repetition ≤ 0.2, density in 0.9–1.1, no overlap or violator), mean and least L, how many miss each bound; then
-each exemplar's L, the mean over the seeds.
+tests/test_optimize_sets.py (``misses``: L ≥ 0.85, repetition ≤ 0.2, density in 0.9–1.1, no
+overlap or violator), mean and least L, how many miss each bound; then each exemplar's L, the mean
+over the seeds.
 
 Run by hand:  python benchmarks/optimize_bundled_seeds.py '{}' '{"passes": 20}' '{"start_cell": 7.0}'
 """

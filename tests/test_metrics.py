@@ -41,16 +41,18 @@ SYMBOLS = {
 }
 
 
-def make_exemplar(uses: list[tuple[str, float, float, float]], size: float = 20.0):
-    """An exemplar of ``(symbol, x, y, angle)`` instances in a ``size × size`` input region."""
+def make_exemplar(uses: list[tuple[str, float, float, float]], size: float = 20.0, height: float | None = None):
+    """An exemplar of ``(symbol, x, y, angle)`` instances in a ``size × size`` input region
+    (``size × height`` if ``height`` is given)."""
+    height = size if height is None else height
     used = sorted({u[0] for u in uses})
     body = "".join(
         f'<use xlink:href="#{k}" transform="translate({x:.4f} {y:.4f}) rotate({a:.4f})"/>' for k, x, y, a in uses
     )
     svg = (
         '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-        f'viewBox="0 0 {size:g} {size:g}"><defs>{"".join(SYMBOLS[k] for k in used)}</defs>'
-        f'<rect id="region" x="0" y="0" width="{size:g}" height="{size:g}" fill="none"/>{body}</svg>'
+        f'viewBox="0 0 {size:g} {height:g}"><defs>{"".join(SYMBOLS[k] for k in used)}</defs>'
+        f'<rect id="region" x="0" y="0" width="{size:g}" height="{height:g}" fill="none"/>{body}</svg>'
     )
     return parse_exemplar(svg)
 
@@ -532,13 +534,7 @@ def test_a_big_hole_has_coverage_far_above_one(grid16):
 
 def _one_dot_tile(w: float, h: float, x: float, y: float):
     """A ``w × h`` repeating tile of one dot at (x, y): a rectangular lattice of dots."""
-    svg = (
-        '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-        f'viewBox="0 0 {w:g} {h:g}"><defs>{SYMBOLS["dot"]}</defs>'
-        f'<rect id="region" x="0" y="0" width="{w:g}" height="{h:g}" fill="none"/>'
-        f'<use xlink:href="#dot" transform="translate({x:g} {y:g})"/></svg>'
-    )
-    return dataclasses.replace(parse_exemplar(svg), period=(w, h))
+    return dataclasses.replace(make_exemplar([("dot", x, y, 0.0)], w, h), period=(w, h))
 
 
 @pytest.mark.parametrize(("w", "h"), [(20.0, 20.0), (60.0, 10.0)])
