@@ -29,8 +29,9 @@ sys.path.insert(0, str(HERE.parent / "tests"))
 #: The two ways to fill a repeating tile, as (engine, params) for :func:`test_wholeset.figures`.
 #: ``redraw``: the tile engine with each copy's row phases and jitter drawn anew (jit12,
 #: :mod:`svgtile.engines.jitter`, auto's ``tile-jitter`` rule).
+#: ``optimize``: the optimize engine with its defaults (what auto picks for a tile of scattered marks).
 WAYS = {"stamp": ("patch", (("grid", "lattice"), ("max_rotation", 0.0))), "growth": ("growth", ()),
-        "redraw": ("tile", (("redraw_jitter", True),))}
+        "redraw": ("tile", (("redraw_jitter", True),)), "optimize": ("optimize", ())}
 
 
 def measure(only: list[str], ways: list[str]) -> None:
@@ -50,25 +51,31 @@ def measure(only: list[str], ways: list[str]) -> None:
             print(json.dumps({**head, "way": way, "density": round(s.density_ratio, 4), "tv": round(s.kind_mix_tv, 4),
                               "ov": int(s.overlaps_total), "viol": int(s.violators_total),
                               "rep": round(s.repetition, 4), "L": round(float(L), 4),
+                              "cov": None if s.coverage is None else round(s.coverage, 3),
                               "s": round(time.perf_counter() - t0, 1)}), flush=True)  # fmt: skip
 
 
 def passes(d: dict) -> bool:
     """Whether one line meets every whole-set gate but the exemplar's own overlaps."""
     return (d["ov"] + d["viol"] == 0 and 0.9 <= d["density"] <= 1.1 and d["tv"] <= 0.05 and d["rep"] <= 0.2
-            and d["L"] >= 0.6)  # fmt: skip
+            and d["L"] >= 0.6 and (d.get("cov") or 0.0) <= 1.3)  # fmt: skip
+
+
+def _cov(d: dict) -> str:
+    """The line's coverage, or a dash (lines written before it was recorded, or a tile without holes)."""
+    return "–" if d.get("cov") is None else f"{d['cov']:.2f}"
 
 
 def table(path: Path) -> None:
     rows: dict[str, dict[str, dict]] = {}
     for d in map(json.loads, path.read_text().splitlines()):
         rows.setdefault(d["tile"], {})[d["way"]] = d
-    print("| tile | order | stamp repeats | way | density/ρ | TV | L | repetition | ov/viol | s | all gates |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| tile | order | stamp repeats | way | density/ρ | TV | L | repetition | coverage | ov/viol | s | all gates |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for tile, ways in rows.items():
         for way, d in ways.items():
             print(f"| {tile} | {d['order']} | {'yes' if d['repeats'] else 'no'} | {way} | {d['density']:.3f} | "
-                  f"{d['tv']:.3f} | {d['L']:.2f} | {d['rep']:.3f} | {d['ov']}/{d['viol']} | {d['s']:.1f} | "
+                  f"{d['tv']:.3f} | {d['L']:.2f} | {d['rep']:.3f} | {_cov(d)} | {d['ov']}/{d['viol']} | {d['s']:.1f} | "
                   f"{'yes' if passes(d) else 'no'} |")  # fmt: skip
 
 

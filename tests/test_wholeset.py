@@ -6,8 +6,10 @@ Bounds: 0 overlaps, 0 violators, density / ρ in 0.9–1.1, kind-mix TV ≤ 0.05
 shape classes, issue 12.3: kinds drawn fewer than 13 times count with rare kinds of like shape;
 where kinds pool, each kind's TV also no more than 0.05 or what a fair draw of as many motifs from
 the exemplar's mix gives on average, :func:`svgtile.metrics.kind_mix_noise`), repetition ≤ 0.2,
-likeness L ≥ 0.6 (Ma, Wei & Tong 2011 neighbourhood distance between the ``tile`` and ``random``
-baselines, :func:`svgtile.analysis.neighbourhood.likeness`), coverage ≤ 1.3 (issue 12.4: the largest
+likeness L ≥ 0.6 and, since the growth and optimize engines exist, L ≥ 0.8 as issue 12.6 asks (Ma,
+Wei & Tong 2011 neighbourhood distance between the ``tile`` and ``random`` baselines,
+:func:`svgtile.analysis.neighbourhood.likeness`; the 0.6 floor stays a gate of its own, so a tile
+listed under 0.8 still may not fall below it), coverage ≤ 1.3 (issue 12.4: the largest
 hole no more than 1.3 times the tile's own, measured across the tile's edges,
 :func:`svgtile.metrics.coverage.exemplar_empty_disc`).  A bound a tile does not meet is an
 ``xfail(strict=True)`` that names the tile and the figure measured when it was written
@@ -105,6 +107,22 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/715", "coverage"): "1.443 (2026-12-06, auto's tile-scatter: optimize; fill_light fills by density, and the density is in bounds)",
     ("equinor/11026", "coverage"): "3.255 (2026-12-06, the stamp loses one motif of each of the tile's overlapping pairs: see its density entry)",
     ("osm-symbols/leaftype_leafless", "kind mix"): "TV 0.066 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
+    ("fgdc/605", "likeness 0.8"): "L 0.760 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/606", "likeness 0.8"): "L 0.703 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/613", "likeness 0.8"): "L 0.798 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/666", "likeness 0.8"): "L 0.723 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/682", "likeness 0.8"): "L 0.781 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/683", "likeness 0.8"): "L 0.758 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/684", "likeness 0.8"): "L 0.777 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/685", "likeness 0.8"): "L 0.759 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/715", "likeness 0.8"): "L 0.686 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/729", "likeness 0.8"): "L 0.736 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("fgdc/730", "likeness 0.8"): "L 0.731 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("osm-symbols/leaftype_broadleaved", "likeness 0.8"): "L 0.725 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("osm-symbols/leaftype_leafless", "likeness 0.8"): "L 0.673 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("osm-symbols/leaftype_mixed", "likeness 0.8"): "L 0.662 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("osm-symbols/leaftype_needleleaved", "likeness 0.8"): "L 0.736 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
+    ("osm-symbols/leaftype_unknown", "likeness 0.8"): "L 0.738 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
 }
 
 
@@ -255,3 +273,9 @@ def test_no_hole_is_much_larger_than_the_tiles_own(tile):
 @pytest.mark.parametrize("tile", cases("likeness"))
 def test_likeness_is_at_least_0_6(tile):
     assert measured(tile)[2] >= 0.6
+
+
+@pytest.mark.parametrize("tile", cases("likeness 0.8"))
+def test_likeness_is_at_least_0_8(tile):
+    # issue 12.6: "L ≥ 0.6 (≥ 0.8 once the growth and optimize engines exist)" — they do
+    assert measured(tile)[2] >= 0.8
