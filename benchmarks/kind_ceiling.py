@@ -6,16 +6,17 @@ stays near 0.78, and the diagnosis of 2026-12-02 put most of its neighbourhood d
 the optimize texture (a square of 4 exemplar widths, as benchmarks/optimize_sets.py) keeps its
 positions, and its kinds are changed greedily to lower the sum of the Ma, Wei & Tong 2011 eq. (1)
 distances (:func:`svgtile.analysis.neighbourhood.neighbourhood_distance`'s own costs, k = 6,
-α = 1) of every neighbourhood a motif is in.  Footprints are ignored (a change may overlap), so
-the figures are upper bounds:
+α = 1) of every neighbourhood a motif is in.  Footprints are ignored (a change may overlap): the
+figures are optimistic estimates of what a kind step could give — a greedy local search, not a
+bound (a better search could find more):
 
 * ``flip``: any kind, three sweeps in a random order (the kind mix may drift);
 * ``swap``: two motifs of one world-anchored window of 12 spacings (optimize's kind-mix window)
   exchange kinds when the pair's summed change is negative, non-neighbours only, re-checked
-  jointly: the window's mix is kept exactly.
+  jointly: the window's mix is kept exactly (stricter than optimize, which allows ± 0.01 of it).
 
 Run by hand (seconds per sweep on the bundled exemplars):
-    python benchmarks/kind_ceiling.py breccia-plain [--seed 1]
+    python benchmarks/kind_ceiling.py breccia-plain [--seed 1] [--sweeps 3]
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from scipy.spatial import cKDTree
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests"))
 
+#: Neighbours per neighbourhood, as tests/optimize_measure.py's distance (and svgtile score's L).
 K = 6
 
 
@@ -50,8 +52,8 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("exemplar", help="a bundled exemplar's name (exemplars/NAME.svg)")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--sweeps", type=int, default=3)
+    ap.add_argument("--seed", type=int, default=1, help="the optimize texture's and baselines' seed")
+    ap.add_argument("--sweeps", type=int, default=3, help="sweeps of each search")
     args = ap.parse_args()
     ex = read_exemplar(HERE.parent / "exemplars" / f"{args.exemplar}.svg")
     st = analyze(ex)
@@ -63,6 +65,7 @@ def main() -> None:
             for b in ("tile", "random")]  # fmt: skip
 
     def L(kind: np.ndarray) -> float:
+        """Likeness of the texture with these kinds, (n,) int (its positions kept)."""
         return likeness(om.distance(ex, st, region, Arrangement(kind, arr.xy, arr.angle, arr.scale)), *base)
 
     s = spacing(st)
@@ -78,10 +81,13 @@ def main() -> None:
     nk = int(ex.motifs.kind.max()) + 1
 
     def cost(centres: np.ndarray, kind: np.ndarray) -> float:
+        """Summed eq. (1) distance of the neighbourhoods of ``centres`` (m,) int under ``kind``
+        (n,) int, squared exemplar spacings."""
         return float(_nearest_costs(p_t[centres], kind[nn[centres]], kind[centres], p_e, k_e, ex.motifs.kind, 1.0,
                                     rotate=False).sum())  # fmt: skip
 
     def mix(kind: np.ndarray) -> str:
+        """Each kind's share of the texture's motifs under ``kind`` (n,) int, as text."""
         return " ".join(f"{v:.3f}" for v in np.bincount(kind, minlength=nk) / n)
 
     own_mix = " ".join(f"{v:.3f}" for v in np.bincount(ex.motifs.kind, minlength=nk) / len(ex.motifs))

@@ -28,8 +28,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 
-#: The gates' bounds (tests/test_wholeset.py).
-TV, REPETITION, LIKENESS, COVERAGE, DENSITY = 0.05, 0.2, 0.6, 1.3, (0.9, 1.1)
+#: The gates' bounds (tests/test_wholeset.py): L ≥ 0.6 for every tile, and L ≥ 0.8 (issue 12.6, since
+#: growth and optimize exist; 2026-12-07) with the tiles under it listed there as known misses.
+TV, REPETITION, LIKENESS, LIKENESS_NOW, COVERAGE, DENSITY = 0.05, 0.2, 0.6, 0.8, 1.3, (0.9, 1.1)
 
 
 def bounds(row: dict) -> dict[str, bool]:
@@ -40,6 +41,7 @@ def bounds(row: dict) -> dict[str, bool]:
         "kind mix": row["tv"] <= TV and per_kind,
         "repetition": row["rep"] <= REPETITION,
         "likeness": row["L"] >= LIKENESS,
+        "likeness 0.8": row["L"] >= LIKENESS_NOW,
         # a tile without holes passes only with a texture without (as the gate reads it)
         "coverage": row["cov"] <= COVERAGE if row.get("cov") is not None else row.get("r_tex", 0) == 0,
         "conflicts": row["ov"] == 0 and row["viol"] == 0 and row.get("exemplar_ov", 0) == 0,
