@@ -19,7 +19,7 @@ from svgtile.core.region import Region
 from svgtile.engines import synthesize
 from svgtile.engines.growth import GrowthParams, Weights
 from svgtile.engines.growth.connectivity import reference_rings
-from svgtile.engines.growth.kinds import repick
+from svgtile.engines.growth.kinds import MIX, mix_bounds, repick
 from svgtile.engines.growth.neighbourkinds import energies, neighbourhood_kinds
 from svgtile.engines.growth.rows import row_lines
 from svgtile.errors import ParameterError
@@ -65,8 +65,9 @@ def test_a_wrong_kind_in_a_copy_of_the_exemplar_is_put_right_and_held_motifs_kee
 
 def test_the_pass_brings_the_seams_kinds_nearer_the_exemplars():
     """At the cells' seams (within 6 units of a cell edge: most of what growth loses on marsh) the
-    part of E that kinds make (E less E with kinds ignored) falls by a fifth (measured 0.83 →
-    0.64, seed 1), and the cells' insides do not get worse."""
+    part of E that kinds make (E less E with kinds ignored) falls (measured 0.83 → 0.76, seed 1,
+    with the kind mix held, :func:`svgtile.engines.growth.kinds.mix_bounds`; 0.83 → 0.64 when the
+    passes moved the mix), and the cells' insides do not get worse."""
     ex, st = loaded("marsh")
     s = spacing(st)
     before, after = grown("marsh", 0), grown("marsh", GrowthParams().kind_sweeps)
@@ -80,7 +81,7 @@ def test_the_pass_brings_the_seams_kinds_nearer_the_exemplars():
              for sel in (edge < 6, edge >= 6)]  # fmt: skip
         parts.append([e[0][0] - e[0][1], e[1][0]])
     (seam0, inner0), (seam1, inner1) = parts
-    assert seam1 < 0.8 * seam0, (seam0, seam1)
+    assert seam1 < 0.95 * seam0, (seam0, seam1)
     assert inner1 <= inner0 + 0.02, (inner0, inner1)
 
 
@@ -154,6 +155,56 @@ def test_the_neighbourhood_pass_lowers_the_likeness_scores_own_distance():
     assert np.array_equal(new[~movable], arr.kind[~movable])
 
 
+def test_mix_bounds_are_the_exemplars_share_widened_to_the_count_now():
+    """(f ± MIX) × n rounded outwards, widened to hold the count a kind has; no bound without a
+    frequency or without a movable motif."""
+    kind = np.array([0] * 30 + [1] * 70)
+    movable = np.ones(100, bool)
+    count, lo, hi = mix_bounds(kind, movable, np.array([0.4, 0.6]), 2)
+    assert count.tolist() == [30, 70]
+    assert lo.tolist() == [30, int(np.floor((0.6 - MIX) * 100))]  # kind 0 under its band: it may only gain
+    assert hi.tolist() == [int(np.ceil((0.4 + MIX) * 100)), 70]
+    for free in (mix_bounds(kind, movable, None, 2), mix_bounds(kind, np.zeros(100, bool), np.array([0.4, 0.6]), 2)):
+        assert free[1].tolist() == [0, 0] and (free[2] > 10**9).all()
+
+
+def _drifting_piece():
+    """A grown piece of marsh with its passes off, its interior movable, and the exemplar's mix: on
+    it the free passes drift the mix (kind 0: 0.40 of the motifs → 0.33 and 0.31 in the first
+    version of the passes, which held no mix)."""
+    ex, st = loaded("marsh")
+    arr = grown("marsh", 0, (0, 0, 180, 180))
+    movable = (arr.xy.min(1) > 15) & (arr.xy.max(1) < 165)
+    return ex, st, arr, movable
+
+
+def test_the_ring_pass_holds_the_kind_mix_it_drifts_when_free():
+    ex, st, arr, movable = _drifting_piece()
+    rings = reference_rings(ex)
+    sub = np.zeros(len(arr), np.int64)  # the ring pass reads sub-ids only through the weights' sub-id term
+    free, _ = repick(rings, arr.xy, arr.kind, sub, movable, weights=Weights())
+    held, _ = repick(rings, arr.xy, arr.kind, sub, movable, weights=Weights(), frequency=st.frequency)
+    _, lo, hi = mix_bounds(arr.kind, movable, st.frequency, 2)
+    got = np.bincount(held, minlength=2)
+    assert (lo <= got).all() and (got <= hi).all(), (lo, got, hi)
+    assert np.bincount(free, minlength=2)[0] < lo[0], (np.bincount(free, minlength=2), lo)  # free, it drifts
+    assert (held != arr.kind).any()  # held, it still changes kinds
+    assert np.array_equal(held[~movable], arr.kind[~movable])
+
+
+def test_the_neighbourhood_pass_holds_the_kind_mix_it_drifts_when_free():
+    ex, st, arr, movable = _drifting_piece()
+    m, s = ex.motifs, spacing(st)
+    free = neighbourhood_kinds(arr.xy, arr.kind, movable, m.xy, m.kind, s)
+    held = neighbourhood_kinds(arr.xy, arr.kind, movable, m.xy, m.kind, s, frequency=st.frequency)
+    _, lo, hi = mix_bounds(arr.kind, movable, st.frequency, 2)
+    got = np.bincount(held, minlength=2)
+    assert (lo <= got).all() and (got <= hi).all(), (lo, got, hi)
+    assert np.bincount(free, minlength=2)[0] < lo[0], (np.bincount(free, minlength=2), lo)
+    assert (held != arr.kind).any()
+    assert np.array_equal(held[~movable], arr.kind[~movable])
+
+
 @cache
 def marsh_figures(seed: int, sweeps: int | None = None):
     ex, st = loaded("marsh")
@@ -174,17 +225,36 @@ def marsh_figures(seed: int, sweeps: int | None = None):
 #: "rep13e"); a run copied along the rows is still caught (tests/test_repetition_reduced.py).
 REPETITION_NOT_MET: dict[int, float] = {}
 SEEDS = (1, 2, 3, 4, 5, 6, 7)
+#: Issue 13's likeness gate not met on marsh since the kind passes hold the exemplar's kind mix
+#: (2026-12-07, benchmarks/README.md "growth's kind mix"): the passes had reached L 0.828–0.881 on
+#: seeds 1–7 by moving the mix (kind 0: 0.41 of the exemplar's tufts, 0.31 of the texture's;
+#: kind-mix TV 0.12–0.15), and with it held they add 0.006 to the 0.770 of no passes at all.
+LIKENESS_NOT_MET: dict[int, float] = {1: 0.772, 2: 0.762, 3: 0.753, 4: 0.751, 6: 0.760}
+#: The kind-mix bound not met: seed 4's TV is growth's own (0.063 with both passes off).
+MIX_NOT_MET: dict[int, float] = {4: 0.060}
 
 
-@pytest.mark.parametrize("seed", SEEDS)
+def _seeds(known: dict[int, float], figure: str) -> list:
+    return [pytest.param(seed, marks=pytest.mark.xfail(strict=True, reason=f"{figure} {known[seed]:.3f}"))
+            if seed in known else seed for seed in SEEDS]  # fmt: skip
+
+
+@pytest.mark.parametrize("seed", _seeds(LIKENESS_NOT_MET, "likeness"))
 def test_marsh_meets_issue_13s_likeness_on_seeds_1_to_7(seed):
     """L ≥ 0.8 with 0 overlaps, 0 violators and density ratio in 0.9–1.1 at 300 × 300, scored as
-    tests/test_growth_auto.py scores it (ring pass alone: 0.821 / 0.798 / 0.772 on seeds 1–3;
-    with the neighbourhood pass 0.838 / 0.860 / 0.848 / 0.838 / 0.858 / 0.828 / 0.881)."""
+    tests/test_growth_auto.py scores it (with the kind mix held: 0.772 / 0.762 / 0.753 / 0.751 /
+    0.811 / 0.760 / 0.822 on seeds 1–7)."""
     s = marsh_figures(seed)
-    assert s.likeness >= 0.8, s.likeness
     assert s.overlaps_total == s.violators_total == 0
     assert 0.9 <= s.density_ratio <= 1.1, s.density_ratio
+    assert s.likeness >= 0.8, s.likeness
+
+
+@pytest.mark.parametrize("seed", _seeds(MIX_NOT_MET, "kind mix"))
+def test_marsh_keeps_the_exemplars_kind_mix_on_seeds_1_to_7(seed):
+    """Kind-mix TV ≤ 0.05 (the whole-set gates' bound) at 300 × 300: the kind passes may not trade
+    the exemplar's mix for likeness (before they held it: 0.116 / 0.142 / 0.151 on seeds 1–3)."""
+    assert marsh_figures(seed).kind_mix_tv <= 0.05, marsh_figures(seed).kind_mix_tv
 
 
 @pytest.mark.parametrize("seed", [
@@ -199,7 +269,8 @@ def test_marsh_rows_at_random_phases_repeat_less_but_lose_likeness():
     what L is made of: seed 2's texture with every row moved along itself by its own random shift
     (each row's own spacing kept, the relations between rows gone) repeats less (0.095 → 0.067;
     0.216 → 0.06–0.16 by three draws before rep13e, when the figure took the plane's chance at
-    whole row offsets) but falls far below L 0.8 (0.64)."""
+    whole row offsets) but falls far below it in likeness (0.56 against 0.76; 0.64 against 0.86
+    when the kind passes moved the mix)."""
     ex, st = loaded("marsh")
     region = Region.rectangle(300, 300)
     arr = synthesize(ex, region, "growth", seed=2, stats=st, boundary="centroid").arrangement
@@ -213,10 +284,12 @@ def test_marsh_rows_at_random_phases_repeat_less_but_lose_likeness():
     shifted = score(ex, st, Arrangement(arr.kind, xy, arr.angle, arr.scale), region)
     grown2 = marsh_figures(2)
     assert shifted.repetition < grown2.repetition, (shifted.repetition, grown2.repetition)
-    assert shifted.likeness < 0.7 < 0.8 <= grown2.likeness, (shifted.likeness, grown2.likeness)
+    assert shifted.likeness < grown2.likeness - 0.15, (shifted.likeness, grown2.likeness)
 
 
-def test_the_neighbourhood_pass_is_what_lifts_marsh():
-    """Seed 3, the pass off (ring pass alone) against on: L rises by at least 0.04 (0.772 → 0.848)."""
+def test_the_neighbourhood_pass_does_not_lower_marshs_likeness():
+    """Seed 3, the pass off (ring pass alone) against on: L does not fall (0.741 → 0.753 with the
+    kind mix held; 0.772 → 0.848 when the passes moved the mix), and the mix stays in bounds."""
     off, on = marsh_figures(3, 0), marsh_figures(3)
-    assert on.likeness > off.likeness + 0.04, (off.likeness, on.likeness)
+    assert on.likeness >= off.likeness, (off.likeness, on.likeness)
+    assert on.kind_mix_tv <= 0.05, on.kind_mix_tv

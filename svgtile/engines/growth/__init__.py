@@ -71,8 +71,8 @@ class GrowthParams(EngineParams):
         hold the motifs on them in relaxation (library only, see :mod:`.rows`)
     cell_widths : a cell is at least this many exemplar widths wide (library only)
     kind_sweeps : on a drawn exemplar of rows grown with rotation ``none``, sweeps of the final
-        kind pass that re-chooses kinds against each motif's complete ring (library only, see
-        :mod:`.kinds`); 0 = none
+        kind pass that re-chooses kinds against each motif's complete ring, holding the
+        exemplar's kind mix (library only, see :mod:`.kinds`); 0 = none
     neighbourhood_sweeps : with the kind pass, at most this many sweeps of the pass after it that
         re-chooses kinds against the exemplar's k-nearest neighbourhoods (ma2011 §3.2; library
         only, see :mod:`.neighbourkinds`); 0 = none

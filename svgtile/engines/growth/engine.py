@@ -71,7 +71,7 @@ from svgtile.engines.growth import GrowthParams
 from svgtile.engines.growth.connectivity import Rings, reference_rings
 from svgtile.engines.growth.gapfill import ROUNDS, candidates, predictions
 from svgtile.engines.growth.grow import Grown, grow, rings_of
-from svgtile.engines.growth.kinds import repick
+from svgtile.engines.growth.kinds import mix_bounds, repick
 from svgtile.engines.growth.neighbourkinds import neighbourhood_kinds
 from svgtile.engines.growth.phases import on_rows, row_phases
 from svgtile.engines.growth.relax import relax
@@ -341,16 +341,22 @@ class Growth:
     def repick_kinds(self, j: _Job) -> None:
         """Piece ``j``'s motifs (``j.kept``) with their kinds re-chosen against their complete
         rings, the cell's earlier motifs and its earlier-phase neighbours' held (:mod:`.kinds`,
-        §5.2); a changed motif that fails the exact check keeps its old kind."""
+        §5.2); a changed motif that fails the exact check (overlap, distance rule, a barrier
+        crossed) keeps its old kind, and so do the changes that would then leave a kind's count
+        past the passes' bounds (:func:`.kinds.mix_bounds`: what the check keeps back is more
+        often a change to a larger footprint, and the mix would drift)."""
         w, ex = j.cell, self.ex
         own, osub = Arrangement.concat(j.kept), np.concatenate(j.ksub)
         fixed = Arrangement.concat([w.before, *w.grown])
         fsub = np.concatenate([w.bsub, *w.gsub])
         f = len(fixed)
         xy, movable = np.concatenate([fixed.xy, own.xy]), np.arange(f + len(own)) >= f
+        start = np.concatenate([fixed.kind, own.kind])
+        _, lo, hi = mix_bounds(start, movable, self.stats.frequency, max(int(start.max()) + 1, len(self.stats.frequency)))
         kind, ring = repick(self.rings, xy, np.concatenate([fixed.kind, own.kind]),
                             np.concatenate([fsub, osub]), movable, weights=self.p.weights,
-                            sweeps=self.p.kind_sweeps, then=self.neighbourhood_pass(movable, xy))  # fmt: skip
+                            sweeps=self.p.kind_sweeps, frequency=self.stats.frequency,
+                            then=self.neighbourhood_pass(movable, xy))  # fmt: skip
         kind, ring = kind[f:], ring[f:]
         changed = (kind != own.kind) & (ring >= 0)
         turned = (self.rings.angle[ring] + 180.0) % 360.0 - 180.0
@@ -366,9 +372,20 @@ class Growth:
             bad = cross_conflicts(new, Arrangement.concat([fixed, cand.take(~changed)]), protos, d)
             found = find_conflicts(new, protos, d)
             bad[found.i] = bad[found.j] = True
-            if not bad.any():
+            if self.barriers is not None:  # another kind's footprint may reach across one (§5.5)
+                bad |= shapely.intersects(world_footprints(new, protos), self.barriers)
+            if bad.any():
+                changed[np.flatnonzero(changed)[bad]] = False  # these keep their old kinds; check again
+                continue
+            # what the check kept back is not even: a change to a larger footprint fails it more
+            # often, and the mix the passes held would drift; changes into a kind over its bound
+            # (or out of one under it) go back too, and the rest is checked again
+            count = np.bincount(np.r_[fixed.kind, cand.kind], minlength=len(hi))
+            off = (count > hi) | (count < lo)
+            back = changed & (off[kind] | off[own.kind])
+            if not back.any():
                 break
-            changed[np.flatnonzero(changed)[bad]] = False  # these keep their old kinds; check again
+            changed &= ~back
         j.kept, j.ksub = [cand], [sub]
 
     def neighbourhood_pass(self, movable: np.ndarray, xy: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
@@ -378,7 +395,8 @@ class Growth:
         if not self.p.neighbourhood_sweeps:
             return None
         m, s, sweeps = self.ex.motifs, self.stats.spacing, self.p.neighbourhood_sweeps
-        return lambda kind: neighbourhood_kinds(xy, kind, movable, m.xy, m.kind, s, sweeps=sweeps)
+        f = self.stats.frequency
+        return lambda kind: neighbourhood_kinds(xy, kind, movable, m.xy, m.kind, s, sweeps=sweeps, frequency=f)
 
     def flow_table(self, a: int, b: int) -> tuple[np.ndarray, float, float, float]:
         """The flow field's direction (radians) over cell ``(a, b)``, sampled once on a grid of

@@ -19,15 +19,21 @@ its neighbours') the most, and it changes when that lowers the sum and no ring n
 gain more by changing (so two neighbours never change on each other's old kinds in one sweep).
 Positions stay; a motif that changes kind copies the best-matching reference element of its new
 kind (its sub-id, angle and scale, §5.4).  The exact footprint check is the engine's: a changed
-motif that would overlap or break the distance rule keeps its old kind.
+motif that would overlap, break the distance rule or cross a barrier keeps its old kind.
+
+Changing kinds alone to lower a neighbourhood error moves the kind mix wherever one kind fits more
+neighbourhoods than its share: on marsh the first version took kind 0 from 0.40 of the tufts to
+0.31 (kind-mix TV 0.12–0.15) and L from 0.77 to 0.85, nearly all of its gain.  Both passes now hold
+each kind's count to the exemplar's share (:func:`mix_bounds`, ± :data:`MIX`), and the engine sends
+back the changes its exact check would leave uneven; with the mix held the passes add little
+(marsh, seeds 1–7: L 0.770 without them, 0.776 with; benchmarks/README.md, "growth's kind mix").
 
 Deterministic and world-anchored: it reads only positions, kinds and sub-ids, with no draws.
 The sweeps are one compiled loop (:func:`sweep`) over the motifs — sequential by nature, each
 sweep reads the kinds the last one left — calling the matching kernel once per ring evaluated.
 
 The engine follows the sweeps with a second pass (``then``: :mod:`.neighbourkinds`, ma2011's
-k-nearest neighbourhoods) before the changed motifs' references are found: on marsh the sweeps
-stop at L 0.821 / 0.798 / 0.772 (seeds 1–3), the second pass takes them to 0.838 / 0.860 / 0.848.
+k-nearest neighbourhoods) before the changed motifs' references are found.
 """
 
 from __future__ import annotations
@@ -42,12 +48,54 @@ from svgtile.engines.growth import Weights
 from svgtile.engines.growth.connectivity import Rings, ring_of
 from svgtile.engines.growth.kernel import NONE, match
 
-#: Sweeps of the pass (marsh at 300 × 300, seeds 1–3, L: none 0.763 / 0.769 / 0.755, two 0.807 /
-#: 0.790 / 0.770, four 0.821 / 0.798 / 0.772, eight the same as four).
+#: Sweeps of the pass (marsh at 300 × 300, seeds 1–3, L, when the pass held no kind mix: none 0.763
+#: / 0.769 / 0.755, two 0.807 / 0.790 / 0.770, four 0.821 / 0.798 / 0.772, eight the same as four).
 SWEEPS = 4
+#: Each kind's count among a piece's motifs that may change stays within this share of them of
+#: the exemplar's (by count), or where it already is if further (:func:`mix_bounds`): the passes
+#: change kinds alone, and left free they drift the mix towards the kind that fits the most
+#: neighbourhoods (marsh, 300 × 300: kind 0 0.40 → 0.31 of the motifs, kind-mix TV 0.009 → 0.116,
+#: benchmarks/README.md "growth's kind mix").  The optimize engine's kind step holds the same
+#: share (:data:`svgtile.engines.optimize.assign.MIX`), per world window.
+MIX = 0.01
 #: The error of a ring no reference can match (larger than any ring's: M kind terms and M
 #: neighbours several edge lengths off).
 UNMATCHED = 1e6
+
+
+def mix_bounds(kind: np.ndarray, movable: np.ndarray, frequency: np.ndarray | None,
+               nkind: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """The counts the kind passes hold the kinds to.
+
+    Counted over every motif given, the fixed ones around a piece (the cell's earlier motifs and
+    its earlier-phase neighbours', whose kinds count but stay) with its own: a piece of 60–90
+    motifs alone would round each bound outwards by up to a motif, and pieces side by side would
+    add those up.
+
+    Parameters
+    ----------
+    kind : (n,) int array
+    movable : (n,) bool array — the motifs whose kinds may change (the bounds are None's, no
+        bound, when none may)
+    frequency : (k,) float array, each kind's share of the exemplar's motifs (by count), or None
+        for no bound
+    nkind : int ≥ k, the kinds the passes may choose
+
+    Returns
+    -------
+    count, lo, hi : (nkind,) int arrays — each kind's count among the n motifs now, and the least
+    and most it may reach: ``(frequency ± MIX) × n`` rounded outwards, widened to hold the count it
+    has (a kind already past the band may only come back)
+    """
+    count = np.bincount(np.asarray(kind), minlength=nkind).astype(np.int64)
+    if frequency is None or not np.any(movable):
+        return count, np.zeros(nkind, np.int64), np.full(nkind, np.iinfo(np.int64).max // 2, np.int64)
+    f = np.zeros(nkind)
+    f[: len(frequency)] = frequency
+    n = len(count) and int(count.sum())
+    lo = np.minimum(np.floor((f - MIX) * n), count).astype(np.int64)
+    hi = np.maximum(np.ceil((f + MIX) * n), count).astype(np.int64)
+    return count, lo, hi
 
 
 def neighbour_rings(xy: np.ndarray, centres: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
@@ -93,13 +141,15 @@ def _error(c, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_lengt
 
 @numba.njit(cache=True)
 def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nkind, nsub, mean_length, w,
-          sweeps, ring_of_motif):  # fmt: skip  # pragma: no cover
+          sweeps, ring_of_motif, count, lo, hi):  # fmt: skip  # pragma: no cover
     """The pass's sweeps over ``kind`` ((n,) int, changed in place); returns (n,) the reference
     ring each changed motif now copies (−1: unchanged).
 
     Centre ``c`` (a row of ``ptr``) is motif ``c``; ``mptr``/``midx`` list, for each motif, the
     centres whose rings hold it; ``movable`` ((n,) bool) the motifs that may change; ``w`` eq.
-    (2)'s weights; ``ring_of_motif`` is filled with the reference each changed motif matches."""
+    (2)'s weights; ``ring_of_motif`` is filled with the reference each changed motif matches.
+    A change from kind ``a`` to ``q`` is made only while ``count[a] > lo[a]`` and ``count[q] <
+    hi[q]`` (:func:`mix_bounds`; ``count`` is updated in place)."""
     n = kind.shape[0]
     noise = np.zeros(rel.shape[0])
     out = (np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1), np.empty(1))
@@ -124,8 +174,10 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
             dirty[i] = False
             gain[i], best[i] = 0.0, kind[i]
             old = kind[i]
+            if count[old] <= lo[old]:
+                continue  # its kind may not lose a motif
             for a in range(k):
-                if a == old:
+                if a == old or count[a] >= hi[a]:
                     continue
                 kind[i] = a
                 d = _error(i, kind, sub, xy, ptr, idx, rel, size, rkind, nkind, nsub, mean_length, w, noise, out) - cur[i]
@@ -151,6 +203,11 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
         for f in range(n):
             if not flip[f]:
                 continue
+            if count[kind[f]] <= lo[kind[f]] or count[best[f]] >= hi[best[f]]:
+                dirty[f] = True  # an earlier change this sweep used the room: its choice is found again
+                continue
+            count[kind[f]] -= 1
+            count[best[f]] += 1
             kind[f] = best[f]
             # the rings whose error reads f's kind: its own and those holding it; and every motif
             # whose gain reads one of them (the ring's centre and its members)
@@ -168,7 +225,7 @@ def sweep(kind, sub, xy, ptr, idx, mptr, midx, movable, k, rel, size, rkind, nki
 
 
 def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, movable: np.ndarray, *,
-           weights: Weights, sweeps: int = SWEEPS,
+           weights: Weights, sweeps: int = SWEEPS, frequency: np.ndarray | None = None,
            then: Callable[[np.ndarray], np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The kinds of ``movable`` motifs re-chosen against their complete rings (§5.2, eq. 1–3).
 
@@ -181,6 +238,8 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     movable : (n,) bool array
     weights : eq. (2)'s weights
     sweeps : at most this many sweeps (fewer when one changes nothing)
+    frequency : (k,) float array, the exemplar's kind shares (by count): the movable motifs' mix
+        is held to them (:func:`mix_bounds`); None leaves it free
     then : a further pass over the kinds the sweeps leave ((n,) int → (n,) int, changing only
         ``movable`` motifs: :func:`~svgtile.engines.growth.neighbourkinds.neighbourhood_kinds`), made
         before each changed motif's reference ring is found
@@ -204,16 +263,21 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     before = kind.copy()
     out = np.full(n, -1, np.int64)
     new = kind.copy()
-    sweep(new, np.asarray(sub, np.int64), xy, ptr, idx, mptr, midx, np.asarray(movable, np.bool_),
-          int(max(rings.kind.max(), rings.nkind.max(), kind.max()) + 1), rings.rel, rings.size, rings.kind,
+    movable = np.asarray(movable, np.bool_)
+    k = int(max(rings.kind.max(), rings.nkind.max(), kind.max()) + 1)
+    if frequency is not None:
+        k = max(k, len(frequency))
+    count, lo, hi = mix_bounds(new, movable, frequency, k)
+    sweep(new, np.asarray(sub, np.int64), xy, ptr, idx, mptr, midx, movable, k, rings.rel, rings.size, rings.kind,
           rings.nkind, rings.nsub, rings.mean_length, np.array([weights.distance, weights.kind, weights.subid]),
-          sweeps, out)  # fmt: skip
+          sweeps, out, count, lo, hi)  # fmt: skip
     if then is not None:
         new = np.asarray(then(new), np.int64)
     changed = new != before
     if changed.any():
         out[changed] = -2
+        none = np.zeros(1, np.int64)
         sweep(new, np.asarray(sub, np.int64), xy, ptr, idx, mptr, midx, np.zeros(n, np.bool_), 1, rings.rel,
               rings.size, rings.kind, rings.nkind, rings.nsub, rings.mean_length,
-              np.array([weights.distance, weights.kind, weights.subid]), 0, out)  # fmt: skip
+              np.array([weights.distance, weights.kind, weights.subid]), 0, out, none, none, none)  # fmt: skip
     return new, np.where(changed, out, -1)

@@ -22,7 +22,9 @@ paired with.  Then a centre's energy with kinds ``q`` is::
 
 and the pass is iterated conditional modes: motif by motif, in index order, a motif that may
 change takes the kind that lowers the sum of ``E_c`` over the centres that read it (itself and
-those whose neighbourhood holds it) the most, until a sweep changes nothing or :data:`SWEEPS`.
+those whose neighbourhood holds it) the most, among the kinds the mix allows
+(:func:`svgtile.engines.growth.kinds.mix_bounds`: left free, the pass moved marsh's mix by 0.03–0.04
+on top of the ring pass's 0.06), until a sweep changes nothing or :data:`SWEEPS`.
 The pass reads only positions and kinds, with no draws: deterministic and world-anchored
 (the engine calls it on the same motifs as the ring pass).  The compiled loops are
 :func:`_tables` (the pairing, one centre × exemplar motif at a time) and :func:`_sweeps`.
@@ -35,6 +37,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from svgtile.analysis.neighbourhood import EXEMPLAR_FACTOR, neighbourhoods
+from svgtile.engines.growth.kinds import mix_bounds
 
 #: Neighbours per neighbourhood (ma2011 §3.2; the likeness score's k).
 K = 6
@@ -121,12 +124,14 @@ def _energy(a, centre, kind, nb, cost, pair, ce, alpha):  # pragma: no cover
 
 @numba.njit(cache=True)
 def _sweeps(
-    kind, movable, rows, centre, nb, hptr, hidx, cost, pair, ce, nkind, alpha, sweeps
+    kind, movable, rows, centre, nb, hptr, hidx, cost, pair, ce, nkind, alpha, sweeps, count, lo, hi
 ):  # pragma: no cover
     """Iterated conditional modes over ``kind`` ((n,) int, changed in place); returns the sweeps
     made.  ``rows[i]`` is motif ``i``'s table row (−1: none); ``hidx[hptr[i]:hptr[i + 1]]`` the
     table rows whose neighbourhood holds motif ``i``.  A motif is looked at again only when a
-    kind its choice reads has changed since it was last looked at (it would choose as before)."""
+    kind its choice reads has changed since it was last looked at (it would choose as before).
+    A change from kind ``a`` to ``q`` is made only while ``count[a] > lo[a]`` and ``count[q] <
+    hi[q]`` (:func:`svgtile.engines.growth.kinds.mix_bounds`; ``count`` updated in place)."""
     n = kind.shape[0]
     k = nb.shape[1]
     dirty = movable.copy()
@@ -146,7 +151,7 @@ def _sweeps(
                 base += _energy(a, centre[a], kind, nb, cost, pair, ce, alpha)
             best, pick = base, old
             for q in range(nkind):
-                if q == old:
+                if q == old or count[old] <= lo[old] or count[q] >= hi[q]:
                     continue
                 kind[i] = q
                 v = _energy(rows[i], i, kind, nb, cost, pair, ce, alpha)
@@ -158,6 +163,8 @@ def _sweeps(
             kind[i] = pick
             if pick == old:
                 continue
+            count[old] -= 1
+            count[pick] += 1
             # the energies that read i's kind: its own and its holders'; each is read by its
             # centre and by the members of its neighbourhood
             for h in range(hptr[i] - 1, hptr[i + 1]):
@@ -200,7 +207,8 @@ def energies(xy: np.ndarray, kind: np.ndarray, centres: np.ndarray, exemplar_xy:
 
 
 def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, exemplar_xy: np.ndarray,
-                        exemplar_kind: np.ndarray, spacing: float, *, sweeps: int = SWEEPS) -> np.ndarray:  # fmt: skip
+                        exemplar_kind: np.ndarray, spacing: float, *, sweeps: int = SWEEPS,
+                        frequency: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
     """The kinds of ``movable`` motifs re-chosen to lower ma2011's neighbourhood energy (§3.2 eq. 1).
 
     Parameters
@@ -212,6 +220,8 @@ def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, e
     exemplar_xy : (m, 2) float array, user units; exemplar_kind : (m,) int array
     spacing : float, user units — the exemplar's mean spacing (positions are compared in spacings)
     sweeps : at most this many sweeps (fewer when one changes nothing)
+    frequency : (k,) float array, the exemplar's kind shares (by count): the movable motifs' mix is
+        held to them (:func:`svgtile.engines.growth.kinds.mix_bounds`); None leaves it free
 
     Returns
     -------
@@ -241,8 +251,11 @@ def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, e
     hidx = owner[order].astype(np.int64)
     hptr = np.searchsorted(cnb.ravel()[order], np.arange(n + 1)).astype(np.int64)
     nkind = int(max(np.max(exemplar_kind), kind.max()) + 1)
+    if frequency is not None:
+        nkind = max(nkind, len(frequency))
+    count, lo, hi = mix_bounds(kind, movable, frequency, nkind)
     _sweeps(kind, movable & need, rows, centre, cnb, hptr, hidx, cost, pair, np.asarray(exemplar_kind, np.int64),
-            nkind, ALPHA, sweeps)  # fmt: skip
+            nkind, ALPHA, sweeps, count, lo, hi)  # fmt: skip
     return kind
 
 
