@@ -80,10 +80,10 @@ def test_growth_keeps_the_order_better_than_patch(name):
 
 #: Issue 13's gates not met on the bundled drawn exemplars (seed 1).  Marsh's likeness: the final
 #: kind passes had taken it 0.763 → 0.838 by moving the kind mix (kind-mix TV 0.116); since they hold
-#: the exemplar's mix (2026-12-07, growth.kinds.mix_bounds) it is 0.772 (tests/test_growth_kinds.py;
+#: the exemplar's mix (2026-12-07, growth.kinds.mix_bounds) it is 0.765 (tests/test_growth_kinds.py;
 #: benchmarks/README.md, "growth's kind mix").  (Sand's repetition 0.224 was one until issue 13's
 #: figure, which excuses what the exemplar shows inside itself: 0.000 since.)
-NOT_MET: dict[tuple[str, str], float] = {("marsh", "likeness"): 0.772}
+NOT_MET: dict[tuple[str, str], float] = {("marsh", "likeness"): 0.765}
 GATES = {"likeness": lambda s: s.likeness >= 0.8, "kind mix": lambda s: s.kind_mix_tv <= 0.05,
          "repetition": lambda s: s.repetition <= 0.2,
          "density": lambda s: 0.9 <= s.density_ratio <= 1.1,
@@ -95,7 +95,8 @@ GATES = {"likeness": lambda s: s.likeness >= 0.8, "kind mix": lambda s: s.kind_m
     if (n, g) in NOT_MET else (n, g) for n in sorted(ORDERED) for g in GATES])  # fmt: skip
 def test_growth_gates_on_the_drawn_rows_and_lattices(name, gate):
     s = figures(name, "growth")
-    assert GATES[gate](s), (s.likeness, s.repetition, s.density_ratio, s.overlaps_total, s.violators_total)
+    assert GATES[gate](s), (s.likeness, s.kind_mix_tv, s.repetition, s.density_ratio, s.overlaps_total,
+                            s.violators_total)  # fmt: skip
 
 
 def test_auto_passes_over_growth_when_its_work_is_over_the_limit(tmp_path, capsys, monkeypatch):

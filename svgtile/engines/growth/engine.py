@@ -37,8 +37,8 @@ growth runs per *world cell*:
   after a piece has grown, its motifs' kinds are re-chosen against their complete rings, its
   earlier-phase neighbours held (:mod:`.kinds`: each growth step matched only the neighbours
   placed then, and marsh's likeness fell with the distance from the cell's seed), then against
-  the exemplar's k-nearest neighbourhoods (:mod:`.neighbourkinds`, ma2011 §3.2: the ring pass
-  stopped short of L 0.8 on two of marsh's first three seeds).
+  the exemplar's k-nearest neighbourhoods (:mod:`.neighbourkinds`, ma2011 §3.2), both holding
+  the exemplar's kind mix (:func:`.kinds.mix_bounds`).
 
 A cell's motifs are thus a function of the key and the cell alone — not of the region, which
 only chooses the cells (with the earlier-phase neighbours they need) and, in
@@ -347,6 +347,8 @@ class Growth:
         often a change to a larger footprint, and the mix would drift)."""
         w, ex = j.cell, self.ex
         own, osub = Arrangement.concat(j.kept), np.concatenate(j.ksub)
+        if not len(own):  # every motif of the piece was turned down
+            return
         fixed = Arrangement.concat([w.before, *w.grown])
         fsub = np.concatenate([w.bsub, *w.gsub])
         f = len(fixed)
@@ -379,10 +381,10 @@ class Growth:
                 continue
             # what the check kept back is not even: a change to a larger footprint fails it more
             # often, and the mix the passes held would drift; changes into a kind over its bound
-            # (or out of one under it) go back too, and the rest is checked again
+            # (or out of one under it) go back too — not those that bring it back — and the rest
+            # is checked again
             count = np.bincount(np.r_[fixed.kind, cand.kind], minlength=len(hi))
-            off = (count > hi) | (count < lo)
-            back = changed & (off[kind] | off[own.kind])
+            back = changed & ((count[kind] > hi[kind]) | (count[own.kind] < lo[own.kind]))
             if not back.any():
                 break
             changed &= ~back

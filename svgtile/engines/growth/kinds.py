@@ -22,8 +22,8 @@ kind (its sub-id, angle and scale, §5.4).  The exact footprint check is the eng
 motif that would overlap, break the distance rule or cross a barrier keeps its old kind.
 
 Changing kinds alone to lower a neighbourhood error moves the kind mix wherever one kind fits more
-neighbourhoods than its share: on marsh the first version took kind 0 from 0.40 of the tufts to
-0.31 (kind-mix TV 0.12–0.15) and L from 0.77 to 0.85, nearly all of its gain.  Both passes now hold
+neighbourhoods than its share: on marsh (kind 0: 0.41 of the exemplar's tufts, 0.40 of the
+texture's without the passes) the first version took it to 0.31 (kind-mix TV 0.12–0.15) and L from 0.77 to 0.85, nearly all of its gain.  Both passes now hold
 each kind's count to the exemplar's share (:func:`mix_bounds`, ± :data:`MIX`), and the engine sends
 back the changes its exact check would leave uneven; with the mix held the passes add little
 (marsh, seeds 1–7: L 0.770 without them, 0.776 with; benchmarks/README.md, "growth's kind mix").
@@ -51,12 +51,13 @@ from svgtile.engines.growth.kernel import NONE, match
 #: Sweeps of the pass (marsh at 300 × 300, seeds 1–3, L, when the pass held no kind mix: none 0.763
 #: / 0.769 / 0.755, two 0.807 / 0.790 / 0.770, four 0.821 / 0.798 / 0.772, eight the same as four).
 SWEEPS = 4
-#: Each kind's count among a piece's motifs that may change stays within this share of them of
-#: the exemplar's (by count), or where it already is if further (:func:`mix_bounds`): the passes
-#: change kinds alone, and left free they drift the mix towards the kind that fits the most
-#: neighbourhoods (marsh, 300 × 300: kind 0 0.40 → 0.31 of the motifs, kind-mix TV 0.009 → 0.116,
-#: benchmarks/README.md "growth's kind mix").  The optimize engine's kind step holds the same
-#: share (:data:`svgtile.engines.optimize.assign.MIX`), per world window.
+#: Each kind's count over a piece's motifs and the fixed ones around it stays within this share
+#: of their number of the exemplar's (by count), or where it already is if further
+#: (:func:`mix_bounds`): the passes change kinds alone, and left free they drift the mix towards
+#: the kind that fits the most neighbourhoods (marsh, 300 × 300: kind 0 0.40 → 0.31 of the motifs
+#: against the exemplar's 0.41, kind-mix TV 0.009 → 0.116; benchmarks/README.md "growth's kind
+#: mix").  The optimize engine's kind step holds the same share
+#: (:data:`svgtile.engines.optimize.assign.MIX`), per world window.
 MIX = 0.01
 #: The error of a ring no reference can match (larger than any ring's: M kind terms and M
 #: neighbours several edge lengths off).
@@ -75,8 +76,8 @@ def mix_bounds(kind: np.ndarray, movable: np.ndarray, frequency: np.ndarray | No
     Parameters
     ----------
     kind : (n,) int array
-    movable : (n,) bool array — the motifs whose kinds may change (the bounds are None's, no
-        bound, when none may)
+    movable : (n,) bool array — the motifs whose kinds may change (no bound — ``lo`` 0, ``hi`` the
+        int64 maximum ÷ 2 — when none may)
     frequency : (k,) float array, each kind's share of the exemplar's motifs (by count), or None
         for no bound
     nkind : int ≥ k, the kinds the passes may choose
@@ -238,8 +239,8 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     movable : (n,) bool array
     weights : eq. (2)'s weights
     sweeps : at most this many sweeps (fewer when one changes nothing)
-    frequency : (k,) float array, the exemplar's kind shares (by count): the movable motifs' mix
-        is held to them (:func:`mix_bounds`); None leaves it free
+    frequency : (k,) float array, the exemplar's kind shares (by count): each kind's count over the
+        n motifs (the fixed ones count, the movable ones change) is held to them (:func:`mix_bounds`); None leaves it free
     then : a further pass over the kinds the sweeps leave ((n,) int → (n,) int, changing only
         ``movable`` motifs: :func:`~svgtile.engines.growth.neighbourkinds.neighbourhood_kinds`), made
         before each changed motif's reference ring is found

@@ -43,8 +43,8 @@ from svgtile.engines.growth.kinds import mix_bounds
 K = 6
 #: Cost of a kind mismatch, squared exemplar spacings (the likeness score's α).
 ALPHA = 1.0
-#: At most this many sweeps (marsh 300 × 300, seeds 1–3: every piece's pass ended within 2–6,
-#: the last one changing nothing; most in 3).
+#: At most this many sweeps (marsh 300 × 300, seeds 1–3, before the pass held the kind mix: every
+#: piece's pass ended within 2–6, the last one changing nothing; most in 3).
 SWEEPS = 8
 
 
@@ -220,8 +220,8 @@ def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, e
     exemplar_xy : (m, 2) float array, user units; exemplar_kind : (m,) int array
     spacing : float, user units — the exemplar's mean spacing (positions are compared in spacings)
     sweeps : at most this many sweeps (fewer when one changes nothing)
-    frequency : (k,) float array, the exemplar's kind shares (by count): the movable motifs' mix is
-        held to them (:func:`svgtile.engines.growth.kinds.mix_bounds`); None leaves it free
+    frequency : (k,) float array, the exemplar's kind shares (by count): each kind's count over the
+        n motifs (the fixed ones count, the movable ones change) is held to them (:func:`svgtile.engines.growth.kinds.mix_bounds`); None leaves it free
 
     Returns
     -------
