@@ -354,9 +354,9 @@ class Growth:
         f = len(fixed)
         xy, movable = np.concatenate([fixed.xy, own.xy]), np.arange(f + len(own)) >= f
         start = np.concatenate([fixed.kind, own.kind])
-        _, lo, hi = mix_bounds(start, movable, self.stats.frequency, max(int(start.max()) + 1, len(self.stats.frequency)))
-        kind, ring = repick(self.rings, xy, np.concatenate([fixed.kind, own.kind]),
-                            np.concatenate([fsub, osub]), movable, weights=self.p.weights,
+        nk = max(int(start.max()) + 1, len(self.stats.frequency))
+        _, lo, hi = mix_bounds(start, movable, self.stats.frequency, nk)
+        kind, ring = repick(self.rings, xy, start, np.concatenate([fsub, osub]), movable, weights=self.p.weights,
                             sweeps=self.p.kind_sweeps, frequency=self.stats.frequency,
                             then=self.neighbourhood_pass(movable, xy))  # fmt: skip
         kind, ring = kind[f:], ring[f:]

@@ -23,10 +23,11 @@ motif that would overlap, break the distance rule or cross a barrier keeps its o
 
 Changing kinds alone to lower a neighbourhood error moves the kind mix wherever one kind fits more
 neighbourhoods than its share: on marsh (kind 0: 0.41 of the exemplar's tufts, 0.40 of the
-texture's without the passes) the first version took it to 0.31 (kind-mix TV 0.12–0.15) and L from 0.77 to 0.85, nearly all of its gain.  Both passes now hold
-each kind's count to the exemplar's share (:func:`mix_bounds`, ± :data:`MIX`), and the engine sends
-back the changes its exact check would leave uneven; with the mix held the passes add little
-(marsh, seeds 1–7: L 0.770 without them, 0.776 with; benchmarks/README.md, "growth's kind mix").
+texture's without the passes) the first version took it to 0.31 (kind-mix TV 0.12–0.15) and L
+from 0.77 to 0.85, nearly all of its gain.  Both passes now hold each kind's count to the
+exemplar's share (:func:`mix_bounds`, ± :data:`MIX`), and the engine sends back the changes its
+exact check would leave uneven; with the mix held the passes add little (marsh, seeds 1–7: L 0.770
+without them, 0.778 with; benchmarks/README.md, "growth's kind mix").
 
 Deterministic and world-anchored: it reads only positions, kinds and sub-ids, with no draws.
 The sweeps are one compiled loop (:func:`sweep`) over the motifs — sequential by nature, each
@@ -93,7 +94,7 @@ def mix_bounds(kind: np.ndarray, movable: np.ndarray, frequency: np.ndarray | No
         return count, np.zeros(nkind, np.int64), np.full(nkind, np.iinfo(np.int64).max // 2, np.int64)
     f = np.zeros(nkind)
     f[: len(frequency)] = frequency
-    n = len(count) and int(count.sum())
+    n = int(count.sum())
     lo = np.minimum(np.floor((f - MIX) * n), count).astype(np.int64)
     hi = np.maximum(np.ceil((f + MIX) * n), count).astype(np.int64)
     return count, lo, hi
@@ -240,7 +241,8 @@ def repick(rings: Rings, xy: np.ndarray, kind: np.ndarray, sub: np.ndarray, mova
     weights : eq. (2)'s weights
     sweeps : at most this many sweeps (fewer when one changes nothing)
     frequency : (k,) float array, the exemplar's kind shares (by count): each kind's count over the
-        n motifs (the fixed ones count, the movable ones change) is held to them (:func:`mix_bounds`); None leaves it free
+        n motifs (the fixed ones count, the movable ones change) is held to them
+        (:func:`mix_bounds`); None leaves it free
     then : a further pass over the kinds the sweeps leave ((n,) int → (n,) int, changing only
         ``movable`` motifs: :func:`~svgtile.engines.growth.neighbourkinds.neighbourhood_kinds`), made
         before each changed motif's reference ring is found

@@ -221,7 +221,8 @@ def neighbourhood_kinds(xy: np.ndarray, kind: np.ndarray, movable: np.ndarray, e
     spacing : float, user units — the exemplar's mean spacing (positions are compared in spacings)
     sweeps : at most this many sweeps (fewer when one changes nothing)
     frequency : (k,) float array, the exemplar's kind shares (by count): each kind's count over the
-        n motifs (the fixed ones count, the movable ones change) is held to them (:func:`svgtile.engines.growth.kinds.mix_bounds`); None leaves it free
+        n motifs (the fixed ones count, the movable ones change) is held to them
+        (:func:`svgtile.engines.growth.kinds.mix_bounds`); None leaves it free
 
     Returns
     -------
