@@ -20,6 +20,8 @@ from optimize_measure import measure
 
 from svgtile import analyze, read_exemplar
 from svgtile.core.region import Region
+from svgtile.engines import synthesize
+from svgtile.metrics import score
 from svgtile.svg.reader import parse_exemplar
 from svgtile.tiles.importer import TileRefused, import_tile
 
@@ -31,9 +33,15 @@ SETS = {
     "osm-carto": DATA / "osm-carto" / "patterns",
     "equinor": DATA / "equinor-lithology" / "svg",
 }
-#: Measured misses (seed 1, these regions), by exemplar: the figure that misses its bound.
+#: Measured misses (seed 1, these regions), by exemplar: the figure that misses its bound.  Gravel
+#: and chert-nodules met every bound before omix14 brought the kind mix back (gravel 28 % round
+#: pebbles for the exemplar's 40 %, kind-mix TV 0.07–0.15; the neighbourhoods a start drawn from
+#: the exemplar's middle has are those L matches best, benchmarks/README.md, omix14); chert's
+#: L 0.86 → 0.83 is within the seeds' spread (0.82–0.86 either way).
 MISSES: dict[str, str] = {
     "breccia-plain": "L = 0.78 measured",
+    "chert-nodules": "L = 0.83 measured",
+    "gravel": "L = 0.66 measured (0.88 with the mix 28 % round for 40 %)",
     "scrub": "L = 0.84 measured",
 }
 #: The first tile of each set that misses a bound, with its figures (2 x 2 tiles, seed 1; re-measured
@@ -78,6 +86,23 @@ def test_bundled_exemplar_meets_the_bounds(name):
     side = 4 * max(x1 - x0, y1 - y0)
     m = measure(ex, stats, Region.rectangle(side, side))
     assert not misses(m), f"{name}: {', '.join(misses(m))}"
+
+
+@pytest.mark.parametrize("name", [p.stem for p in sorted(EXEMPLARS.glob("*.svg"))])
+def test_bundled_exemplar_keeps_its_kind_mix_and_density(name):
+    """A drawn exemplar's start is off its kind mix (its windows take its middle more often than its
+    edges: gravel 28 % round pebbles for 40 %); the solver brings it back and the start's count
+    brings the cover with it (omix14).  Seed 1, the bounds of the whole-set gates (issue 12):
+    kind-mix TV ≤ 0.05, density / ρ in 0.9–1.1 (before: TV 0.056–0.087 on five of the ten)."""
+    ex = read_exemplar(EXEMPLARS / f"{name}.svg")
+    stats = analyze(ex)
+    x0, y0, x1, y1 = ex.region.bounds
+    side = 4 * max(x1 - x0, y1 - y0)
+    region = Region.rectangle(side, side)
+    s = score(ex, stats, synthesize(ex, region, "optimize", seed=1, stats=stats).arrangement, region)
+    assert s.kind_mix_tv <= 0.05, f"{name}: kind-mix TV {s.kind_mix_tv:.3f}"
+    assert 0.9 <= s.density_ratio <= 1.1, f"{name}: density / rho {s.density_ratio:.3f}"
+    assert s.overlaps_total == s.violators_total == 0
 
 
 def _set(name):

@@ -231,13 +231,16 @@ class OptimizeEngine:
         # elsewhere the start's density holds (patches of a drawn exemplar thinned to ρ, or the
         # tile itself)
         refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
-        settings = replace(p.settings(), insert=refill)
+        # a drawn exemplar's start is off its kind mix (its windows take its middle more often
+        # than its edges, :func:`.init.thin`): thinned by count, its mix brought back as it goes
+        drawn = ex.period is None
+        settings = replace(p.settings(), insert=refill, rebalance=drawn)
         ctx.progress("patches", 0.0)
         cell = start_side(ex, p.start_cell, refill)
         seeded = cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9)  # MAX_CELL's cap is SEEDED spacings exactly
         start = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
                             overlap=REFILL_OVERLAP if refill else p.start_overlap,
-                            flow=ctx.controls.flow, refill=refill, sources=seeded)  # fmt: skip
+                            flow=ctx.controls.flow, refill=refill, by_count=drawn, sources=seeded)  # fmt: skip
         arr, first = start if seeded else (start, None)
         arr, _ = refine(arr, ctx.exemplar, ctx.stats, ctx.region, ctx.boundary, iterations=p.passes, key=ctx.key,
                         flow=ctx.controls.flow, settings=settings, progress=ctx.progress, first=first)  # fmt: skip

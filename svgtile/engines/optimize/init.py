@@ -92,7 +92,7 @@ _THIN = 74
 
 def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *, key: int,
                 cell: float, overlap: float, flow: FlowField | None = None, refill: bool = False,
-                sources: bool = False) -> Arrangement | tuple[Arrangement, np.ndarray]:  # fmt: skip
+                by_count: bool = False, sources: bool = False) -> Arrangement | tuple[Arrangement, np.ndarray]:  # fmt: skip
     """Exemplar patches on world-anchored cells over ``region``, conflicts culled (§4.1).
 
     Parameters
@@ -113,6 +113,9 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
         whose centroid lies in the region, FGDC 612's L fell 0.77 → 0.64 for no density.)
         And on a tile of lattice order, not turned by a flow field, the patches' phases are
         drawn on its lattice (:func:`lattice_steps`, the module notes).
+    by_count : whether the start is thinned to the exemplar's motifs per unit area, not its
+        covered fraction ρ (:func:`thin`): for a start whose kind mix the solver brings back to
+        the exemplar's (``Settings.rebalance``), which then brings its cover to ρ as well
     sources : whether to return, with the start, where each of its motifs was copied from
 
     Returns
@@ -173,7 +176,7 @@ def patch_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str,
         priority -= SIZE * area / max(float(area.max(initial=0.0)), 1e-12)
     keep = cull(len(arr), find_conflicts(arr, protos, stats.distance), priority)
     arr, e = arr.take(keep), e[keep]
-    kept = thin(arr, exemplar, stats, region, key=key, window=2 * cell)
+    kept = thin(arr, exemplar, stats, region, key=key, window=2 * cell, by_count=by_count)
     return (arr.take(kept), e[kept]) if sources else arr.take(kept)
 
 
@@ -292,8 +295,9 @@ def period_start(exemplar: Exemplar, stats: Stats, region: Region, boundary: str
 
 
 def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, key: int,
-         window: float) -> np.ndarray:  # fmt: skip
-    """(n,) bool: motifs kept so that no world-anchored window covers more than ρ of its area.
+         window: float, by_count: bool = False) -> np.ndarray:  # fmt: skip
+    """(n,) bool: motifs kept so that no world-anchored window covers more than ρ of its area
+    (``by_count``: holds more than the exemplar's motifs per unit area, times its area).
 
     Patches overlap by σ so that their seams, once culled, are not sparser than the exemplar;
     where they are denser, motifs leave in the order of a hash of the run's key and their
@@ -303,6 +307,11 @@ def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, 
     Parameters
     ----------
     window : side of the windows, user units
+    by_count : count the motifs, not their footprint areas.  The windows of a drawn exemplar
+        take its middle more often than its edges (:func:`patch_start`), so a start whose
+        exemplar holds its kinds unevenly is off its kind mix (gravel: 28 % round pebbles for
+        40 %); thinned by area to ρ and its mix then brought back, its cover is the wrong one
+        (scrub: density / ρ 0.89–0.94), thinned by count it is ρ once the mix is (0.98–1.02).
     """
     n = len(arr)
     if n == 0:
@@ -311,8 +320,11 @@ def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, 
     ids, which = np.unique(cell, axis=0, return_inverse=True)
     which = which.ravel()
     boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
-    target = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
-    area = footprint_areas(arr, exemplar.prototypes)
+    inside = shapely.area(shapely.intersection(boxes, region.shape))
+    if by_count:
+        target, area = inside * len(exemplar.motifs) / exemplar.region.area, np.ones(n)
+    else:
+        target, area = stats.density * inside, footprint_areas(arr, exemplar.prototypes)
     q = np.round(arr.xy * 1e3).astype(np.int64)
     priority = cellrng.uniform(key, _THIN, q[:, 0], q[:, 1])
     order = np.lexsort((-priority, which))  # by window, highest priority first

@@ -260,3 +260,85 @@ def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, r
                 best[nb[t]] = keep_b[t]
                 cost[nb[t]] = keep_c[t]
     return changed
+
+
+@numba.njit(cache=True)
+def _improves(count, lo, hi, w, a, q):  # pragma: no cover
+    """Whether a change of an element of window ``w`` from kind ``a`` to ``q`` brings the window's mix
+    towards ``[lo, hi]`` without taking either kind past its other bound: ``a`` above its upper
+    bound and ``q`` below its own, or ``q`` below its lower bound and ``a`` above its own."""
+    return (count[w, a] > hi[w, a] and count[w, q] < hi[w, q]) or (count[w, q] < lo[w, q] and count[w, a] > lo[w, a])
+
+
+@numba.njit(cache=True)
+def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
+                    centre_e, alpha):  # pragma: no cover  # fmt: skip
+    """The changes of kind that bring every window's mix into ``[lo, hi]``, the cheapest first.
+
+    :func:`descend_kinds` holds a window's mix where it is; this brings it back where it strayed
+    (a start drawn off the exemplar's mix, :mod:`.init`).  Each element of a window whose mix a
+    change of it would mend (:func:`_improves`) has the cost of that change — the energy of every
+    neighbourhood it belongs to, found again as in :func:`descend_kinds`, less their energy now —
+    for the cheapest of its voted kinds; then, in order of that cost, each change is made while
+    its window still needs it, its neighbourhoods' energies found again then (an earlier change
+    may have moved them).  A change is made whatever it costs: the mix is a bound, the energy
+    what is minimised within it.
+
+    Arguments as :func:`descend_kinds` (``lo``, ``hi`` the bounds to bring the counts into);
+    returns how many kinds changed.
+    """
+    n, k = index.shape
+    ke = rel_e.shape[1]
+    nk = voted.shape[1]
+    ko = np.empty(k, dtype=np.int64)
+    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
+    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
+    m = rev_ptr[n] - rev_ptr[0]
+    nb = np.empty(m + 1, dtype=np.int64)
+    tb = np.empty(m + 1, dtype=np.int64)
+    tc = np.empty(m + 1)
+    delta = np.full(n, np.inf)
+    target = np.full(n, -1, dtype=np.int64)
+    for o in range(n):
+        own, w = kind[o], window[o]
+        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
+        nb[0] = o
+        for t in range(rev_ptr[o], rev_ptr[o + 1]):
+            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        now = 0.0
+        for t in range(rows):
+            now += cost[nb[t]]
+        for q in range(nk):
+            if q == own or not voted[o, q] or not _improves(count, lo, hi, w, own, q):
+                continue
+            kind[o] = q
+            total = 0.0
+            for t in range(rows):
+                total += _row_best(nb[t], index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, slots, d, used,
+                                   rowmin, rowarg)[1]  # fmt: skip
+            kind[o] = own
+            if total - now < delta[o]:
+                delta[o] = total - now
+                target[o] = q
+    changed = 0
+    for o in np.argsort(delta, kind="mergesort"):
+        q, own, w = target[o], kind[o], window[o]
+        if q < 0:
+            break
+        if not _improves(count, lo, hi, w, own, q):
+            continue
+        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
+        nb[0] = o
+        for t in range(rev_ptr[o], rev_ptr[o + 1]):
+            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        kind[o] = q
+        for t in range(rows):
+            tb[t], tc[t] = _row_best(nb[t], index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, slots, d, used,
+                                     rowmin, rowarg)  # fmt: skip
+        for t in range(rows):
+            best[nb[t]] = tb[t]
+            cost[nb[t]] = tc[t]
+        count[w, own] -= 1
+        count[w, q] += 1
+        changed += 1
+    return changed

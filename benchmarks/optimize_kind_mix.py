@@ -1,0 +1,93 @@
+"""Optimize's kind mix on the bundled exemplars, with its L and the other bounds (omix14).
+
+Each bundled exemplar over a square of 4 exemplar widths (as benchmarks/optimize_bundled_seeds.py),
+``--engine optimize``, seeds 1–3: the start's kind-mix TV (:func:`svgtile.engines.optimize.init.patch_start`,
+counted over every start motif) and the texture's, ``svgtile score``'s ``kind mix TV`` (shape
+classes, the score's window), with L (tests/optimize_measure.py), repetition, density / ρ and the
+conflicts.  One line per exemplar and seed, then the count of runs over TV 0.05 and issue 14's
+misses.  ``--set MODULE:NAME=VALUE`` overrides a module constant first.
+
+Run by hand (about 4 minutes):
+    python benchmarks/optimize_kind_mix.py
+    python benchmarks/optimize_kind_mix.py --set svgtile.engines.optimize.init:BALANCED_WINDOWS=False
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import importlib
+import sys
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "tests"))
+from optimize_measure import distance  # noqa: E402
+from test_optimize_sets import misses  # noqa: E402
+
+from svgtile import analyze, read_exemplar  # noqa: E402
+from svgtile.analysis.neighbourhood import likeness  # noqa: E402
+from svgtile.core.region import Region  # noqa: E402
+from svgtile.engines import synthesize  # noqa: E402
+from svgtile.metrics import kind_mix_tv, score  # noqa: E402
+
+SEEDS = (1, 2, 3)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--set", action="append", default=[], metavar="MODULE:NAME=VALUE")
+    parser.add_argument("names", nargs="*", help="bundled exemplars (default: all)")
+    args = parser.parse_args()
+    for spec in args.set:
+        module, assignment = spec.split(":", 1)
+        name, value = assignment.split("=", 1)
+        target = importlib.import_module(module)
+        if not hasattr(target, name):
+            parser.error(f"--set {spec}: {module} has no {name}")
+        setattr(target, name, ast.literal_eval(value))
+    from svgtile.engines.optimize import init
+
+    starts = []
+    original = init.patch_start
+
+    def recording(*a, **k):
+        out = original(*a, **k)
+        starts.append(out[0] if isinstance(out, tuple) else out)
+        return out
+
+    init.patch_start = recording
+    paths = [REPO / "exemplars" / f"{n}.svg" for n in args.names] or sorted((REPO / "exemplars").glob("*.svg"))
+    over, missed, Ls = 0, 0, []
+    for path in paths:
+        ex = read_exemplar(path)
+        stats = analyze(ex)
+        x0, y0, x1, y1 = ex.region.bounds
+        side = 4 * max(x1 - x0, y1 - y0)
+        region = Region.rectangle(side, side, x0, y0)
+        for seed in SEEDS:
+            base = tuple(distance(ex, stats, region, synthesize(ex, region, b, seed=seed, stats=stats).arrangement)
+                         for b in ("tile", "random"))  # fmt: skip
+            starts.clear()
+            arr = synthesize(ex, region, "optimize", seed=seed, stats=stats).arrangement
+            s = score(ex, stats, arr, region)
+            L = likeness(distance(ex, stats, region, arr), *base)
+
+            class M:  # what misses() reads
+                likeness, repetition = L, s.repetition
+                overlaps, violators, density_ratio = s.overlaps_total, s.violators_total, s.density_ratio
+
+            miss = misses(M)
+            over += s.kind_mix_tv > 0.05
+            missed += bool(miss)
+            Ls.append(L)
+            start_tv = kind_mix_tv(starts[0], stats) if starts else float("nan")
+            print(f"{path.stem:14s} seed {seed}: start TV {start_tv:.3f}  TV {s.kind_mix_tv:.3f}  L {L:.3f}  "
+                  f"rep {s.repetition:.3f}  density {s.density_ratio:.3f}  {' '.join(miss)}", flush=True)
+    print(f"runs with TV > 0.05: {over}; runs missing issue 14's bounds: {missed}; mean L {np.mean(Ls):.3f}")
+
+
+if __name__ == "__main__":
+    main()
