@@ -9,7 +9,7 @@ misses.  ``--set MODULE:NAME=VALUE`` overrides a module constant first.
 
 Run by hand (about 4 minutes):
     python benchmarks/optimize_kind_mix.py
-    python benchmarks/optimize_kind_mix.py --set svgtile.engines.optimize.init:BALANCED_WINDOWS=False
+    python benchmarks/optimize_kind_mix.py --set svgtile.engines.optimize.assign:MIX_WINDOW=12.0 gravel shale
 """
 
 from __future__ import annotations

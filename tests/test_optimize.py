@@ -115,6 +115,30 @@ def test_rebalance_brings_a_start_off_its_kind_mix_back():
     assert energies[1] > energies[0] and energies[-1] < energies[1], energies
 
 
+def test_the_engine_thins_by_count_and_rebalances_a_drawn_exemplar_only(monkeypatch):
+    """The wiring of the two tests around this one: the engine's start from a drawn exemplar is
+    thinned by count and its mix brought back; a repeating tile's is neither (its windows wrap)."""
+    from svgtile.engines.optimize import init, solver
+
+    seen = []
+    start, run = init.patch_start, solver.refine
+
+    def spy_start(*a, by_count=False, **k):
+        seen.append(("by_count", by_count))
+        return start(*a, by_count=by_count, **k)
+
+    def spy_refine(*a, settings, **k):
+        seen.append(("rebalance", settings.rebalance))
+        return run(*a, settings=settings, **k)
+
+    monkeypatch.setattr(init, "patch_start", spy_start)
+    monkeypatch.setattr(solver, "refine", spy_refine)
+    for ex, drawn in ((read_exemplar(GRAVEL), True), (parse_exemplar(lattice_exemplar()), False)):
+        seen.clear()
+        synthesize(ex, Region.rectangle(120, 120), "optimize", seed=1, params={"passes": 1})
+        assert seen == [("by_count", drawn), ("rebalance", drawn)]
+
+
 def test_a_start_thinned_by_count_has_the_exemplars_motifs_per_area():
     """Scrub's start is off its mix (51 % small shrubs for 63 %): thinned by cover it holds ρ
     with too few motifs; thinned by count (``by_count``, the engine's start for a drawn

@@ -187,6 +187,16 @@ def _row_best(r, index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, s
 
 
 @numba.njit(cache=True)
+def _neighbourhoods_of(o, rev_ptr, rev_idx, nb):  # pragma: no cover
+    """Fill ``nb`` with element ``o`` and the elements that have it as a neighbour (``rev_idx[rev_ptr[o]:
+    rev_ptr[o + 1]]``), the rows whose energy a change of ``o`` moves; returns how many."""
+    nb[0] = o
+    for t in range(rev_ptr[o], rev_ptr[o + 1]):
+        nb[1 + t - rev_ptr[o]] = rev_idx[t]
+    return 1 + rev_ptr[o + 1] - rev_ptr[o]
+
+
+@numba.njit(cache=True)
 def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
                   centre_e, alpha):  # pragma: no cover  # fmt: skip
     """Each element's kind chosen among its votes as the one of least energy (eq. (5), Pseudocode 1).
@@ -222,10 +232,7 @@ def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, r
     changed = 0
     for o in range(n):
         own = kind[o]
-        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
-        nb[0] = o
-        for t in range(rev_ptr[o], rev_ptr[o + 1]):
-            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        rows = _neighbourhoods_of(o, rev_ptr, rev_idx, nb)
         now = 0.0
         for t in range(rows):
             now += cost[nb[t]]
@@ -273,7 +280,7 @@ def _improves(count, lo, hi, w, a, q):  # pragma: no cover
 @numba.njit(cache=True)
 def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, rel_o, cand, best, cost, rel_e, kind_e,
                     centre_e, alpha):  # pragma: no cover  # fmt: skip
-    """The changes of kind that bring every window's mix into ``[lo, hi]``, the cheapest first.
+    """The changes of kind that bring every window's mix towards ``[lo, hi]``, the cheapest first.
 
     :func:`descend_kinds` holds a window's mix where it is; this brings it back where it strayed
     (a start drawn off the exemplar's mix, :mod:`.init`).  Each element of a window whose mix a
@@ -282,7 +289,9 @@ def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx,
     for the cheapest of its voted kinds; then, in order of that cost, each change is made while
     its window still needs it, its neighbourhoods' energies found again then (an earlier change
     may have moved them).  A change is made whatever it costs: the mix is a bound, the energy
-    what is minimised within it.
+    what is minimised within it.  Each element is tried once, with the kind chosen first: a
+    window may be left outside its bounds where no voted change mends it (or a change needs two
+    steps); the next iteration's call takes it up again.
 
     Arguments as :func:`descend_kinds` (``lo``, ``hi`` the bounds to bring the counts into);
     returns how many kinds changed.
@@ -301,10 +310,7 @@ def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx,
     target = np.full(n, -1, dtype=np.int64)
     for o in range(n):
         own, w = kind[o], window[o]
-        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
-        nb[0] = o
-        for t in range(rev_ptr[o], rev_ptr[o + 1]):
-            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        rows = _neighbourhoods_of(o, rev_ptr, rev_idx, nb)
         now = 0.0
         for t in range(rows):
             now += cost[nb[t]]
@@ -327,10 +333,7 @@ def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx,
             break
         if not _improves(count, lo, hi, w, own, q):
             continue
-        rows = 1 + rev_ptr[o + 1] - rev_ptr[o]
-        nb[0] = o
-        for t in range(rev_ptr[o], rev_ptr[o + 1]):
-            nb[1 + t - rev_ptr[o]] = rev_idx[t]
+        rows = _neighbourhoods_of(o, rev_ptr, rev_idx, nb)
         kind[o] = q
         for t in range(rows):
             tb[t], tc[t] = _row_best(nb[t], index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, slots, d, used,

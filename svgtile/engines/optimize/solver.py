@@ -64,7 +64,7 @@ class Settings:
         start strayed from it (:func:`.assign.assign_kinds`; the engine's start from a drawn
         exemplar, :func:`.init.patch_start`); ``--refine`` holds the mix where it is.  The
         energy is then the energy under the exemplar's mix: the first assignments raise it as
-        they bring the mix back, later ones lower it (gravel's start: 1.16, 1.175, 1.152, 1.119).
+        they bring the mix back, later ones lower it (gravel's start: 1.16, 1.176, 1.147, 1.118).
     """
 
     neighbours: int = 6
