@@ -32,18 +32,24 @@ from svgtile.engines import synthesize  # noqa: E402
 SEEDS = (1, 2, 3)
 
 
+def bundled_squares(names: list[str] | None = None):
+    """Each bundled exemplar (``names``, default all): its path, exemplar, analysis and the square of
+    4 exemplar widths the optimize benchmarks measure on."""
+    paths = [REPO / "exemplars" / f"{n}.svg" for n in names] if names else sorted((REPO / "exemplars").glob("*.svg"))
+    for path in paths:
+        ex = read_exemplar(path)
+        x0, y0, x1, y1 = ex.region.bounds
+        side = 4 * max(x1 - x0, y1 - y0)
+        yield path, ex, analyze(ex), Region.rectangle(side, side, x0, y0)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("variants", nargs="*", default=["{}"], help="engine parameters as JSON objects")
     args = parser.parse_args()
     variants = [json.loads(v) for v in args.variants]
     runs: dict[str, list[tuple[str, float, list[str]]]] = {json.dumps(v): [] for v in variants}
-    for path in sorted((REPO / "exemplars").glob("*.svg")):
-        ex = read_exemplar(path)
-        stats = analyze(ex)
-        x0, y0, x1, y1 = ex.region.bounds
-        side = 4 * max(x1 - x0, y1 - y0)
-        region = Region.rectangle(side, side, x0, y0)
+    for path, ex, stats, region in bundled_squares():
         for seed in SEEDS:
             baselines = tuple(distance(ex, stats, region, synthesize(ex, region, b, seed=seed, stats=stats).arrangement)
                               for b in ("tile", "random"))  # fmt: skip

@@ -15,8 +15,6 @@ Run by hand (about 4 minutes):
 from __future__ import annotations
 
 import argparse
-import ast
-import importlib
 import sys
 from pathlib import Path
 
@@ -24,12 +22,12 @@ import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
+from optimize_bundled_seeds import bundled_squares  # noqa: E402
 from optimize_measure import distance  # noqa: E402
+from scatter_gates import apply_sets  # noqa: E402
 from test_optimize_sets import misses  # noqa: E402
 
-from svgtile import analyze, read_exemplar  # noqa: E402
 from svgtile.analysis.neighbourhood import likeness  # noqa: E402
-from svgtile.core.region import Region  # noqa: E402
 from svgtile.engines import synthesize  # noqa: E402
 from svgtile.metrics import kind_mix_tv, score  # noqa: E402
 
@@ -41,13 +39,7 @@ def main() -> None:
     parser.add_argument("--set", action="append", default=[], metavar="MODULE:NAME=VALUE")
     parser.add_argument("names", nargs="*", help="bundled exemplars (default: all)")
     args = parser.parse_args()
-    for spec in args.set:
-        module, assignment = spec.split(":", 1)
-        name, value = assignment.split("=", 1)
-        target = importlib.import_module(module)
-        if not hasattr(target, name):
-            parser.error(f"--set {spec}: {module} has no {name}")
-        setattr(target, name, ast.literal_eval(value))
+    apply_sets(parser, args.set)
     from svgtile.engines.optimize import init
 
     starts = []
@@ -59,14 +51,8 @@ def main() -> None:
         return out
 
     init.patch_start = recording
-    paths = [REPO / "exemplars" / f"{n}.svg" for n in args.names] or sorted((REPO / "exemplars").glob("*.svg"))
     over, missed, Ls = 0, 0, []
-    for path in paths:
-        ex = read_exemplar(path)
-        stats = analyze(ex)
-        x0, y0, x1, y1 = ex.region.bounds
-        side = 4 * max(x1 - x0, y1 - y0)
-        region = Region.rectangle(side, side, x0, y0)
+    for path, ex, stats, region in bundled_squares(args.names):
         for seed in SEEDS:
             base = tuple(distance(ex, stats, region, synthesize(ex, region, b, seed=seed, stats=stats).arrangement)
                          for b in ("tile", "random"))  # fmt: skip

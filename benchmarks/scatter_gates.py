@@ -69,6 +69,18 @@ def compare(base_path: str, head_path: str) -> None:
               f"mean L {np.mean([rows[t]['L'] for t in both]):.4f}")
 
 
+def apply_sets(parser: argparse.ArgumentParser, specs: list[str]) -> None:
+    """Override module constants from ``--set MODULE:NAME=VALUE`` options (an experiment without a branch)."""
+    for spec in specs:
+        module, assignment = spec.split(":", 1)
+        name, value = assignment.split("=", 1)
+        target = importlib.import_module(module)
+        # a typo would run the defaults; a name another module imported by value is not reached
+        if not hasattr(target, name):
+            parser.error(f"--set {spec}: {module} has no {name}")
+        setattr(target, name, ast.literal_eval(value))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("tiles", nargs="*", help="set/stem (fgdc/605); default: every gate tile")
@@ -80,14 +92,7 @@ def main() -> None:
             parser.error("--compare reads two JSONL files; it takes no tiles and no --set")
         compare(*args.compare)
         return
-    for spec in args.set:
-        module, assignment = spec.split(":", 1)
-        name, value = assignment.split("=", 1)
-        target = importlib.import_module(module)
-        # a typo would run the defaults; a name another module imported by value is not reached
-        if not hasattr(target, name):
-            parser.error(f"--set {spec}: {module} has no {name}")
-        setattr(target, name, ast.literal_eval(value))
+    apply_sets(parser, args.set)
     sys.path.insert(0, str(HERE.parent / "tests"))
     import test_wholeset as W
 

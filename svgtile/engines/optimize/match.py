@@ -187,6 +187,18 @@ def _row_best(r, index, kind, rel_o, cand, rel_e, kind_e, centre_e, alpha, ko, s
 
 
 @numba.njit(cache=True)
+def _work(k, ke, m):  # pragma: no cover
+    """Work buffers of the kind kernels: the pairing's (:func:`_row_best`: ``ko``, ``slots``, ``d``,
+    ``used``, ``rowmin``, ``rowarg`` for ``k`` output and ``ke`` exemplar neighbours) and the
+    rows a change moves (``nb``, with their best candidates ``tb`` and costs ``tc``), ``m + 1``
+    long: ``m``, every element's count of elements that have it as a neighbour summed, bounds any
+    one's."""
+    return (np.empty(k, dtype=np.int64), np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_),
+            np.empty(k), np.empty(k, dtype=np.int64), np.empty(m + 1, dtype=np.int64), np.empty(m + 1, dtype=np.int64),
+            np.empty(m + 1))  # fmt: skip
+
+
+@numba.njit(cache=True)
 def _neighbourhoods_of(o, rev_ptr, rev_idx, nb):  # pragma: no cover
     """Fill ``nb`` with element ``o`` and the elements that have it as a neighbour (``rev_idx[rev_ptr[o]:
     rev_ptr[o + 1]]``), the rows whose energy a change of ``o`` moves; returns how many."""
@@ -217,18 +229,10 @@ def descend_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx, r
     ``kind`` (n,), ``best`` (n,) index into ``cand``'s rows and ``cost`` (n,) are updated in
     place; returns how many kinds changed.
     """
-    n, k = index.shape
-    ke = rel_e.shape[1]
+    n = index.shape[0]
     nk = voted.shape[1]
-    ko = np.empty(k, dtype=np.int64)
-    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
-    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
-    m = rev_ptr[n] - rev_ptr[0]
-    nb = np.empty(m + 1, dtype=np.int64)
-    tb = np.empty(m + 1, dtype=np.int64)
-    tc = np.empty(m + 1)
-    keep_b = np.empty(m + 1, dtype=np.int64)
-    keep_c = np.empty(m + 1)
+    ko, slots, d, used, rowmin, rowarg, nb, tb, tc = _work(index.shape[1], rel_e.shape[1], rev_ptr[n] - rev_ptr[0])
+    keep_b, keep_c = np.empty_like(tb), np.empty_like(tc)
     changed = 0
     for o in range(n):
         own = kind[o]
@@ -296,16 +300,9 @@ def rebalance_kinds(kind, voted, window, count, lo, hi, index, rev_ptr, rev_idx,
     Arguments as :func:`descend_kinds` (``lo``, ``hi`` the bounds to bring the counts into);
     returns how many kinds changed.
     """
-    n, k = index.shape
-    ke = rel_e.shape[1]
+    n = index.shape[0]
     nk = voted.shape[1]
-    ko = np.empty(k, dtype=np.int64)
-    slots, d, used = np.empty(k, dtype=np.int64), np.empty((k, ke)), np.empty(ke, dtype=np.bool_)
-    rowmin, rowarg = np.empty(k), np.empty(k, dtype=np.int64)
-    m = rev_ptr[n] - rev_ptr[0]
-    nb = np.empty(m + 1, dtype=np.int64)
-    tb = np.empty(m + 1, dtype=np.int64)
-    tc = np.empty(m + 1)
+    ko, slots, d, used, rowmin, rowarg, nb, tb, tc = _work(index.shape[1], rel_e.shape[1], rev_ptr[n] - rev_ptr[0])
     delta = np.full(n, np.inf)
     target = np.full(n, -1, dtype=np.int64)
     for o in range(n):
