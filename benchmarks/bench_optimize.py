@@ -5,7 +5,7 @@ about N motifs (``--refine`` on patch, the issue's measure), or the optimize eng
 patch start; timed apart: the start, the exemplar's samples and similarity sets, and each
 iteration (search, assignment, non-penetration).
 
-Run by hand:  python benchmarks/bench_optimize.py [EXEMPLAR] [--count 100000] [--iterations 10]
+Run by hand:  python benchmarks/bench_optimize.py [EXEMPLAR] [--count 100000] [--iterations 10] [--rebalance]
 It prints one Markdown table row for benchmarks/README.md, then (with ``--stages``) the CPU time
 of each step of the iterations, measured in the same run by wrapping the solver's functions.
 Wall time on the shared machine depends on its load; the process's CPU time much less.
@@ -31,6 +31,8 @@ def main() -> None:
     ap.add_argument("--count", type=int, default=100_000)
     ap.add_argument("--iterations", type=int, default=10)
     ap.add_argument("--stages", action="store_true", help="also print the CPU time of each step")
+    ap.add_argument("--rebalance", action="store_true",
+                    help="bring the kind mix back each iteration, as the engine does for a drawn exemplar")  # fmt: skip
     args = ap.parse_args()
 
     from svgtile import analyze, read_exemplar
@@ -61,6 +63,7 @@ def main() -> None:
     c2 = time.process_time()
     marks: list[float] = []
     _arr, energies = refine(start, ex, stats, region, "clip", iterations=args.iterations, key=1, samples=samples,
+                           settings=Settings(rebalance=args.rebalance),
                            progress=lambda stage, f: marks.append(time.perf_counter()))  # fmt: skip
     t3 = time.perf_counter()
     c3 = time.process_time()
