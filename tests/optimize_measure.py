@@ -27,6 +27,7 @@ class Measure:
     violators: int
     density_ratio: float
     energy: float
+    kind_mix: float = float("nan")  # svgtile score's kind-mix TV
 
 
 def distance(ex, stats, region, arr) -> float:
@@ -44,4 +45,5 @@ def measure(ex, stats, region, engine="optimize", *, seed=1, refine=0, baselines
                           for b in ("tile", "random"))  # fmt: skip
     e = distance(ex, stats, region, res.arrangement)
     s = score(ex, stats, res.arrangement, region)
-    return Measure(likeness(e, *baselines), s.repetition, s.overlaps_total, s.violators_total, s.density_ratio, e)
+    return Measure(likeness(e, *baselines), s.repetition, s.overlaps_total, s.violators_total, s.density_ratio, e,
+                   s.kind_mix_tv)  # fmt: skip
