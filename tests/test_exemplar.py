@@ -571,3 +571,74 @@ def test_region_with_overflowing_or_non_finite_coordinates_is_refused(head, mess
     svg = f'<svg xmlns="http://www.w3.org/2000/svg" {head}><circle cx="5" cy="5" r="1"/><circle cx="15" cy="5" r="1"/></svg>'
     with pytest.raises(ExemplarError, match=message):
         parse_exemplar(svg, source="big.svg")
+
+
+# ----------------------------------------------------------------------------- prototypes kept apart
+
+
+def _circles(xs: list[float], r: float = 10.0, extra: str = "", region: str = "") -> str:
+    uses = "".join(f'<use xlink:href="#c" x="{x}" y="50"/>' for x in xs)
+    return svg(f'<defs><symbol id="c" overflow="visible"><circle r="{r}"/></symbol>'
+               f'<symbol id="s" overflow="visible"><rect x="-2" y="-2" width="4" height="4"/></symbol></defs>'
+               f"{region}{uses}{extra}", 'xmlns:svgtile="urn:svgtile:run:1" viewBox="0 0 100 100"')  # fmt: skip
+
+
+def test_motifs_drawn_a_hair_apart_do_not_overlap_in_the_analysis():
+    """Two circles of radius 10 drawn 0.2 apart: the default outline (grown by a fortieth of the
+    radius, 0.25) would make them share area; the exemplar's prototype keeps them apart, so the
+    analysis counts no overlap and its rule is the drawn gap, give or take the outline's tolerance."""
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import Prototype
+
+    ex = parse_exemplar(_circles([20.0, 40.2], extra='<use xlink:href="#s" x="80" y="20"/>'))
+    circle = ex.kinds[0]
+    default = Prototype.from_geometry(circle.footprint)
+    two = ex.motifs.take(ex.motifs.kind == 0)
+    assert shapely.intersection(*world_footprints(two, [default, ex.kinds[1].prototype])).area > 0  # the case is real
+    g = world_footprints(two, [p.prototype for p in ex.kinds])
+    gap = shapely.distance(g[0], g[1])
+    assert 0.2 * (1 - 4 * 0.2) - 1e-9 <= gap <= 0.2 + 1e-9
+    stats = analyze(ex)
+    assert stats.overlaps == 0 and 0 < stats.distance[0, 0] <= 0.2 + 1e-9
+    # the outline still covers the exact footprint
+    assert shapely.difference(circle.footprint, circle.prototype.geometry()).area < 1e-9
+    # a kind in no such pair keeps the prototype built the usual way
+    square = ex.kinds[1]
+    assert all(np.array_equal(a, b) for a, b in zip(square.prototype.rings, Prototype.from_geometry(square.footprint).rings,
+                                                     strict=True))  # fmt: skip
+
+
+def test_motifs_that_do_overlap_as_drawn_still_do():
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import Prototype
+
+    ex = parse_exemplar(_circles([20.0, 39.0]))
+    assert all(np.array_equal(a, b) for a, b in zip(ex.kinds[0].prototype.rings,
+                                                     Prototype.from_geometry(ex.kinds[0].footprint).rings, strict=True))  # fmt: skip
+    assert analyze(ex).overlaps == 1
+
+
+def test_a_tile_whose_motif_comes_a_hair_from_its_own_repeat():
+    """Across a repeating tile's edge: a circle of radius 10 in a tile 20.2 wide is 0.2 from its
+    own copy; the pattern does not overlap, and neither does its analysis."""
+    from svgtile.analysis.stats import analyze
+
+    region = '<rect id="region" x="0" y="30" width="20.2" height="40" svgtile:period="20.2 40"/>'
+    ex = parse_exemplar(_circles([10.1], region=region))
+    assert ex.period == (20.2, 40.0)
+    stats = analyze(ex)
+    assert stats.overlaps == 0 and 0 < stats.distance[0, 0] <= 0.2 + 1e-9
+
+
+def test_a_motif_drawn_larger_is_drawn_finer_by_its_scale():
+    """The same circle at scale 2 beside one at scale 1, 0.2 apart: its outline, grown in its own
+    frame, grows twice as much in the world; the two stay apart all the same."""
+    from svgtile.analysis.stats import analyze
+
+    body = ('<defs><symbol id="c" overflow="visible"><circle r="5"/></symbol></defs>'
+            '<use xlink:href="#c" transform="translate(20 50) scale(2)"/><use xlink:href="#c" x="35.2" y="50"/>')  # fmt: skip
+    ex = parse_exemplar(svg(body))
+    assert len(ex.kinds) == 1 and sorted(ex.motifs.scale.tolist()) == [1.0, 2.0]
+    g = world_footprints(ex.motifs, [k.prototype for k in ex.kinds])
+    assert 0 < shapely.distance(g[0], g[1]) <= 0.2 + 1e-9
+    assert analyze(ex).overlaps == 0
