@@ -106,7 +106,7 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/605", "likeness 0.8"): "L 0.760 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
     ("fgdc/606", "likeness 0.8"): "L 0.703 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
     ("fgdc/613", "likeness 0.8"): "L 0.798 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
-    ("fgdc/614", "likeness 0.8"): "L 0.783 (2026-12-07, auto's tile-scatter: optimize; 0.801 before its import kept one kind for the lenses its outlines' tolerance had split, tight12; averaged over 8 samples 0.794 → 0.781)",
+    ("fgdc/614", "likeness 0.8"): "L 0.784 (2026-12-07, auto's tile-scatter: optimize; 0.801 before its import kept one kind for the lenses its outlines' tolerance had split, tight12; averaged over 8 samples 0.794 → 0.783)",
     ("fgdc/666", "likeness 0.8"): "L 0.723 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
     ("fgdc/682", "likeness 0.8"): "L 0.781 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",
     ("fgdc/683", "likeness 0.8"): "L 0.758 (2026-12-07, auto's tile-scatter: optimize; L is one sample of 200 centres, ± 0.04)",

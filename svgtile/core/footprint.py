@@ -89,10 +89,15 @@ class Prototype:
         return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
 
 
-#: A prototype's outline keeps at most this share of the exemplar's narrowest gap from its exact
-#: footprint (:func:`separated`): simplified within ``t`` and grown by ``t``, an outline lies
-#: within 2t of the exact one, so two outlines of motifs a gap g apart meet only if 4t ≥ g.
-GAP_SHARE = 0.2
+#: Each side of a pair the drawing keeps a gap ``g`` apart may reach at most this share of it
+#: beyond its exact footprint (:func:`separated`; the prototype's ``excess``), so two rebuilt
+#: outlines stay apart with room to spare: 2 × 0.4 g < g.
+GAP_SHARE = 0.4
+#: Rounds of :func:`separated`; a kind still meeting a neighbour after them takes its exact outline.
+SEPARATE_ROUNDS = 3
+#: Pairs of motifs whose bounding discs meet, at most, that are measured (here and by the crowding
+#: check, :mod:`svgtile.analysis.crowding`): beyond it even listing them is costly.
+MAX_NEAR_PAIRS = 2_000_000
 
 
 def separated(protos: list[Prototype], exact: list[shapely.Geometry | None], arr: Arrangement,
@@ -100,13 +105,21 @@ def separated(protos: list[Prototype], exact: list[shapely.Geometry | None], arr
     """The prototypes, those of kinds whose outlines overlap where their exact footprints stay
     apart rebuilt with a finer tolerance, so that the analysis does not see overlaps the drawing has not.
 
-    :meth:`Prototype.from_geometry` grows each outline by up to a fortieth of the motif's radius;
-    two motifs drawn closer than that (Equinor 11026: pebbles 0.2 units from the dashes they sit
-    on, radius 10) then share area in the analysis, which counts the exemplar as overlapping and
-    holds its copies to a rule it breaks itself (a stamp of the tile lost one motif of each pair).
-    Each kind in such a pair is rebuilt with its tolerance cut to :data:`GAP_SHARE` of the
-    narrowest exact gap it has (over the motif's scale); kinds in no such pair keep their
-    prototype (the same object).
+    :meth:`Prototype.from_geometry` simplifies each outline within a fortieth of the motif's
+    radius and grows it as much, mitred: at a sharp corner it reaches up to four times that
+    beyond the exact footprint (``excess``).  Two motifs drawn closer than that (Equinor 11026:
+    pebbles 0.2 units from the dashes they sit on; their outlines reached 0.27–0.36 beyond) then
+    share area in the analysis, which counts the exemplar as overlapping and holds its copies to
+    a rule it breaks itself (a stamp of the tile lost one motif of each pair).
+
+    Each round finds the pairs whose outlines share area while their exact footprints are a gap
+    ``g`` apart, and rebuilds every kind in one whose outline reaches more than :data:`GAP_SHARE`
+    of its narrowest such gap (in its own units: over the motif's scale) beyond its footprint,
+    with the tolerance scaled so that it reaches that share (the excess follows the tolerance);
+    after :data:`SEPARATE_ROUNDS` rounds a kind still in such a pair takes its exact outline
+    (tolerance 0, no excess).  A pair is left alone where either kind has no exact footprint, and
+    nothing is done on an exemplar so crowded that the crowding check refuses it
+    (:data:`MAX_NEAR_PAIRS`).  Kinds never rebuilt keep their prototype (the same object).
 
     Parameters
     ----------
@@ -125,30 +138,57 @@ def separated(protos: list[Prototype], exact: list[shapely.Geometry | None], arr
         shifts = np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)], dtype=np.float64) * np.asarray(period)
         arr = Arrangement(np.tile(arr.kind, 9), (arr.xy[None] + shifts[:, None]).reshape(-1, 2),
                           np.tile(arr.angle, 9), np.tile(arr.scale, 9))  # fmt: skip
-    i, j = near_pairs(arr.xy, motif_radius(arr, protos), 0.0)
-    if not len(i):
+    if near_pair_bound(arr.xy, float(np.median(motif_radius(arr, protos)))) > MAX_NEAR_PAIRS:
         return list(protos)
-    geoms = world_footprints(arr, protos)
-    meet = overlapping(geoms, i, j, shapely.distance(geoms[i], geoms[j]))
-    meet &= np.array([exact[k] is not None for k in arr.kind[i]]) & np.array([exact[k] is not None for k in arr.kind[j]])
-    i, j = i[meet], j[meet]
-    if not len(i):
-        return list(protos)
-    plain = [Prototype.from_geometry(g, tolerance=0.0) if g is not None else p for g, p in zip(exact, protos, strict=True)]
-    ex = world_footprints(arr, plain)
-    gap = shapely.distance(ex[i], ex[j])
-    apart = gap > 0
-    # in each kind's own units: an outline grown by t in its frame is grown by t·scale in the world
-    narrowest = np.full(len(protos), np.inf)
-    i, j, gap = i[apart], j[apart], gap[apart]
-    np.minimum.at(narrowest, arr.kind[i], gap / arr.scale[i])
-    np.minimum.at(narrowest, arr.kind[j], gap / arr.scale[j])
-    out = list(protos)
-    for k in np.flatnonzero(np.isfinite(narrowest)):
-        now = _tolerance(exact[k], SIMPLIFY)
-        if now > GAP_SHARE * narrowest[k]:
-            out[k] = Prototype.from_geometry(exact[k], tolerance=SIMPLIFY * GAP_SHARE * narrowest[k] / now)
+    has = np.array([g is not None for g in exact])
+    plain: list[Prototype] = []  # the exact outlines, built when a pair first needs them
+    out, tolerance = list(protos), np.full(len(protos), SIMPLIFY)
+    for rnd in range(SEPARATE_ROUNDS + 1):
+        i, j = near_pairs(arr.xy, motif_radius(arr, out), 0.0)
+        if len(i) > MAX_NEAR_PAIRS:
+            return list(protos)
+        keep = has[arr.kind[i]] & has[arr.kind[j]]
+        i, j = i[keep], j[keep]
+        geoms = world_footprints(arr, out)
+        meet = overlapping(geoms, i, j, shapely.distance(geoms[i], geoms[j]))
+        i, j = i[meet], j[meet]
+        if not len(i):
+            break
+        if not plain:
+            plain = [Prototype.from_geometry(g, tolerance=0.0) if g is not None else p
+                     for g, p in zip(exact, protos, strict=True)]  # fmt: skip
+        gap = shapely.distance(*(world_footprints(arr.take(idx), plain) for idx in (i, j)))
+        apart = gap > 0
+        if not apart.any():
+            break
+        i, j, gap = i[apart], j[apart], gap[apart]
+        narrowest = np.full(len(protos), np.inf)
+        np.minimum.at(narrowest, arr.kind[i], gap / arr.scale[i])
+        np.minimum.at(narrowest, arr.kind[j], gap / arr.scale[j])
+        for k in np.flatnonzero(narrowest < np.inf):
+            if rnd == SEPARATE_ROUNDS:
+                out[k] = plain[k]
+                continue
+            if out[k].excess > GAP_SHARE * narrowest[k]:
+                tolerance[k] *= min(GAP_SHARE * narrowest[k] / out[k].excess, 0.5)
+                out[k] = Prototype.from_geometry(exact[k], tolerance=float(tolerance[k]))
     return out
+
+
+def near_pair_bound(xy: np.ndarray, cell: float) -> int:
+    """Pairs of centres that share a grid cell of side ``cell`` — a lower bound of the pairs
+    closer than ``cell`` — counted in O(n log n) without listing them.
+
+    Parameters
+    ----------
+    xy : (n, 2) float array, motif centres, user units
+    cell : grid spacing, user units (> 0)
+    """
+    if len(xy) < 2 or not cell > 0:
+        return 0
+    keys = np.floor((xy - xy.min(axis=0)) / cell).astype(np.int64)
+    _, counts = np.unique(keys, axis=0, return_counts=True)
+    return int((counts * (counts - 1) // 2).sum())
 
 
 def _tolerance(geom: shapely.Geometry, tolerance: float) -> float:
