@@ -571,3 +571,120 @@ def test_region_with_overflowing_or_non_finite_coordinates_is_refused(head, mess
     svg = f'<svg xmlns="http://www.w3.org/2000/svg" {head}><circle cx="5" cy="5" r="1"/><circle cx="15" cy="5" r="1"/></svg>'
     with pytest.raises(ExemplarError, match=message):
         parse_exemplar(svg, source="big.svg")
+
+
+# ----------------------------------------------------------------------------- prototypes kept apart
+
+
+def _circles(xs: list[float], r: float = 10.0, extra: str = "", region: str = "") -> str:
+    uses = "".join(f'<use xlink:href="#c" x="{x}" y="50"/>' for x in xs)
+    return svg(f'<defs><symbol id="c" overflow="visible"><circle r="{r}"/></symbol>'
+               f'<symbol id="s" overflow="visible"><rect x="-8" y="-8" width="16" height="16"/></symbol></defs>'
+               f"{region}{uses}{extra}", 'xmlns:svgtile="urn:svgtile:run:1" viewBox="0 0 100 100"')  # fmt: skip
+
+
+def _same_rings(a, b) -> bool:
+    return len(a.rings) == len(b.rings) and all(np.array_equal(x, y) for x, y in zip(a.rings, b.rings, strict=True))
+
+
+def _gap(ex, a: int, b: int) -> float:
+    g = world_footprints(ex.motifs, [k.prototype for k in ex.kinds])
+    return float(shapely.distance(g[a], g[b]))
+
+
+def test_motifs_drawn_a_hair_apart_do_not_overlap_in_the_analysis():
+    """Two circles of radius 10 drawn 0.2 apart: the default outline (grown by a fortieth of the
+    radius, 0.25) would make them share area; the exemplar's prototype keeps them apart, each
+    reaching at most GAP_SHARE of the gap beyond its footprint, so the analysis counts no overlap
+    and its rule is the drawn gap, give or take that."""
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import GAP_SHARE, Prototype
+
+    ex = parse_exemplar(_circles([20.0, 40.2], extra='<use xlink:href="#s" x="80" y="20"/>'))
+    circle, square = ex.kinds
+    default = Prototype.from_geometry(circle.footprint)
+    two = ex.motifs.take(ex.motifs.kind == 0)
+    assert shapely.intersection(*world_footprints(two, [default, square.prototype])).area > 0  # the case is real
+    assert circle.prototype.excess <= GAP_SHARE * 0.2 + 1e-9
+    assert 0.2 * (1 - 2 * GAP_SHARE) - 1e-9 <= _gap(ex, 0, 1) <= 0.2 + 1e-9
+    stats = analyze(ex)
+    assert stats.overlaps == 0 and 0 < stats.distance[0, 0] <= 0.2 + 1e-9
+    # the outline still covers the exact footprint
+    assert shapely.difference(circle.footprint, circle.prototype.geometry()).area < 1e-9
+    # a kind in no such pair keeps the prototype built the usual way
+    assert _same_rings(square.prototype, Prototype.from_geometry(square.footprint))
+
+
+def test_both_kinds_of_a_pair_a_hair_apart_are_drawn_finer():
+    """A circle and a square 0.2 apart: each outline alone, grown as usual, would reach into the
+    gap far enough to meet the other's; both are drawn finer."""
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import GAP_SHARE, Prototype
+
+    ex = parse_exemplar(_circles([20.0], extra='<use xlink:href="#s" x="38.2" y="50"/>'))
+    for k in ex.kinds:
+        assert not _same_rings(k.prototype, Prototype.from_geometry(k.footprint))
+        assert k.prototype.excess <= GAP_SHARE * 0.2 + 1e-9
+    assert _gap(ex, 0, 1) > 0 and analyze(ex).overlaps == 0
+
+
+def test_sharp_corners_a_hair_apart_stay_apart():
+    """Two five-pointed stars tip to tip 0.2 apart: a mitred outline reaches up to four times its
+    tolerance beyond a sharp tip (0.40 here for a tolerance of 0.12), so the tolerance is cut by
+    how far the outline reaches, not by the tolerance itself."""
+    from svgtile.analysis.stats import analyze
+
+    pts = " ".join(f"{(10 if k % 2 == 0 else 3.82) * math.cos(math.pi * k / 5):.6f},"
+                   f"{(10 if k % 2 == 0 else 3.82) * math.sin(math.pi * k / 5):.6f}" for k in range(10))  # fmt: skip
+    body = (f'<defs><symbol id="st" overflow="visible"><polygon points="{pts}"/></symbol></defs>'
+            '<use xlink:href="#st" x="20" y="50"/><use xlink:href="#st" transform="translate(40.2 50) rotate(180)"/>')  # fmt: skip
+    ex = parse_exemplar(svg(body))
+    assert _gap(ex, 0, 1) > 0 and analyze(ex).overlaps == 0
+
+
+def test_motifs_that_do_overlap_as_drawn_still_do():
+    """Two circles drawn overlapping: nothing to keep apart, the prototype is the usual one and
+    the analysis counts the overlap."""
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import Prototype
+
+    ex = parse_exemplar(_circles([20.0, 39.0]))
+    assert _same_rings(ex.kinds[0].prototype, Prototype.from_geometry(ex.kinds[0].footprint))
+    assert analyze(ex).overlaps == 1
+
+
+def test_a_tile_whose_motif_comes_a_hair_from_its_own_repeat():
+    """Across a repeating tile's edge: a circle of radius 10 in a tile 20.2 wide is 0.2 from its
+    own copy; the pattern does not overlap, and neither does its analysis."""
+    from svgtile.analysis.stats import analyze
+
+    region = '<rect id="region" x="0" y="30" width="20.2" height="40" svgtile:period="20.2 40"/>'
+    ex = parse_exemplar(_circles([10.1], region=region))
+    assert ex.period == (20.2, 40.0)
+    stats = analyze(ex)
+    assert stats.overlaps == 0 and 0 < stats.distance[0, 0] <= 0.2 + 1e-9
+
+
+def test_a_motif_drawn_larger_is_drawn_finer_by_its_scale():
+    """The same circle at scale 2 beside one at scale 1, 0.2 apart: its outline, grown in its own
+    frame, reaches twice as far in the world at scale 2, so the kind is drawn finer by that scale:
+    in the world neither reaches more than GAP_SHARE of the gap."""
+    from svgtile.analysis.stats import analyze
+    from svgtile.core.footprint import GAP_SHARE
+
+    body = ('<defs><symbol id="c" overflow="visible"><circle r="5"/></symbol></defs>'
+            '<use xlink:href="#c" transform="translate(20 50) scale(2)"/><use xlink:href="#c" x="35.2" y="50"/>')  # fmt: skip
+    ex = parse_exemplar(svg(body))
+    assert len(ex.kinds) == 1 and sorted(ex.motifs.scale.tolist()) == [1.0, 2.0]
+    assert 2 * ex.kinds[0].prototype.excess <= GAP_SHARE * 0.2 + 1e-9
+    assert _gap(ex, 0, 1) > 0 and analyze(ex).overlaps == 0
+
+
+def test_a_crowded_exemplar_is_left_to_the_crowding_check(monkeypatch):
+    """Over MAX_NEAR_PAIRS pairs of motifs lying on each other: the prototypes are not measured
+    pair by pair (the crowding check refuses such an exemplar, quickly)."""
+    import svgtile.core.footprint as footprint
+
+    monkeypatch.setattr(footprint, "MAX_NEAR_PAIRS", 0)
+    ex = parse_exemplar(_circles([20.0, 40.2]))
+    assert _same_rings(ex.kinds[0].prototype, footprint.Prototype.from_geometry(ex.kinds[0].footprint))

@@ -628,22 +628,31 @@ def test_osm_jsdotpattern_tiles_import_one_motif_per_use(name):
 
 @needs_data
 @pytest.mark.parametrize(
-    ("path", "note"),
+    "path",
     [
-        ("fgdc-geologic-patterns/lithology/614.svg", "keep their own drawing"),  # a lens drawn as its kind's first reached a dot
-        ("equinor-lithology/svg/11030.svg", "joined 5 pair"),  # dots 0.1–0.2 from pebbles, within the outlines' tolerance
+        "fgdc-geologic-patterns/lithology/614.svg",  # a lens drawn as its kind's first reached a dot
+        "equinor-lithology/svg/11030.svg",  # dots 0.1–0.2 from pebbles
+        "equinor-lithology/svg/11026.svg",  # pebbles and dashes 0.2 apart along each row
     ],
 )
-def test_real_tiles_whose_motifs_overlapped_import_without_overlaps(path, note):
+def test_real_tiles_drawn_a_hair_apart_import_without_overlaps_or_joins(path):
+    """Motifs the tile draws 0.1–0.2 apart, within the default outline's tolerance: the outlines
+    once met, and the importer joined them (11030), gave them kinds of their own (614) or, where
+    joined they would have made an endless row, left the exemplar overlapping (11026).  The
+    exemplar's prototypes now keep apart what the drawing keeps apart
+    (:func:`svgtile.core.footprint.separated`): no overlap, nothing joined."""
     t = import_tile(DATA / path)
     assert own_overlap_count(t) == 0
-    assert any(note in n for n in t.notes)
+    assert not any("joined" in n or "keep their own drawing" in n for n in t.notes), t.notes
 
 
-@needs_data
-def test_equinor_11026_says_why_its_overlapping_motifs_are_not_joined():
-    """Pebbles and dashes 0.2 apart along each row: joined they would make an endless row, so the
-    importer leaves them and says so."""
-    t = import_tile(DATA / "equinor-lithology/svg/11026.svg")
-    assert own_overlap_count(t) > 0
-    assert any("not joined: a motif would join its own repeat" in n for n in t.notes)
+def test_motifs_that_would_join_their_own_repeat_are_not_joined():
+    """Motif 0 overlaps motif 1 five units on, and motif 1 overlaps motif 0 five units on: joined,
+    0 would be its own repeat ten units on (a continuous pattern), so nothing is joined."""
+    from svgtile.tiles.overlaps import merge_motifs
+
+    pairs, shift = np.array([[0, 1], [1, 0]]), np.array([[5.0, 0.0], [5.0, 0.0]])
+    got = merge_motifs(np.array([0, 1]), np.zeros((2, 2)), np.zeros((2, 2)), pairs, shift)
+    assert got == "a motif would join its own repeat"
+    closed = merge_motifs(np.array([0, 1]), np.zeros((2, 2)), np.zeros((2, 2)), pairs[:1], shift[:1])
+    assert not isinstance(closed, str) and closed[0].tolist() == [0, 0]

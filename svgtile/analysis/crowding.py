@@ -14,31 +14,19 @@ import numpy as np
 import shapely
 
 from svgtile.core.exemplar import Exemplar
-from svgtile.core.footprint import motif_radius, near_pairs, world_footprints
+from svgtile.core.footprint import (
+    MAX_NEAR_PAIRS,
+    motif_radius,
+    near_pair_bound,
+    near_pairs,
+    world_footprints,
+)
 from svgtile.errors import ExemplarError
 
-#: Pairs of motifs whose bounding discs meet, at most: beyond it even listing them is costly.
-MAX_NEAR_PAIRS = 2_000_000
 #: Overlapping pairs per motif above which an exemplar is not an arrangement: a few touching or
 #: overlapping motifs are drawn by hand (svgtile warns and goes on); more pairs than motifs means
 #: motifs are drawn over each other throughout.
 MAX_OVERLAPS_PER_MOTIF = 1.0
-
-
-def near_pair_bound(xy: np.ndarray, cell: float) -> int:
-    """Pairs of centres that share a grid cell of side ``cell`` — a lower bound of the pairs
-    closer than ``cell`` — counted in O(n log n) without listing them.
-
-    Parameters
-    ----------
-    xy : (n, 2) float array, motif centres, user units
-    cell : grid spacing, user units (> 0)
-    """
-    if len(xy) < 2 or not cell > 0:
-        return 0
-    keys = np.floor((xy - xy.min(axis=0)) / cell).astype(np.int64)
-    _, counts = np.unique(keys, axis=0, return_counts=True)
-    return int((counts * (counts - 1) // 2).sum())
 
 
 def check_crowding(exemplar: Exemplar, *, imported: bool = False) -> None:

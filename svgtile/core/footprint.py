@@ -56,12 +56,10 @@ class Prototype:
         the prototype covers the exact footprint with few vertices: every distance and overlap
         test in a texture of a million motifs runs on these outlines.
         """
-        pts = shapely.get_coordinates(geom)
         exact = shapely.union_all([shapely.Polygon(p.exterior) for p in shapely.get_parts(geom)])
         # the tolerance follows the motif's size, but a thin motif (a dash) is only as wide as
         # 2·area/perimeter, and growing it by a share of its length would fatten it
-        thickness = 2.0 * exact.area / max(exact.length, 1e-12)
-        tol = min(tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max()), 1.5 * tolerance * thickness)
+        tol = _tolerance(geom, tolerance)
         if tol > 0:
             geom = shapely.buffer(shapely.simplify(geom, tol), tol, join_style="mitre", mitre_limit=4.0)
         parts = shapely.get_parts(geom)
@@ -89,6 +87,116 @@ class Prototype:
         """The footprint as one shapely geometry in the local frame."""
         polys = [shapely.polygons(r) for r in self.rings]
         return polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
+
+
+#: Each side of a pair the drawing keeps a gap ``g`` apart may reach at most this share of it
+#: beyond its exact footprint (:func:`separated`; the prototype's ``excess``), so two rebuilt
+#: outlines stay apart with room to spare: 2 × 0.4 g < g.
+GAP_SHARE = 0.4
+#: Rounds of :func:`separated`; a kind still meeting a neighbour after them takes its exact outline.
+SEPARATE_ROUNDS = 3
+#: Pairs of motifs whose bounding discs meet, at most, that are measured (here and by the crowding
+#: check, :mod:`svgtile.analysis.crowding`): beyond it even listing them is costly.
+MAX_NEAR_PAIRS = 2_000_000
+
+
+def separated(protos: list[Prototype], exact: list[shapely.Geometry | None], arr: Arrangement,
+              period: tuple[float, float] | None = None) -> list[Prototype]:  # fmt: skip
+    """The prototypes, those of kinds whose outlines overlap where their exact footprints stay
+    apart rebuilt with a finer tolerance, so that the analysis does not see overlaps the drawing has not.
+
+    :meth:`Prototype.from_geometry` simplifies each outline within a fortieth of the motif's
+    radius and grows it as much, mitred: at a sharp corner it reaches up to four times that
+    beyond the exact footprint (``excess``).  Two motifs drawn closer than that (Equinor 11026:
+    pebbles 0.2 units from the dashes they sit on; their outlines reached 0.27–0.36 beyond) then
+    share area in the analysis, which counts the exemplar as overlapping and holds its copies to
+    a rule it breaks itself (a stamp of the tile lost one motif of each pair).
+
+    Each round finds the pairs whose outlines share area while their exact footprints are a gap
+    ``g`` apart, and rebuilds every kind in one whose outline reaches more than :data:`GAP_SHARE`
+    of its narrowest such gap (in its own units: over the motif's scale) beyond its footprint,
+    with the tolerance scaled so that it reaches that share (the excess follows the tolerance);
+    after :data:`SEPARATE_ROUNDS` rounds a kind still in such a pair takes its exact outline
+    (tolerance 0, no excess).  A pair is left alone where either kind has no exact footprint, and
+    nothing is done on an exemplar so crowded that the crowding check refuses it
+    (:data:`MAX_NEAR_PAIRS`).  Kinds never rebuilt keep their prototype (the same object).
+
+    Parameters
+    ----------
+    protos : the kinds' prototypes, k
+    exact : the kinds' exact footprints in the same local frames (None: kept as it is)
+    arr : the exemplar's motifs
+    period : (w, h), user units, if the pattern repeats: pairs across its edges count too
+
+    Returns
+    -------
+    list of k prototypes
+    """
+    if (len(arr) < 2 and period is None) or len(arr) == 0:
+        return list(protos)
+    if period is not None:
+        shifts = np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)], dtype=np.float64) * np.asarray(period)
+        arr = Arrangement(np.tile(arr.kind, 9), (arr.xy[None] + shifts[:, None]).reshape(-1, 2),
+                          np.tile(arr.angle, 9), np.tile(arr.scale, 9))  # fmt: skip
+    if near_pair_bound(arr.xy, float(np.median(motif_radius(arr, protos)))) > MAX_NEAR_PAIRS:
+        return list(protos)
+    has = np.array([g is not None for g in exact])
+    plain: list[Prototype] = []  # the exact outlines, built when a pair first needs them
+    out, tolerance = list(protos), np.full(len(protos), SIMPLIFY)
+    for rnd in range(SEPARATE_ROUNDS + 1):
+        i, j = near_pairs(arr.xy, motif_radius(arr, out), 0.0)
+        if len(i) > MAX_NEAR_PAIRS:
+            return list(protos)
+        keep = has[arr.kind[i]] & has[arr.kind[j]]
+        i, j = i[keep], j[keep]
+        geoms = world_footprints(arr, out)
+        meet = overlapping(geoms, i, j, shapely.distance(geoms[i], geoms[j]))
+        i, j = i[meet], j[meet]
+        if not len(i):
+            break
+        if not plain:
+            plain = [Prototype.from_geometry(g, tolerance=0.0) if g is not None else p
+                     for g, p in zip(exact, protos, strict=True)]  # fmt: skip
+        gap = shapely.distance(*(world_footprints(arr.take(idx), plain) for idx in (i, j)))
+        apart = gap > 0
+        if not apart.any():
+            break
+        i, j, gap = i[apart], j[apart], gap[apart]
+        narrowest = np.full(len(protos), np.inf)
+        np.minimum.at(narrowest, arr.kind[i], gap / arr.scale[i])
+        np.minimum.at(narrowest, arr.kind[j], gap / arr.scale[j])
+        for k in np.flatnonzero(narrowest < np.inf):
+            if rnd == SEPARATE_ROUNDS:
+                out[k] = plain[k]
+                continue
+            if out[k].excess > GAP_SHARE * narrowest[k]:
+                tolerance[k] *= min(GAP_SHARE * narrowest[k] / out[k].excess, 0.5)
+                out[k] = Prototype.from_geometry(exact[k], tolerance=float(tolerance[k]))
+    return out
+
+
+def near_pair_bound(xy: np.ndarray, cell: float) -> int:
+    """Pairs of centres that share a grid cell of side ``cell`` — a lower bound of the pairs
+    closer than ``cell`` — counted in O(n log n) without listing them.
+
+    Parameters
+    ----------
+    xy : (n, 2) float array, motif centres, user units
+    cell : grid spacing, user units (> 0)
+    """
+    if len(xy) < 2 or not cell > 0:
+        return 0
+    keys = np.floor((xy - xy.min(axis=0)) / cell).astype(np.int64)
+    _, counts = np.unique(keys, axis=0, return_counts=True)
+    return int((counts * (counts - 1) // 2).sum())
+
+
+def _tolerance(geom: shapely.Geometry, tolerance: float) -> float:
+    """The absolute outline tolerance :meth:`Prototype.from_geometry` takes for ``geom``, user units."""
+    pts = shapely.get_coordinates(geom)
+    exact = shapely.union_all([shapely.Polygon(p.exterior) for p in shapely.get_parts(geom)])
+    thickness = 2.0 * exact.area / max(exact.length, 1e-12)
+    return min(tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max()), 1.5 * tolerance * thickness)
 
 
 def _farthest_outside(pts: np.ndarray, shape: shapely.Geometry) -> float:

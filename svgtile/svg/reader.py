@@ -30,7 +30,7 @@ import json
 import math
 import re
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -38,7 +38,7 @@ import shapely
 
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar, Kind
-from svgtile.core.footprint import Prototype
+from svgtile.core.footprint import Prototype, separated
 from svgtile.errors import ExemplarError
 from svgtile.svg.dialect import (
     CELLULAR_ATTR,
@@ -196,6 +196,9 @@ class DocumentReader:
             self.warn(f"{int((~centroid_in).sum())} motif(s) outside the input region are ignored")
             arrangement = arrangement.take(centroid_in)
         period = self._period()
+        # outlines that meet where the drawing keeps its motifs apart are drawn finer
+        protos = separated([k.prototype for k in kinds], [k.footprint for k in kinds], arrangement, period)
+        kinds = [k if p is k.prototype else replace(k, prototype=p) for k, p in zip(kinds, protos, strict=True)]
         return Exemplar(self.source, tuple(kinds), arrangement, region, tuple(defs), tuple(self.warnings), period,
                         cellular, self._ground())  # fmt: skip
 

@@ -4,8 +4,11 @@ Grouping (stage 3) joins every two pieces whose footprints touch or overlap, so 
 tile do not overlap as drawn.  The exemplar, though, draws each motif with its kind's symbol
 (the kind's first motif, turned by the motif's angle), and kinds match up to
 :data:`svgtile.tiles.importer.KIND_TOLERANCE`: a motif a few percent off its kind's first one
-(Equinor 11026's pebble-and-dash chains, one dash shorter; FGDC 614's lens beside a dot) can
-then reach into a neighbour it only came near.  Such a motif is not a copy that can stand in for
+can then reach into a neighbour it only came near.  (The real tiles once listed here, Equinor
+11026's pebble-and-dash chains and FGDC 614's lens beside a dot, came within a hair of their
+neighbours, and their outlines, grown by the analysis' tolerance, met; the reader now draws such
+outlines finer, :func:`svgtile.core.footprint.separated`, and they import without overlaps or
+kinds of their own.)  Such a motif is not a copy that can stand in for
 its kind in that place: it keeps a drawing of its own (:func:`separate_kinds`), and the
 exemplar is checked again on the whole periodic pattern (:func:`own_overlaps`, the count that
 :func:`svgtile.analysis.stats.periodic_distance_matrix` makes).  The rule is AlMeraj et al. 2013
