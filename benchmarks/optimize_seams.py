@@ -23,8 +23,9 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
 sys.path.insert(0, str(REPO / "benchmarks"))
 from optimize_bundled_seeds import bundled_squares  # noqa: E402
+from optimize_measure import distance  # noqa: E402
 
-from svgtile.analysis.neighbourhood import likeness, neighbourhood_distance  # noqa: E402
+from svgtile.analysis.neighbourhood import likeness  # noqa: E402
 from svgtile.engines import synthesize  # noqa: E402
 from svgtile.engines.optimize.engine import OptimizeParams, start_side  # noqa: E402
 from svgtile.metrics.window import in_window, interior, spacing  # noqa: E402
@@ -33,12 +34,6 @@ from svgtile.metrics.window import in_window, interior, spacing  # noqa: E402
 DEFAULT = ["breccia-plain", "chert-nodules", "gravel", "scrub"]
 #: The seam band's half-width, exemplar spacings.
 BAND = 1.0
-
-
-def _distance(ex, s: float, arr, centres: np.ndarray) -> float:
-    """Eq. (1)'s mean distance of the neighbourhoods of ``arr`` centred at ``centres`` (all of them)."""
-    return neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=s, k=6, period=None,
-                                  centres=centres, sample=None)  # fmt: skip
 
 
 def main() -> None:
@@ -50,13 +45,14 @@ def main() -> None:
 
         for seed in (1, 2, 3):
             arrs = {n: synthesize(ex, region, n, seed=seed, stats=stats).arrangement for n in ("optimize", "tile", "random")}
-            base = [_distance(ex, s, arrs[b], np.flatnonzero(in_window(arrs[b], win))) for b in ("tile", "random")]
+            base = [distance(ex, stats, region, arrs[b], sample=None) for b in ("tile", "random")]
             a = arrs["optimize"]
             inside = in_window(a, win)
             m = np.mod(a.xy, cell)
             edge = np.minimum(m, cell - m).min(axis=1) / s
             band, middle = inside & (edge < BAND), inside & (edge >= BAND)
-            figures = [likeness(_distance(ex, s, a, np.flatnonzero(part)), *base) for part in (inside, band, middle)]
+            figures = [likeness(distance(ex, stats, region, a, centres=np.flatnonzero(part), sample=None), *base)
+                       for part in (inside, band, middle)]
             print(f"{path.stem:14s} seed {seed}: cell {cell / s:.1f} spacings;  L all {figures[0]:.3f}   "
                   f"seam band ({band.sum()} motifs) {figures[1]:.3f}   middle ({middle.sum()}) {figures[2]:.3f}")
 

@@ -30,11 +30,14 @@ class Measure:
     kind_mix: float = float("nan")  # svgtile score's kind-mix TV
 
 
-def distance(ex, stats, region, arr) -> float:
-    window = interior(ex, region)
-    centres = np.flatnonzero(in_window(arr, window)) if not window.is_empty else None
+def distance(ex, stats, region, arr, *, centres: np.ndarray | None = None, sample: int | None = SAMPLE) -> float:
+    """Eq. (1)'s mean neighbourhood distance of ``arr``: at ``centres`` if given, else at its motifs
+    in the score's interior window; a fixed draw of ``sample`` of them (None: every one)."""
+    if centres is None:
+        window = interior(ex, region)
+        centres = np.flatnonzero(in_window(arr, window)) if not window.is_empty else None
     return neighbourhood_distance(arr.xy, arr.kind, ex.motifs.xy, ex.motifs.kind, spacing=spacing(stats), k=6,
-                                  period=getattr(ex, "period", None), centres=centres, sample=SAMPLE,
+                                  period=getattr(ex, "period", None), centres=centres, sample=sample,
                                   rng=np.random.default_rng(0))  # fmt: skip
 
 

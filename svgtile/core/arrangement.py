@@ -75,3 +75,17 @@ class Arrangement:
             np.concatenate([p.angle for p in parts]),
             np.concatenate([p.scale for p in parts]),
         )
+
+
+def periodic_block(arr: Arrangement, period: tuple[float, float], rings: tuple[int, int] = (1, 1)) -> Arrangement:
+    """The tile's motifs on the block of tiles around it, the tile's own first: ``rings`` (a, b)
+    tiles on either side along x and y, (2a + 1)(2b + 1)·n motifs (the default: the 3 × 3 block)."""
+    a, b = rings
+    shifts = np.array([(i, j) for j in range(-b, b + 1) for i in range(-a, a + 1) if (i, j) != (0, 0)],
+                      dtype=np.float64).reshape(-1, 2)  # fmt: skip
+    shifts = np.vstack([[0.0, 0.0], shifts]) * np.asarray(period, dtype=np.float64)
+    t = len(shifts)
+    return Arrangement(
+        np.tile(arr.kind, t), (arr.xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2),
+        np.tile(arr.angle, t), np.tile(arr.scale, t),
+    )  # fmt: skip

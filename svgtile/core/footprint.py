@@ -16,7 +16,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from svgtile.core.arrangement import Arrangement
+from svgtile.core.arrangement import Arrangement, periodic_block
 
 #: Outline tolerance of prototypes, relative to the motif's radius (see Prototype.from_geometry).
 SIMPLIFY = 0.025
@@ -56,10 +56,12 @@ class Prototype:
         the prototype covers the exact footprint with few vertices: every distance and overlap
         test in a texture of a million motifs runs on these outlines.
         """
+        pts = shapely.get_coordinates(geom)
         exact = shapely.union_all([shapely.Polygon(p.exterior) for p in shapely.get_parts(geom)])
         # the tolerance follows the motif's size, but a thin motif (a dash) is only as wide as
         # 2·area/perimeter, and growing it by a share of its length would fatten it
-        tol = _tolerance(geom, tolerance)
+        thickness = 2.0 * exact.area / max(exact.length, 1e-12)
+        tol = min(tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max()), 1.5 * tolerance * thickness)
         if tol > 0:
             geom = shapely.buffer(shapely.simplify(geom, tol), tol, join_style="mitre", mitre_limit=4.0)
         parts = shapely.get_parts(geom)
@@ -135,9 +137,7 @@ def separated(protos: list[Prototype], exact: list[shapely.Geometry | None], arr
     if (len(arr) < 2 and period is None) or len(arr) == 0:
         return list(protos)
     if period is not None:
-        shifts = np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)], dtype=np.float64) * np.asarray(period)
-        arr = Arrangement(np.tile(arr.kind, 9), (arr.xy[None] + shifts[:, None]).reshape(-1, 2),
-                          np.tile(arr.angle, 9), np.tile(arr.scale, 9))  # fmt: skip
+        arr = periodic_block(arr, period)
     if near_pair_bound(arr.xy, float(np.median(motif_radius(arr, protos)))) > MAX_NEAR_PAIRS:
         return list(protos)
     has = np.array([g is not None for g in exact])
@@ -189,14 +189,6 @@ def near_pair_bound(xy: np.ndarray, cell: float) -> int:
     keys = np.floor((xy - xy.min(axis=0)) / cell).astype(np.int64)
     _, counts = np.unique(keys, axis=0, return_counts=True)
     return int((counts * (counts - 1) // 2).sum())
-
-
-def _tolerance(geom: shapely.Geometry, tolerance: float) -> float:
-    """The absolute outline tolerance :meth:`Prototype.from_geometry` takes for ``geom``, user units."""
-    pts = shapely.get_coordinates(geom)
-    exact = shapely.union_all([shapely.Polygon(p.exterior) for p in shapely.get_parts(geom)])
-    thickness = 2.0 * exact.area / max(exact.length, 1e-12)
-    return min(tolerance * float(np.hypot(pts[:, 0], pts[:, 1]).max()), 1.5 * tolerance * thickness)
 
 
 def _farthest_outside(pts: np.ndarray, shape: shapely.Geometry) -> float:
