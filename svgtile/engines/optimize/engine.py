@@ -242,8 +242,8 @@ class OptimizeEngine:
         settings = replace(p.settings(), insert=refill, rebalance=drawn)
         ctx.progress("patches", 0.0)
         cell = start_side(ex, p.start_cell, refill)
-        # MAX_CELL's cap is SEEDED spacings exactly; the tile itself is its motifs' sources at any size
-        seeded = cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9) or itself
+        # the tile itself (which has no cells) is its motifs' sources; MAX_CELL's cap is SEEDED spacings exactly
+        seeded = itself or cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9)
         start = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
                             overlap=REFILL_OVERLAP if refill else p.start_overlap,
                             flow=ctx.controls.flow, refill=refill, by_count=drawn, sources=seeded)  # fmt: skip
