@@ -68,7 +68,11 @@ REFILL_OVERLAP = 0.0
 #: spacings) the first search is unchanged, so are their textures.  Seeding keeps copies as
 #: copies: at 7.8 spacings (what 12 was of a whole-period patch) on the 35 gate tiles of
 #: TILE_CELL's note, 11 → 24 of them seeded, mean L 0.796 → 0.804, repetition > 0.2 on 5 → 9,
-#: every bound met 21 → 20 — kept at 12.
+#: every bound met 21 → 20 — kept at 12.  A start that is the tile itself (:func:`.init.seamless`)
+#: is seeded at any size: each of its motifs is a copy of its site with the site's whole
+#: neighbourhood, so its source is its exact match, and the hashed candidates missed it for a rare
+#: kind — Equinor 30019's two hollow squares among 126 dots were matched to dots' sites and voted
+#: away, 5 of 8 on 2 × 2 tiles (density / ρ 0.83 → 1.00, kind mix 0.010 → 0.000).
 SEEDED = 12.0
 
 
@@ -230,14 +234,16 @@ class OptimizeEngine:
         # insertion, capped at ρ, refills the seams of patches cut from a repeating tile;
         # elsewhere the start's density holds (patches of a drawn exemplar thinned to ρ, or the
         # tile itself)
-        refill = p.insert and ex.period is not None and not seamless(ex, ctx.controls.flow)
+        itself = seamless(ex, ctx.controls.flow)  # the start is the tile repeated (a repeating tile only)
+        refill = p.insert and ex.period is not None and not itself
         # a drawn exemplar's start is off its kind mix (its windows take its middle more often
         # than its edges, :func:`.init.thin`): thinned by count, its mix brought back as it goes
         drawn = ex.period is None
         settings = replace(p.settings(), insert=refill, rebalance=drawn)
         ctx.progress("patches", 0.0)
         cell = start_side(ex, p.start_cell, refill)
-        seeded = cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9)  # MAX_CELL's cap is SEEDED spacings exactly
+        # the tile itself (which has no cells) is its motifs' sources; MAX_CELL's cap is SEEDED spacings exactly
+        seeded = itself or cell >= SEEDED * _spacing(ex) * (1.0 - 1e-9)
         start = patch_start(ex, ctx.stats, ctx.region, ctx.boundary, key=ctx.key, cell=cell,
                             overlap=REFILL_OVERLAP if refill else p.start_overlap,
                             flow=ctx.controls.flow, refill=refill, by_count=drawn, sources=seeded)  # fmt: skip
