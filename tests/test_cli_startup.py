@@ -193,3 +193,24 @@ def test_subpackages_are_attributes_of_the_package_after_a_plain_import():
             "try:\n    svgtile.no_such_module\nexcept AttributeError:\n    print('refused')\n")  # fmt: skip
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split() == ["True", "SvgtileError", "refused"]
+
+
+def test_a_ctrl_c_python_could_not_raise_during_the_imports_ends_the_command(monkeypatch, capsys):
+    """A SIGINT that lands in an import lock's weakref callback is "unraisable": Python printed
+    "Exception ignored in …" with a traceback and went on (CI, SIGINT 0.02 s after start).  Here
+    the import reports one such ^C, as CPython does, and the command ends as any ^C does."""
+    import builtins
+
+    real_import = builtins.__import__
+
+    def importing(name, *args, **kwargs):
+        if name == "svgtile.cli" and args and args[2] and "group" in args[2]:
+            sys.unraisablehook(type("U", (), {"exc_type": KeyboardInterrupt, "exc_value": KeyboardInterrupt(),
+                                              "exc_traceback": None, "err_msg": None, "object": None})())  # fmt: skip
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", importing)
+    hook = sys.unraisablehook
+    assert main(["--version"]) == 130
+    assert capsys.readouterr().err == "svgtile: interrupted\n"
+    assert sys.unraisablehook is hook  # put back

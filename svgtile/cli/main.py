@@ -3,7 +3,8 @@
 It imports nothing but the standard library until :func:`main` runs, and imports the command
 group (:mod:`svgtile.cli.group`) inside it, so a ^C that arrives while the imports run ends the
 command as a later one does — one line, ``svgtile: interrupted``, exit code 130 — instead of a
-traceback.
+traceback; so does a ^C Python could not raise there (one that lands in an import lock's
+callback, which Python reports as "Exception ignored in …" with a traceback, and drops).
 """
 
 from __future__ import annotations
@@ -18,9 +19,26 @@ _GROUP = ("COMMANDS", "LazyCommands", "Terminated", "cli", "_main", "_terminate"
 def main(argv: list[str] | None = None) -> int:
     """Run the ``svgtile`` command line (``argv``, else the process's); return its exit code
     (:func:`svgtile.cli.group.main` says what each means)."""
+    # a ^C can land where Python cannot raise it — in an import lock's clean-up callback — and is
+    # then reported as "Exception ignored in …" with a traceback and lost; while the imports run,
+    # such a ^C ends the command as any other does
+    lost: list[KeyboardInterrupt] = []
+    reported = sys.unraisablehook
+
+    def hold(unraisable) -> None:
+        if issubclass(unraisable.exc_type, KeyboardInterrupt):
+            lost.append(KeyboardInterrupt())
+        else:
+            reported(unraisable)
+
+    sys.unraisablehook = hold
     try:
         from svgtile.cli import group
     except KeyboardInterrupt:
+        lost.append(KeyboardInterrupt())
+    finally:
+        sys.unraisablehook = reported
+    if lost:
         sys.stderr.write("svgtile: interrupted\n")
         return 130
     return group.main(argv)
