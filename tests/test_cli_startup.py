@@ -214,3 +214,22 @@ def test_a_ctrl_c_python_could_not_raise_during_the_imports_ends_the_command(mon
     assert main(["--version"]) == 130
     assert capsys.readouterr().err == "svgtile: interrupted\n"
     assert sys.unraisablehook is hook  # put back
+
+
+def test_other_unraisable_errors_during_the_imports_reach_the_previous_hook(monkeypatch, capsys):
+    """Only a ^C is held back: any other unraisable error goes to the hook that was there, and
+    the command runs."""
+    import builtins
+
+    real_import, seen = builtins.__import__, []
+
+    def importing(name, *args, **kwargs):
+        if name == "svgtile.cli" and args and args[2] and "group" in args[2]:
+            sys.unraisablehook(type("U", (), {"exc_type": ValueError, "exc_value": ValueError("x"),
+                                              "exc_traceback": None, "err_msg": None, "object": None})())  # fmt: skip
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", importing)
+    monkeypatch.setattr(sys, "unraisablehook", lambda u: seen.append(u.exc_type))
+    assert main(["--version"]) == 0
+    assert seen == [ValueError] and "interrupted" not in capsys.readouterr().err

@@ -31,8 +31,8 @@ def main(argv: list[str] | None = None) -> int:
         else:
             reported(unraisable)
 
-    sys.unraisablehook = hold
     try:
+        sys.unraisablehook = hold  # inside the try: a ^C just after it still puts the old one back
         from svgtile.cli import group
     except KeyboardInterrupt:
         lost.append(KeyboardInterrupt())
