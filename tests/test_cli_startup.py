@@ -195,21 +195,28 @@ def test_subpackages_are_attributes_of_the_package_after_a_plain_import():
     assert out.split() == ["True", "SvgtileError", "refused"]
 
 
+def _unraisable_during_the_group_import(monkeypatch, exc_type: type[BaseException]) -> None:
+    """Make ``from svgtile.cli import group`` report an unraisable ``exc_type`` first, as CPython
+    does for an exception in an import lock's weakref callback."""
+    import builtins
+
+    real_import = builtins.__import__
+    args = type("U", (), {"exc_type": exc_type, "exc_value": exc_type(), "exc_traceback": None, "err_msg": None,
+                          "object": None})()  # fmt: skip
+
+    def importing(name, *rest, **kwargs):
+        if name == "svgtile.cli" and rest and rest[2] and "group" in rest[2]:
+            sys.unraisablehook(args)
+        return real_import(name, *rest, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", importing)
+
+
 def test_a_ctrl_c_python_could_not_raise_during_the_imports_ends_the_command(monkeypatch, capsys):
     """A SIGINT that lands in an import lock's weakref callback is "unraisable": Python printed
     "Exception ignored in …" with a traceback and went on (CI, SIGINT 0.02 s after start).  Here
     the import reports one such ^C, as CPython does, and the command ends as any ^C does."""
-    import builtins
-
-    real_import = builtins.__import__
-
-    def importing(name, *args, **kwargs):
-        if name == "svgtile.cli" and args and args[2] and "group" in args[2]:
-            sys.unraisablehook(type("U", (), {"exc_type": KeyboardInterrupt, "exc_value": KeyboardInterrupt(),
-                                              "exc_traceback": None, "err_msg": None, "object": None})())  # fmt: skip
-        return real_import(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", importing)
+    _unraisable_during_the_group_import(monkeypatch, KeyboardInterrupt)
     hook = sys.unraisablehook
     assert main(["--version"]) == 130
     assert capsys.readouterr().err == "svgtile: interrupted\n"
@@ -219,17 +226,8 @@ def test_a_ctrl_c_python_could_not_raise_during_the_imports_ends_the_command(mon
 def test_other_unraisable_errors_during_the_imports_reach_the_previous_hook(monkeypatch, capsys):
     """Only a ^C is held back: any other unraisable error goes to the hook that was there, and
     the command runs."""
-    import builtins
-
-    real_import, seen = builtins.__import__, []
-
-    def importing(name, *args, **kwargs):
-        if name == "svgtile.cli" and args and args[2] and "group" in args[2]:
-            sys.unraisablehook(type("U", (), {"exc_type": ValueError, "exc_value": ValueError("x"),
-                                              "exc_traceback": None, "err_msg": None, "object": None})())  # fmt: skip
-        return real_import(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", importing)
+    seen = []
+    _unraisable_during_the_group_import(monkeypatch, ValueError)
     monkeypatch.setattr(sys, "unraisablehook", lambda u: seen.append(u.exc_type))
     assert main(["--version"]) == 0
     assert seen == [ValueError] and "interrupted" not in capsys.readouterr().err
