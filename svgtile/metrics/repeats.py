@@ -114,7 +114,7 @@ class Repetition:
 
 def repetition(
     arr: Arrangement, exemplar: Exemplar, stats: Stats, window: shapely.Geometry, *, inside: np.ndarray | None = None,
-    trees: list[cKDTree] | None = None,
+    trees: list[cKDTree] | None = None, room: shapely.Geometry | None = None,
 ) -> Repetition:  # fmt: skip
     """How strongly the arrangement repeats itself beyond what the exemplar shows inside itself.
 
@@ -139,11 +139,18 @@ def repetition(
        one peak split over neighbouring bins is one peak.
     4. ``P_tex(v)``: the fraction of references with at least one same-kind partner whose
        (remaining) displacement falls in ``v`` or one of its 8 neighbouring bins (a ``3q × 3q``
-       square, so rounding at bin edges does not matter).
+       square, so rounding at bin edges does not matter), among the references that have room
+       for one: whose square at ``v`` lies inside ``room`` (the texture's region), as ``P_ex``
+       counts only the exemplar's motifs whose square stays inside it (the same rule: the
+       exemplar scored against itself gives ``P_tex = P_ex``).  With fewer than
+       :data:`REPEAT_EX_MIN` such references the texture cannot show ``v`` and ``P_tex = 0``.
+       (Counting every reference read a region of two tile widths, where half the references
+       have no room one period on, as half as repetitive as it is: FGDC 654's stamped tile, a
+       dot lattice with irregular dashes, scored 0.00 at 2 × 2 tiles and 1.00 at 3 × 3.)
     5. ``P_ex(v)``: the same share in the exemplar's own motifs, unwrapped (a repeating tile is
        not continued across its edges), over the motifs whose ``3q × 3q`` square at ``v`` lies
-       inside the bounding box of the exemplar's input region — the part of the exemplar that overlaps itself when
-       shifted by ``v``.  With fewer than :data:`REPEAT_EX_MIN` such motifs the exemplar cannot
+       inside the bounding box of the exemplar's input region, its centre inside the region
+       itself by as much — the part of the exemplar that overlaps itself when shifted by ``v``.  With fewer than :data:`REPEAT_EX_MIN` such motifs the exemplar cannot
        show ``v`` and ``P_ex = 0``: a displacement as long as the tile (its period stamped) is
        never excused — unless the exemplar has an exact order (step 2): then ``P_ex(v)`` is read
        modulo it, the most the exemplar shows at ``v − t`` for the lattice points ``t`` around
@@ -175,7 +182,9 @@ def repetition(
     before issue 12, ≈ 1 for any texture of a lattice).  Both are kept so that nothing is lost.
 
     ``inside`` : (n,) bool, the motifs in ``window``, if known; ``trees`` : :func:`kind_trees`
-    of ``arr``, if built.
+    of ``arr``, if built; ``room`` : where the texture's motifs may stand (its region; :func:`svgtile.metrics.score`
+    passes it), or None: every reference counts in step 4, room or not (the figure before
+    the room was asked, which reads a texture little larger than the period as less repetitive).
 
     Returns
     -------
@@ -194,6 +203,8 @@ def repetition(
     steps = order_steps(exemplar, s, REPEAT_MIN * s)
     own = tuple((float(x), float(y)) for x, y in steps)
     ref = motif_sample(arr, np.flatnonzero(inside), REPEAT_SAMPLES)
+    inner = _room(room, 1.5 * q) if room is not None else None
+    fits = (lambda shift: inner(arr.xy[ref] + shift)) if inner else None  # which references have room at a shift
     lam = np.bincount(arr.kind[inside], minlength=len(stats.frequency)) / window.area
     chance = float(np.mean(-np.expm1(-lam[arr.kind[ref]] * 9 * q * q)))
 
@@ -213,14 +224,14 @@ def repetition(
     disp = np.concatenate(disp)
     # with no order to leave out, the total's mode is the first peak below (the same bin: the
     # most populated, the first in row-major order on a tie), so its figures are taken there
-    total = _mode_share(who, disp, ref, len(arr), q, reach, chance) if len(steps) else None
+    total = _mode_share(who, disp, ref, len(arr), q, reach, chance, fits) if len(steps) else None
     mine = ~explained(disp, steps, BOX * q) if len(steps) else slice(None)  # no order: nothing to leave out
     who, disp = who[mine], disp[mine]
     cell = np.floor(disp / q).astype(np.int64)
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
     if len(peaks) == 0:  # no displacement left, or none in the half-plane the peaks are taken in
         if total is None:
-            total = _mode_share(who, disp, ref, len(arr), q, reach, chance)
+            total = _mode_share(who, disp, ref, len(arr), q, reach, chance, fits)
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     centres = (peaks + 0.5) * q
     raws, vectors = [], []
@@ -228,7 +239,7 @@ def repetition(
         near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
         has = np.zeros(len(arr), dtype=bool)
         has[who[near]] = True
-        raws.append(float(has[ref].mean()))
+        raws.append(float(has[ref].mean()) if fits is None else _share(has, ref, fits((np.array([mx, my]) + 0.5) * q)))
         vector = disp[near].mean(axis=0)
         vectors.append((float(vector[0]), float(vector[1])))
     # the single mode against chance alone: the figure of issue 12
@@ -386,7 +397,10 @@ def _exemplar_shares(
     ``|v| / m ≥ shortest`` (at most :data:`REPEAT_DIVIDE_MAX`), where ``S(u, e)`` is the share of
     the exemplar's motifs (unwrapped) with a same-kind motif within ``e`` (per axis) of
     ``x + u``, among those whose square ``x + u ± e`` lies inside the exemplar's input region's
-    bounding box (0 where fewer than :data:`REPEAT_EX_MIN` do).  An exemplar that repeats at
+    bounding box and whose point ``x + u`` lies ``e`` inside the region itself (the texture's
+    references are asked the same, :func:`_room`; the box alone counted a disc-shaped
+    exemplar's motifs whose square falls outside the disc, where no partner can stand) (0 where
+    fewer than :data:`REPEAT_EX_MIN` do).  An exemplar that repeats at
     ``u`` to within ``e / m`` shows its order at ``m u`` to within ``e``: rows exact along x
     excuse the texture's partners 2, 3, … steps along a row, out to the tile's width and beyond,
     while a jittered or irregular tile stamped at its period is not excused (its content does
@@ -406,6 +420,12 @@ def _exemplar_shares(
     tx, ty = xy[None, :, 0] + u[:, 0, None], xy[None, :, 1] + u[:, 1, None]
     ee = e[:, None]
     seen = (tx - ee >= x0) & (tx + ee <= x1) & (ty - ee >= y0) & (ty + ee <= y1)
+    region = exemplar.region
+    if region.area < (x1 - x0) * (y1 - y0) * (1.0 - 1e-9):  # not its box (a drawn disc, …): the region itself
+        for each in np.unique(e):
+            rows = np.flatnonzero(e == each)
+            inner = shapely.buffer(region, -each)
+            seen[rows] &= shapely.contains_xy(inner, tx[rows], ty[rows])
     row, col = np.nonzero(seen)
     # one tree over every kind: each kind's motifs moved apart along x by more than any reach
     apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
@@ -562,13 +582,30 @@ def _kind_share(hit: np.ndarray, seen: np.ndarray, onehot: np.ndarray) -> np.nda
     return np.where(sees >= REPEAT_KIND_MIN, hits / np.maximum(sees, 1.0), 0.0)
 
 
+def _room(room: shapely.Geometry, margin: float):
+    """``fits(points)`` → (k,) bool: whether a square of half side ``margin`` around each point,
+    (k, 2) user units, lies inside ``room`` (its centre ``margin`` inside; step 4 of :func:`repetition`)."""
+    inner = shapely.buffer(room, -margin)
+    shapely.prepare(inner)
+    return lambda points: shapely.contains_xy(inner, points[:, 0], points[:, 1])
+
+
+def _share(has: np.ndarray, ref: np.ndarray, fit: np.ndarray) -> float:
+    """``P_tex``: the share of the references ``ref`` that have room (``fit``, (k,) bool) holding a partner
+    (``has``, (n,) bool per motif); 0 where fewer than :data:`REPEAT_EX_MIN` have room."""
+    roomy = ref[fit]
+    return float(has[roomy].mean()) if len(roomy) >= REPEAT_EX_MIN else 0.0
+
+
 def _mode_share(
     who: np.ndarray, disp: np.ndarray, ref: np.ndarray, n: int, q: float, reach: float, chance: float,
+    fits=None,
 ) -> tuple[float, float, tuple[float, float] | None]:  # fmt: skip
     """Steps 3–5 of :func:`repetition`: (corrected, raw, vector) of the displacements given.
 
     ``who`` (p,) the reference of each displacement ``disp`` (p, 2); ``ref`` the references;
-    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0.
+    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0; ``fits(shift)`` (len(ref),)
+    bool, which references have room at a shift (None: every one).
     """
     if len(who) == 0:
         return 0.0, 0.0, None
@@ -588,7 +625,7 @@ def _mode_share(
     near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
     has = np.zeros(n, dtype=bool)
     has[who[near]] = True
-    raw = float(has[ref].mean())
+    raw = float(has[ref].mean()) if fits is None else _share(has, ref, fits((np.array([mx, my]) + 0.5) * q))
     corrected = max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0
     if not near.any():
         return corrected, raw, None
