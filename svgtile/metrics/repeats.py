@@ -51,6 +51,14 @@ REPEAT_PEAKS = 4
 #: The exemplar shows a displacement when at least this many of its motifs, shifted by it, stay
 #: inside its input region (a share of fewer cannot be told from noise: it counts as not shown).
 REPEAT_EX_MIN = 10
+#: The texture's share at a displacement is never taken over fewer references than this (or all
+#: of them, if fewer): short of it, references without room count as without a partner, as every
+#: one did before the room rule (step 4 of :func:`repetition`).  The peaks are the texture's own
+#: most populated bins, so a share over a handful of references with room is the largest of
+#: several draws of noise: random placement over a square one exemplar width wide, 30 seeds of
+#: boulders, gravel, sand and marsh, read 0.09–0.12 on average and over 0.2 on 2–4 seeds with
+#: shares over as few as 10 (benchmarks/README.md "room07").
+REPEAT_ROOM_MIN = 50
 #: The exemplar shows a displacement v also when it repeats at v / m to within 1 / m of the
 #: square (rows: m steps along a row), for whole m with |v| / m at least this many mean spacings …
 REPEAT_DIVIDE = DIVIDE_MIN  # the same divisors auto's stamp_repeats tries
@@ -89,6 +97,7 @@ class Repetition:
         The figure before issue 13: excess over chance at the single most common displacement
         the exemplar's exact order does not explain, blind to repetition the exemplar shows
         inside itself (rows at a free phase, the exemplar against itself: 0.28 for sand).
+        (This and ``repetition_total`` take ``P_tex`` as the figure does, with ``room``.)
     repetition_order_vector : (float, float) or None
         Its displacement, user units.
     repetition_total : float or None
@@ -140,10 +149,12 @@ def repetition(
     4. ``P_tex(v)``: the fraction of references with at least one same-kind partner whose
        (remaining) displacement falls in ``v`` or one of its 8 neighbouring bins (a ``3q × 3q``
        square, so rounding at bin edges does not matter), among the references that have room
-       for one: whose square at ``v`` lies inside ``room`` (the texture's region), as ``P_ex``
-       counts only the exemplar's motifs whose square stays inside it (the same rule: the
-       exemplar scored against itself gives ``P_tex = P_ex``).  With fewer than
-       :data:`REPEAT_EX_MIN` such references the texture cannot show ``v`` and ``P_tex = 0``.
+       for one: whose point ``x + v`` lies ``1.5 q`` inside ``room`` (the texture's region; for
+       a rectangle, the square inside it), as ``P_ex`` counts only the exemplar's motifs whose
+       square stays inside it (the same rule: the exemplar scored against itself, every motif a
+       reference, reads ``P_tex`` = the exemplar's share at ``v`` itself ≤ ``P_ex``, so 0).
+       The share is never taken over fewer than :data:`REPEAT_ROOM_MIN` references (all of
+       them, if fewer): short of that, references without room count as without a partner.
        (Counting every reference read a region of two tile widths, where half the references
        have no room one period on, as half as repetitive as it is: FGDC 654's stamped tile, a
        dot lattice with irregular dashes, scored 0.00 at 2 × 2 tiles and 1.00 at 3 × 3.)
@@ -203,8 +214,7 @@ def repetition(
     steps = order_steps(exemplar, s, REPEAT_MIN * s)
     own = tuple((float(x), float(y)) for x, y in steps)
     ref = motif_sample(arr, np.flatnonzero(inside), REPEAT_SAMPLES)
-    inner = _room(room, 1.5 * q) if room is not None else None
-    fits = (lambda shift: inner(arr.xy[ref] + shift)) if inner else None  # which references have room at a shift
+    roomy = None if room is None else _Room(room, 1.5 * q, arr.xy[ref])
     lam = np.bincount(arr.kind[inside], minlength=len(stats.frequency)) / window.area
     chance = float(np.mean(-np.expm1(-lam[arr.kind[ref]] * 9 * q * q)))
 
@@ -224,22 +234,23 @@ def repetition(
     disp = np.concatenate(disp)
     # with no order to leave out, the total's mode is the first peak below (the same bin: the
     # most populated, the first in row-major order on a tie), so its figures are taken there
-    total = _mode_share(who, disp, ref, len(arr), q, reach, chance, fits) if len(steps) else None
+    total = _mode_share(who, disp, ref, len(arr), q, reach, chance, roomy) if len(steps) else None
     mine = ~explained(disp, steps, BOX * q) if len(steps) else slice(None)  # no order: nothing to leave out
     who, disp = who[mine], disp[mine]
     cell = np.floor(disp / q).astype(np.int64)
     peaks = _peaks(cell, math.ceil(reach / q) + 1, REPEAT_PEAKS)
     if len(peaks) == 0:  # no displacement left, or none in the half-plane the peaks are taken in
         if total is None:
-            total = _mode_share(who, disp, ref, len(arr), q, reach, chance, fits)
+            total = _mode_share(who, disp, ref, len(arr), q, reach, chance, roomy)
         return Repetition(0.0, 0.0, None, *total[::2], own, 0.0, 0.0, None)
     centres = (peaks + 0.5) * q
+    fit = roomy.at(centres) if roomy is not None else [None] * len(peaks)  # (k, r) bool: room at each peak
     raws, vectors = [], []
-    for mx, my in peaks:
+    for (mx, my), fit_k in zip(peaks, fit, strict=True):
         near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
         has = np.zeros(len(arr), dtype=bool)
         has[who[near]] = True
-        raws.append(float(has[ref].mean()) if fits is None else _share(has, ref, fits((np.array([mx, my]) + 0.5) * q)))
+        raws.append(_share(has, ref, fit_k))
         vector = disp[near].mean(axis=0)
         vectors.append((float(vector[0]), float(vector[1])))
     # the single mode against chance alone: the figure of issue 12
@@ -582,30 +593,47 @@ def _kind_share(hit: np.ndarray, seen: np.ndarray, onehot: np.ndarray) -> np.nda
     return np.where(sees >= REPEAT_KIND_MIN, hits / np.maximum(sees, 1.0), 0.0)
 
 
-def _room(room: shapely.Geometry, margin: float):
-    """``fits(points)`` → (k,) bool: whether a square of half side ``margin`` around each point,
-    (k, 2) user units, lies inside ``room`` (its centre ``margin`` inside; step 4 of :func:`repetition`)."""
-    inner = shapely.buffer(room, -margin)
-    shapely.prepare(inner)
-    return lambda points: shapely.contains_xy(inner, points[:, 0], points[:, 1])
+class _Room:
+    """Which references have room for a partner at a shift (step 4 of :func:`repetition`).
+
+    ``room`` the texture's region (shapely, user units; holes and several parts allowed);
+    ``margin`` the square's half side, user units; ``xy`` (r, 2) the references' positions.
+    A reference has room at ``v`` where ``x + v`` lies ``margin`` inside ``room``: its square
+    ``x + v ± margin`` lies inside a rectangle, and a disc of that radius inside any region.
+    """
+
+    def __init__(self, room: shapely.Geometry, margin: float, xy: np.ndarray) -> None:
+        self.inner = shapely.buffer(room, -margin)
+        shapely.prepare(self.inner)
+        self.xy = xy
+
+    def at(self, shifts: np.ndarray) -> np.ndarray:
+        """(k, r) bool: room at each of ``shifts`` (k, 2), user units."""
+        shifts = np.asarray(shifts, np.float64).reshape(-1, 2)
+        p = self.xy[None, :, :] + shifts[:, None, :]
+        return shapely.contains_xy(self.inner, p[..., 0], p[..., 1])
 
 
-def _share(has: np.ndarray, ref: np.ndarray, fit: np.ndarray) -> float:
-    """``P_tex``: the share of the references ``ref`` that have room (``fit``, (k,) bool) holding a partner
-    (``has``, (n,) bool per motif); 0 where fewer than :data:`REPEAT_EX_MIN` have room."""
+def _share(has: np.ndarray, ref: np.ndarray, fit: np.ndarray | None) -> float:
+    """``P_tex``: the share of the references ``ref`` (r,) with a partner (``has``, (n,) bool per
+    motif), among those with room (``fit``, (r,) bool; None: every one, the reading without
+    ``room``), over at least :data:`REPEAT_ROOM_MIN` of them (or r, if fewer)."""
+    if fit is None:
+        return float(has[ref].mean())
     roomy = ref[fit]
-    return float(has[roomy].mean()) if len(roomy) >= REPEAT_EX_MIN else 0.0
+    base = max(len(roomy), min(len(ref), REPEAT_ROOM_MIN))
+    return float(has[roomy].sum() / base) if base else 0.0
 
 
 def _mode_share(
     who: np.ndarray, disp: np.ndarray, ref: np.ndarray, n: int, q: float, reach: float, chance: float,
-    fits=None,
+    roomy: _Room | None = None,
 ) -> tuple[float, float, tuple[float, float] | None]:  # fmt: skip
     """Steps 3–5 of :func:`repetition`: (corrected, raw, vector) of the displacements given.
 
     ``who`` (p,) the reference of each displacement ``disp`` (p, 2); ``ref`` the references;
-    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0; ``fits(shift)`` (len(ref),)
-    bool, which references have room at a shift (None: every one).
+    ``n`` the motif count; ``q`` the bin, ``reach`` R, ``chance`` P0; ``roomy`` which references have
+    room at a shift (None: every one).
     """
     if len(who) == 0:
         return 0.0, 0.0, None
@@ -625,7 +653,7 @@ def _mode_share(
     near = (np.abs(cell[:, 0] - mx) <= 1) & (np.abs(cell[:, 1] - my) <= 1)
     has = np.zeros(n, dtype=bool)
     has[who[near]] = True
-    raw = float(has[ref].mean()) if fits is None else _share(has, ref, fits((np.array([mx, my]) + 0.5) * q))
+    raw = _share(has, ref, None if roomy is None else roomy.at((np.array([mx, my]) + 0.5) * q)[0])
     corrected = max(0.0, (raw - chance) / (1.0 - chance)) if chance < 1 else 0.0
     if not near.any():
         return corrected, raw, None
