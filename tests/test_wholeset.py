@@ -24,7 +24,11 @@ lattice kinds and all — a second site lattice offset inside it (Equinor 40100,
 65100, 80100, 80200), columns of a second kind (30100–30500), a 2 × 2 stamp of a smaller tile
 (11030, 65121) — passes too (15 entries went); auto stamping a tile of jittered or irregular
 content, or rows whose offsets the row step does not explain, still repeats at the period and
-stays listed with that reason.
+stays listed with that reason.  Since 2026-12-07 the texture's share at a displacement counts only
+the motifs with room for a partner there inside the region (:func:`svgtile.metrics.repeats.repetition`
+step 4; before, a motif near the region's far edge counted as one without a partner): three
+entries came (607, 714, 727: patches of the start recurring at 1.3–1.5 periods, where a third to a
+half of the references have no room).
 
 Density and kind mix are measured on the interior (the region shrunk by one tile on every side),
 which :func:`gate_region` makes a whole number of tiles across and down, at least
@@ -96,6 +100,9 @@ KNOWN: dict[tuple[str, str], str] = {
     ("fgdc/682", "repetition"): "0.226 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/686", "kind mix"): "TV 0.083 over shape classes, 0.124 per kind against a fair draw's 0.133 (2026-12-06, auto's tile-scatter: optimize, start patches 0.65 of the period)",
     ("fgdc/723", "repetition"): "0.217 (2026-12-05, auto's tile-scatter: optimize, start patches 0.65 of the period)",
+    ("fgdc/607", "repetition"): "0.245 (2026-12-07, auto's tile-scatter: optimize, start patches 0.65 of the period; partners at (65.2, −20.2) for 0.31 of the references with room for one — 0.156 when every reference counted, room or not)",
+    ("fgdc/714", "repetition"): "0.223 (2026-12-07, auto's tile-scatter: optimize, start patches 0.65 of the period; partners at (70.8, −21.9) for 0.26 of the references with room for one — 0.155 when every reference counted, room or not)",
+    ("fgdc/727", "repetition"): "0.295 (2026-12-07, auto's tile-scatter: optimize, start patches 0.65 of the period; partners at (117.0, 9.5) for 0.33 of the references with room for one — 0.146 when every reference counted, room or not)",
     ("fgdc/605", "coverage"): "1.306 (2026-12-06, auto's tile-scatter: optimize; fill_light fills by density, and the density is in bounds)",
     ("fgdc/606", "coverage"): "1.430 (2026-12-06, auto's tile-scatter: optimize; fill_light fills by density, and the density is in bounds)",
     ("fgdc/684", "coverage"): "2.609 (2026-12-06, auto's tile-scatter: optimize; a tile of dense hatch fragments whose own largest hole is small; fill_light fills by density, and the density is in bounds)",

@@ -327,7 +327,7 @@ def score(
         boxes, sample = plan
         sub = arr.take(_near_boxes(arr, boxes, SAMPLE_HALO * _rarest_spacing(stats)))
         found = structure(exemplar, stats, sub, boxes, inside=in_window(sub, boxes), trees=kind_trees(sub, len(protos)))
-    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees)
+    rep = repetition(arr, exemplar, stats, window, inside=inside, trees=trees, room=region.shape)
     if isinstance(baselines, Future):
         baselines = worker_result(baselines)
     order = measure_likeness(exemplar, stats, arr, inside, baselines=baselines)
