@@ -7,8 +7,8 @@ Run from the repository root::
     SVGTILE_DATA=… python benchmarks/repetition_base_sets.py BASE [--ordered] [engines] [-- prefixes]
 
 ``BASE`` a directory holding a base checkout's ``svgtile/metrics/repeats.py`` (e.g. ``git archive
-a7ae804 svgtile | tar -x -C /tmp/base``); only that module is taken from it (the rest of svgtile
-is this checkout's), so each texture is synthesized once and scored by both figures.  Prefixes
+a7ae804 svgtile | tar -x -C /tmp/base``); only that module is taken from it, with its
+``svgtile/metrics/shown.py`` where it has one (the rest of svgtile is this checkout's), so each texture is synthesized once and scored by both figures.  Prefixes
 are run in the order given (``equinor osm fgdc``).  One line per tile: ``engine base→head``.
 ``--ordered``: only the tiles whose exemplar has an exact order
 (:func:`svgtile.metrics.order.order_steps`): rep13e's change reads nothing else on a repeating
@@ -40,7 +40,18 @@ engines = engines or ["auto", "tile", "random"]
 spec = importlib.util.spec_from_file_location("base_repeats", base_dir / "svgtile/metrics/repeats.py")
 base = importlib.util.module_from_spec(spec)
 sys.modules["base_repeats"] = base  # dataclasses look their module up
-spec.loader.exec_module(base)
+# since room07 the exemplar's side lives in svgtile/metrics/shown.py: the base's own, while its
+# repeats.py is loaded (this checkout's stays bound to this checkout's repeats)
+own_shown = sys.modules.get("svgtile.metrics.shown")
+if (base_dir / "svgtile/metrics/shown.py").is_file():
+    shown_spec = importlib.util.spec_from_file_location("svgtile.metrics.shown", base_dir / "svgtile/metrics/shown.py")
+    sys.modules["svgtile.metrics.shown"] = importlib.util.module_from_spec(shown_spec)
+    shown_spec.loader.exec_module(sys.modules["svgtile.metrics.shown"])
+try:
+    spec.loader.exec_module(base)
+finally:
+    if own_shown is not None:
+        sys.modules["svgtile.metrics.shown"] = own_shown
 for prefix in only:
     for tile, t, ex, stats in motif_tiles([prefix]):
         if ordered and not len(order_steps(ex, spacing(stats), REPEAT_MIN * spacing(stats))):

@@ -2,7 +2,7 @@
 
 On a repeating tile ``P_ex`` reads each kind at its own divisor of a shift, and a row or lattice
 jittered by less than the figure's square as shown at every multiple
-(:func:`svgtile.metrics.repeats._kind_shares`).  Known answers on a hand-made tile of rows — dots
+(:func:`svgtile.metrics.shown._kind_shares`).  Known answers on a hand-made tile of rows — dots
 exact every 2 units, dashes every 5 jittered along their row — and on FGDC 670, the tile that
 made the case: rows of dots 26 to the width between rows of dashes 5 to the width, each dash
 jittered by up to 0.17 along its row.

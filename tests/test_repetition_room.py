@@ -1,9 +1,11 @@
 """The repetition figure asks each reference for room (step 4 of
 :func:`svgtile.metrics.repeats.repetition`): ``P_tex(v)`` is the share of the references whose
-square at ``v`` lies inside the texture's region, as ``P_ex`` is the share of the exemplar's motifs
-whose square stays inside the exemplar.  Counting every reference read a texture two periods wide,
-where half the references have no room one period on, as half as repetitive as it is (FGDC 654's
-stamped tile scored 0.00 at 2 × 2 tiles and 1.00 at 3 × 3).
+point at ``v`` lies 1.5 bins inside the texture's region, as ``P_ex`` is the share of the
+exemplar's motifs whose square stays inside the exemplar; over at least ``REPEAT_ROOM_MIN``
+references (all, if fewer), and 0 with fewer than ``REPEAT_EX_MIN`` with room, as ``P_ex``.
+Counting every reference read a texture two periods wide, where half the references have no room
+one period on, as half as repetitive as it is (FGDC 654's stamped tile scored 0.00 at 2 × 2 tiles
+and 1.00 at 3 × 3).
 """
 
 from __future__ import annotations
@@ -48,6 +50,19 @@ def test_a_stamp_of_irregular_content_is_repetition_two_periods_wide_as_three(ti
         assert blind < 0.6, blind
 
 
+def test_a_stamp_of_few_motifs_is_read_over_all_of_them():
+    # 16 motifs a tile: on 3 × 3 tiles the 16 in the interior all have room one period on and
+    # the share is 16 / 16; on 2 × 2 tiles 32 of 64 have room, short of the 50 the share is
+    # taken over: 32 / 50 (a share over 32 would be 1, over every reference 0.5)
+    ex = exemplar(grid(4, jitter=0.5, seed=3), period=True)
+    stats = analyze(ex)
+    for tiles, share in ((3, 1.0), (2, 32 / 50)):
+        arr, region = stamp(ex, tiles)
+        window, _ = measured_window(ex, region)
+        rep = metrics.repetition(arr, ex, stats, window, room=region.shape)
+        assert rep.repetition_raw == pytest.approx(share), (tiles, rep)
+
+
 def test_a_region_with_a_hole_asks_for_room_around_the_hole():
     # 4 × 4 tiles with the middle 2 × 2 cut out: no motif stands in the hole, and references whose
     # partner would stand there have no room
@@ -78,6 +93,17 @@ def test_random_placement_on_a_small_square_is_not_repetition(name):
         for arr in (synthesize(ex, region, "random", seed=seed, stats=stats).arrangement for seed in range(1, 31))
     )
     assert worst <= 0.2, worst
+
+
+@pytest.mark.parametrize("dots", [12, 20, 30])
+def test_a_small_exemplar_against_itself_is_not_repetition(dots):
+    # where fewer than REPEAT_EX_MIN references have room the exemplar cannot show v (P_ex = 0)
+    # and neither can the texture: a share of partners over min(n, 50) read up to 0.18 here
+    rng = np.random.default_rng(dots)
+    for _ in range(15):
+        ex = exemplar([tuple(p) for p in rng.uniform(1.0, 19.0, (dots, 2))])
+        rep = metrics.repetition(ex.motifs, ex, analyze(ex), ex.region, room=ex.region)
+        assert rep.repetition == 0.0, rep
 
 
 @pytest.mark.parametrize("name", BUNDLED)

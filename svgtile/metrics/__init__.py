@@ -9,7 +9,8 @@ unit and which way is good in the class docstring; :meth:`Score.to_dict` is the 
 * :mod:`~svgtile.metrics.rules` — overlaps, distance-rule violators, orientation arcs;
 * :mod:`~svgtile.metrics.amounts` — density, globally and per window, and the kind mix;
 * :mod:`~svgtile.metrics.pattern` — nearest gaps, pair correlation;
-* :mod:`~svgtile.metrics.repeats` — repetition beyond what the exemplar shows inside itself;
+* :mod:`~svgtile.metrics.repeats` — repetition beyond what the exemplar shows inside itself,
+  and :mod:`~svgtile.metrics.shown` what the exemplar shows at a displacement;
 * :mod:`~svgtile.metrics.order` — the displacements the exemplar's own lattice explains, which
   repetition leaves out;
 * :mod:`~svgtile.metrics.coverage` — the largest empty disc;

@@ -36,7 +36,7 @@ at no common step) give no exact same-kind step; their lattice is not excused.  
 round, when most motifs do share the steps (support ≥ 0.6), the whole lattice is excused, and a
 minority kind's irregular placement repeated at the tile's period goes with it (and, since
 rep13e, its repeats at the period plus a displacement the exemplar shows: ``P_ex`` is read
-modulo the lattice, :func:`svgtile.metrics.repeats._reduced_shares`).  Equinor 41000 and 61000
+modulo the lattice, :func:`svgtile.metrics.shown._reduced_shares`).  Equinor 41000 and 61000
 (70 % support), once read as such a case, are not: their minority kind is triplets on an exact
 lattice of its own, and the tile engine scores 0.000 there since rep13e (0.157 before).  Rows (one
 step) excuse the multiples of the row step only: rows at a fixed spacing but a free phase put

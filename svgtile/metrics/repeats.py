@@ -15,7 +15,7 @@ partners at a whole row offset are as common as motifs thrown at random along a 
 the chance there, not the plane's.  And what the figure cannot resolve it does not charge
 (rep13f): on a repeating tile each kind is read at its own step, and a row or lattice whose
 motifs' offsets from their sites differ by less than the figure's square, at every multiple of its
-step the tile shows, shows the multiples beyond it (:func:`_kind_shares`).
+step the tile shows, shows the multiples beyond it (:func:`~svgtile.metrics.shown._kind_shares`).
 Repetition is what is left: the same cluster of irregular content recurring (a tile jittered
 beyond the square stamped, a patch or a run copied).
 """
@@ -150,6 +150,8 @@ def repetition(
        reference, reads ``P_tex`` = the exemplar's share at ``v`` itself ≤ ``P_ex``, so 0).
        The share is never taken over fewer than :data:`REPEAT_ROOM_MIN` references (all of
        them, if fewer): short of that, references without room count as without a partner.
+       With fewer than :data:`REPEAT_EX_MIN` with room the texture cannot show ``v`` and
+       ``P_tex = 0``, as ``P_ex`` is then.
        (Counting every reference read a region of two tile widths, where half the references
        have no room one period on, as half as repetitive as it is: FGDC 654's stamped tile, a
        dot lattice with irregular dashes, scored 0.00 at 2 × 2 tiles and 1.00 at 3 × 3.)
@@ -163,7 +165,8 @@ def repetition(
        modulo it, the most the exemplar shows at ``v − t`` for the lattice points ``t`` around
        ``v`` (:func:`~svgtile.metrics.shown._reduced_shares`): in a tile that is its exact lattice, kinds and all, a
        partner one period further on is the same neighbour seen again.  On a repeating tile
-       ``P_ex`` is at least :func:`~svgtile.metrics.shown._kind_shares`' reading: each kind at its own divisor of ``v``,
+       ``P_ex`` is at least :func:`~svgtile.metrics.shown._kind_shares`' reading: each kind at
+       its own divisor of ``v``,
        and rows or lattices whose step holds to the square at every multiple the tile shows.
        It is asked only at the peaks with an excess left and at the first (the peak reported
        when none is left), so ``repetition_exemplar`` is the reported peak's, either way.
@@ -364,12 +367,14 @@ class _Room:
 def _share(has: np.ndarray, ref: np.ndarray, fit: np.ndarray | None) -> float:
     """``P_tex``: the share of the references ``ref`` (r,) with a partner (``has``, (n,) bool per
     motif), among those with room (``fit``, (r,) bool; None: every one, the reading without
-    ``room``), over at least :data:`REPEAT_ROOM_MIN` of them (or r, if fewer)."""
+    ``room``), over at least :data:`REPEAT_ROOM_MIN` of them (or r, if fewer); 0 where fewer than
+    :data:`REPEAT_EX_MIN` have room."""
     if fit is None:
         return float(has[ref].mean())
     roomy = ref[fit]
-    base = max(len(roomy), min(len(ref), REPEAT_ROOM_MIN))
-    return float(has[roomy].sum() / base) if base else 0.0
+    if len(roomy) < REPEAT_EX_MIN:  # the texture cannot show v, as the exemplar cannot (step 5)
+        return 0.0
+    return float(has[roomy].sum() / max(len(roomy), min(len(ref), REPEAT_ROOM_MIN)))
 
 
 def _mode_share(
