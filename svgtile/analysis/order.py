@@ -493,7 +493,7 @@ def is_period(g: np.ndarray, period: tuple[float, float], tol: float) -> bool:
 #: share (floating-point slack, not a tolerance for jittered motifs).
 WHOLE = 1e-9
 #: Shortest divisor step tried for a tile's period, in mean spacings, and the most divisors
-#: tried; the repetition figure tries the same (:mod:`svgtile.metrics.repeats` takes them from
+#: tried; the repetition figure tries the same (:mod:`svgtile.metrics.shown` takes them from
 #: here as ``REPEAT_DIVIDE`` and ``REPEAT_DIVIDE_MAX``).
 DIVIDE_MIN, DIVIDE_MAX = 0.5, 64
 #: A period shorter than this many mean spacings is the pattern's own lattice (a tile of one or

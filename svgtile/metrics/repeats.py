@@ -34,16 +34,13 @@ from svgtile.analysis.stats import Stats
 from svgtile.core.arrangement import Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.metrics.order import BOX, EXACT, explained, order_steps
-from svgtile.metrics.shown import (  # noqa: F401  (the exemplar's side, step 5; re-exported for its tests)
+from svgtile.metrics.shown import (  # noqa: F401  (the exemplar's side, step 5; _exemplar_shares re-exported for its tests)
     REPEAT_DIVIDE,
-    REPEAT_DIVIDE_MAX,
     REPEAT_EX_MIN,
-    REPEAT_KIND_MIN,
-    REPEAT_RESOLVED,
-    _divisors,
     _exemplar_shares,
     _kind_shares,
     _reduced_shares,
+    inset,
 )
 from svgtile.metrics.window import exemplar_size, in_window, motif_sample, spacing
 
@@ -353,8 +350,7 @@ class _Room:
     """
 
     def __init__(self, room: shapely.Geometry, margin: float, xy: np.ndarray) -> None:
-        self.inner = shapely.buffer(room, -margin)
-        shapely.prepare(self.inner)
+        self.inner = inset(room, margin)
         self.xy = xy
 
     def at(self, shifts: np.ndarray) -> np.ndarray:

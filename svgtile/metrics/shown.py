@@ -126,8 +126,7 @@ def _exemplar_shares(
     if region.area < (x1 - x0) * (y1 - y0) * (1.0 - 1e-9):  # not its box (a drawn disc, …): the region itself
         for each in np.unique(e):
             rows = np.flatnonzero(e == each)
-            inner = shapely.buffer(region, -each)
-            seen[rows] &= shapely.contains_xy(inner, tx[rows], ty[rows])
+            seen[rows] &= shapely.contains_xy(inset(region, each), tx[rows], ty[rows])
     row, col = np.nonzero(seen)
     # one tree over every kind: each kind's motifs moved apart along x by more than any reach
     apart = 4 * (x1 - x0 + y1 - y0 + np.abs(shifts).max() + half) + 1
@@ -141,6 +140,16 @@ def _exemplar_shares(
     share = np.where(eligible >= REPEAT_EX_MIN, hits / np.maximum(eligible, 1), 0.0)
     np.maximum.at(out, peak, share)
     return out
+
+
+def inset(region: shapely.Geometry, margin: float) -> shapely.Geometry:
+    """The part of ``region`` (user units) more than ``margin`` inside it, prepared: a point
+    there has room for its disc of radius ``margin`` (its square, in a rectangle).  The room test
+    of both sides of the repetition figure: the exemplar's motifs here, the texture's references
+    in :class:`svgtile.metrics.repeats._Room`."""
+    inner = shapely.buffer(region, -margin)
+    shapely.prepare(inner)
+    return inner
 
 
 def _divisors(shifts: np.ndarray, shortest: float) -> tuple[np.ndarray, np.ndarray]:
