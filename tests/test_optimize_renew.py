@@ -48,6 +48,15 @@ def test_the_worst_of_their_neighbourhood_over_the_factor_leave_one_of_a_tie():
     assert not renewed(np.ones(9), chain(9), xy, 2.0, side=100.0).any()
 
 
+def test_an_even_window_takes_the_mean_of_its_two_middle_costs():
+    """Four costs 1, 1, 3, 9: the median is 2, not the lower (1) or upper (3) middle."""
+    cost = np.array([1.0, 3.0, 1.0, 9.0])
+    xy = np.c_[np.arange(4.0), np.zeros(4)]
+    alone = np.full((4, 1), -1)  # no neighbours: only the factor decides
+    assert np.flatnonzero(renewed(cost, alone, xy, 1.4, side=100.0)).tolist() == [1, 3]  # 3 > 2.8, 9 > 2.8
+    assert np.flatnonzero(renewed(cost, alone, xy, 1.6, side=100.0)).tolist() == [3]  # 3 < 3.2
+
+
 def test_each_window_has_its_own_median():
     """The same cost leaves where its window matches well and stays where its window matches
     badly: the median is the window's, not the texture's (an edit of the region would otherwise
@@ -96,6 +105,22 @@ def test_renewal_raises_the_likeness_of_a_drawn_exemplar(name):
             assert 0.9 <= m.density_ratio <= 1.1
             got[renew].append(m.likeness)
     assert np.mean(got[2.0]) >= np.mean(got[0.0]) + 0.03, got
+
+
+def test_renewal_runs_on_the_start_only_and_only_where_it_can(monkeypatch):
+    """RENEW_ROUNDS rounds before the first assignment; none with one iteration (nothing would
+    settle what it inserts), with two samples per motif, or with ``renew`` 0."""
+    import svgtile.engines.optimize.solver as solver
+
+    calls = []
+    real = solver.renewed
+    monkeypatch.setattr(solver, "renewed", lambda *a, **k: calls.append(len(a[0])) or real(*a, **k))
+    ex, stats, region = _square("scrub")
+    for params, rounds in (({}, solver.RENEW_ROUNDS), ({"passes": 1}, 0), ({"renew": 0.0}, 0),
+                           ({"elongated": 1.0}, 0)):  # fmt: skip
+        calls.clear()
+        synthesize(ex, region, "optimize", seed=1, stats=stats, params=params)
+        assert len(calls) == rounds, params
 
 
 def test_the_default_renews_and_a_repeating_tile_is_not_renewed():

@@ -93,10 +93,11 @@ class OptimizeParams(EngineParams):
         How far each start patch reaches past its cell, a fraction of the cell (on a repeating
         tile the solver refills, :data:`REFILL_OVERLAP` instead).
     renew : float ≥ 0
-        On a drawn exemplar, each iteration but the first and last removes the motifs whose
-        neighbourhood matches over ``renew`` times as badly as their window's median and worst
-        among their neighbours, and insertion refills what the neighbourhoods predict
-        (:class:`.solver.Settings`; 0: off, the paper's fixed count).
+        On a drawn exemplar (with ``insert``, one sample per motif, ``passes`` ≥ 2), the start is
+        renewed before the first assignment: in each of :data:`.solver.RENEW_ROUNDS` rounds the
+        motifs whose neighbourhood matches over ``renew`` times as badly as their window's median
+        and worst among their neighbours leave, and insertion adds what the neighbourhoods
+        predict (:class:`.solver.Settings`; 0: off, the paper's fixed count).
     anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
     """
 

@@ -9,9 +9,10 @@
 
 The energy ``E = Σ_o min_i |n(s_o) − n(s_i)|²`` (§3.2–§4), reported per iteration as its mean
 per element (squared exemplar spacings), is that of the search of each iteration, i.e. of the
-positions the previous iteration left.  The element count is kept (as in the paper), unless
-``Settings.insert``: then elements the neighbourhoods predict where none stands are added
-(:mod:`.insert`).
+positions the previous iteration left (the first: of the start, after renewal if it renews).  The
+element count is kept (as in the paper), unless ``Settings.insert``: then elements the
+neighbourhoods predict where none stands are added (:mod:`.insert`); or ``Settings.renew``: then
+the start's worst-matched elements are first removed and what the neighbourhoods predict inserted.
 """
 
 from __future__ import annotations
@@ -46,7 +47,9 @@ from svgtile.engines.optimize.search import (
 #: (the engine contract's edit stability on gravel: 0.54 of the far motifs unchanged, 0.95 asked).
 #: On the start only, 2 rounds: 0.98 (0.97 without renewal); the ten bundled exemplars, seeds
 #: 1–3, mean L 0.867 → 0.906 (every iteration: 0.923; 1 round 0.893, 3 and 5 rounds 0.906 and
-#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).
+#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).  What it costs:
+#: density where insertion puts back fewer than left (scrub 1.01 → 0.90–0.91 of ρ) and gravel's
+#: kind mix on two seeds of three (TV 0.094, 0.059).
 RENEW_ROUNDS = 2
 
 
@@ -123,7 +126,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
 
     Returns
     -------
-    the refined arrangement (same motif count, rounded to the output precision, no conflicts),
+    the refined arrangement (the start's motif count unless it inserts or renews, rounded to the
+    output precision, no conflicts),
     and the mean energy per element at each iteration's search (squared spacings)
     """
     energies: list[float] = []
@@ -169,7 +173,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             else:
                 cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
             match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
-        # renewal (the start only, before the first assignment), then insertion: each searched again
+        # renewal (the start only, before the first assignment; with one iteration there is no
+        # later one to settle what it inserts), then insertion: each searched again
         renewing = s.renew > 0 and lay is None and it == 0 and iterations > 1
         for _ in range(RENEW_ROUNDS if renewing else 1):
             if renewing:
@@ -180,8 +185,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             if renewing or (s.insert and lay is None and 0 < it < iterations - 1):
                 grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
                 if len(chosen):  # the new elements searched from their predicted samples
-                    arr, known, lax, grown = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
-                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, grown, samples, exemplar, flow, s)
+                    arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
+                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, grown_match, samples, exemplar, flow, s)
         extra = np.zeros(len(sarr))
         if domain is not None:
             match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
@@ -213,8 +218,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
 def _searched(arr: Arrangement, match: np.ndarray, samples: Samples, exemplar: Exemplar, flow: FlowField | None,
               s: Settings):  # fmt: skip
     """The search of §4.2 on ``arr`` (one sample per motif) from the k-coherence candidates of
-    ``match`` (n,): ``arr``, its local turn, neighbourhoods, candidates, and the search's match,
-    cost and slots."""
+    ``match`` (n,): ``arr`` (the searched arrangement, as the loop names it), its local turn,
+    neighbourhoods, candidates, and the search's match, cost and slots."""
     turn = local_turn(flow, arr.xy)
     hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
     cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
@@ -236,9 +241,11 @@ def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, 
 
     Returns
     -------
-    (n,) bool: over ``factor`` times its window's median and above every neighbour's ``(cost,
-    index)``, so that of two neighbours at most one leaves (the other's neighbourhood still
-    predicts where it stood).
+    (n,) bool: over ``factor`` times its window's median (floored at 10⁻⁶ squared spacings) and
+    above every one of its neighbours by ``(cost, index)``, so that of two elements in each
+    other's neighbourhood at most one leaves (the other's neighbourhood still predicts where it
+    stood).  Neighbourhoods are not symmetric: a pair where only one is the other's neighbour may
+    both leave (2–5 pairs a round on gravel, renew14).
     """
     cells = np.floor(xy / side).astype(np.int64)
     _, window = np.unique(cells, axis=0, return_inverse=True)
@@ -248,7 +255,7 @@ def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, 
     start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
     size = np.diff(np.r_[start, len(w)])
     lo, hi = cost[order[start + (size - 1) // 2]], cost[order[start + size // 2]]
-    median = 0.5 * (lo + hi)
+    median = np.maximum(0.5 * (lo + hi), 1e-6)
     j = np.maximum(index, 0)
     i = np.arange(len(cost))[:, None]
     above = (index < 0) | (cost[:, None] > cost[j]) | ((cost[:, None] == cost[j]) & (i > j))
