@@ -70,8 +70,9 @@ def test_two_samples_keep_dashes_along_their_rows_better_than_one():
     for elongated in (0.0, ELONGATED):
         got[elongated] = np.mean([
             _misalignment(synthesize(ex, Region.rectangle(150, 150), "optimize", seed=seed, stats=stats,
-                                     params={"elongated": elongated}).arrangement, dash)
+                                     params={"elongated": elongated, "renew": 0.0}).arrangement, dash)
             for seed in (1, 2, 3)
         ])  # fmt: skip
-    # measured 6.9° with one sample per dash, 5.9° with two
+    # measured 6.9° with one sample per dash, 5.9° with two; the layouts compared without renewal,
+    # which re-seats one-sample motifs only (with it, one sample a dash: 4.4°, renew14)
     assert got[ELONGATED] < got[0.0] - 0.5, got

@@ -92,6 +92,12 @@ class OptimizeParams(EngineParams):
     start_overlap : float ≥ 0
         How far each start patch reaches past its cell, a fraction of the cell (on a repeating
         tile the solver refills, :data:`REFILL_OVERLAP` instead).
+    renew : float ≥ 0
+        On a drawn exemplar (with ``insert``, one sample per motif, ``passes`` ≥ 2), the start is
+        renewed before the first assignment: in each of :data:`.solver.RENEW_ROUNDS` rounds the
+        motifs whose neighbourhood matches over ``renew`` times as badly as their window's median
+        and worst among their neighbours leave, and insertion adds what the neighbourhoods
+        predict (:class:`.solver.Settings`; 0: off, the paper's fixed count).
     anchor, sweeps, similar, alpha, domain, elongated, insert : solver settings (:class:`.solver.Settings`)
     """
 
@@ -108,6 +114,7 @@ class OptimizeParams(EngineParams):
     domain: float = 1.0
     elongated: float = 0.0
     insert: bool = True
+    renew: float = 2.0
 
     def __post_init__(self) -> None:
         if not 0 <= self.passes <= 100:
@@ -117,14 +124,15 @@ class OptimizeParams(EngineParams):
         if not (self.start_cell > 0 and self.start_overlap >= 0):
             raise ParameterError("start_cell must be positive and start_overlap at least 0")
         if not (self.anchor > 0 and self.sweeps >= 1 and self.similar >= 0 and self.alpha >= 0
-                and self.domain >= 0 and self.elongated >= 0):
-            raise ParameterError("anchor must be positive, sweeps at least 1, similar, alpha, domain and elongated at least 0")
+                and self.domain >= 0 and self.elongated >= 0 and self.renew >= 0):
+            raise ParameterError("anchor must be positive, sweeps at least 1, similar, alpha, domain, elongated and renew "
+                                 "at least 0")
 
     def settings(self) -> Settings:
         from svgtile.engines.optimize.solver import Settings
 
         return Settings(self.neighbourhood, self.alpha, self.similar, self.anchor, self.sweeps, self.domain,
-                        self.elongated, self.insert)
+                        self.elongated, self.insert, renew=self.renew)
 
 
 def start_side(exemplar: Exemplar, start_cell: float, refill: bool) -> float:
@@ -239,7 +247,11 @@ class OptimizeEngine:
         # a drawn exemplar's start is off its kind mix (its windows take its middle more often
         # than its edges, :func:`.init.thin`): thinned by count, its mix brought back as it goes
         drawn = ex.period is None
-        settings = replace(p.settings(), insert=refill, rebalance=drawn)
+        # a drawn exemplar's start also renews its worst-matched motifs, insertion refilling them;
+        # on a repeating tile the refill copies its neighbours' stretch of the tile, and the
+        # repeats that makes outweigh the likeness (benchmarks/README.md, renew14)
+        renew = p.renew if drawn and p.insert else 0.0
+        settings = replace(p.settings(), insert=refill, rebalance=drawn, renew=renew)
         ctx.progress("patches", 0.0)
         cell = start_side(ex, p.start_cell, refill)
         # the tile itself (which has no cells) is its motifs' sources; MAX_CELL's cap is SEEDED spacings exactly

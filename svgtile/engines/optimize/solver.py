@@ -9,9 +9,10 @@
 
 The energy ``E = Σ_o min_i |n(s_o) − n(s_i)|²`` (§3.2–§4), reported per iteration as its mean
 per element (squared exemplar spacings), is that of the search of each iteration, i.e. of the
-positions the previous iteration left.  The element count is kept (as in the paper), unless
-``Settings.insert``: then elements the neighbourhoods predict where none stands are added
-(:mod:`.insert`).
+positions the previous iteration left (the first: of the start, after renewal if it renews).  The
+element count is kept (as in the paper), unless ``Settings.insert``: then elements the
+neighbourhoods predict where none stands are added (:mod:`.insert`); or ``Settings.renew``: then
+the start's worst-matched elements are first removed and what the neighbourhoods predict inserted.
 """
 
 from __future__ import annotations
@@ -39,6 +40,18 @@ from svgtile.engines.optimize.search import (
     search,
 )
 
+#: Rounds of renewal (``Settings.renew``) on the start, before the first assignment.  Each
+#: round's removals and insertions depend on the neighbourhoods the round before left, so the
+#: reach of an edit of the region grows with the rounds; and renewing in every iteration (its
+#: insertions then follow the moves of each assignment) spread an edit over six exemplar widths
+#: (the engine contract's edit stability on gravel: 0.54 of the far motifs unchanged, 0.95 asked).
+#: On the start only, 2 rounds: 0.98 (0.97 without renewal); the ten bundled exemplars, seeds
+#: 1–3, mean L 0.867 → 0.906 (every iteration: 0.923; 1 round 0.893, 3 and 5 rounds 0.906 and
+#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).  What it costs:
+#: density where insertion puts back fewer than left (scrub 1.01 → 0.90–0.91 of ρ) and gravel's
+#: kind mix on two seeds of three (TV 0.094, 0.059).
+RENEW_ROUNDS = 2
+
 
 @dataclass(frozen=True)
 class Settings:
@@ -65,6 +78,14 @@ class Settings:
         exemplar, :func:`.init.patch_start`); ``--refine`` holds the mix where it is.  The
         energy is then the energy under the exemplar's mix: the first assignments raise it as
         they bring the mix back, later ones lower it (gravel's start: 1.16, 1.176, 1.147, 1.118).
+    renew : the first search is followed by :data:`RENEW_ROUNDS` rounds of renewal: the elements
+        whose cost (eq. (1), their best match's) is over ``renew`` times the median cost of
+        their world-anchored window (:data:`.insert.WINDOW` spacings) and the highest of their
+        neighbourhood (:func:`renewed`) are removed, and insertion (:mod:`.insert`) puts back
+        what the remaining neighbourhoods predict (0: off; one sample per motif only).  Not in
+        the paper, whose element count is its start's: search and assignment move an element
+        but never re-seat it, and at the seams of the start's patches the descent stops in
+        configurations no exemplar neighbourhood has (benchmarks/README.md, seams14, renew14).
     """
 
     neighbours: int = 6
@@ -76,6 +97,7 @@ class Settings:
     elongated: float = 0.0
     insert: bool = False
     rebalance: bool = False
+    renew: float = 0.0
 
 
 def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
@@ -104,7 +126,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
 
     Returns
     -------
-    the refined arrangement (same motif count, rounded to the output precision, no conflicts),
+    the refined arrangement (the start's motif count unless it inserts or renews, rounded to the
+    output precision, no conflicts),
     and the mean energy per element at each iteration's search (squared spacings)
     """
     energies: list[float] = []
@@ -150,15 +173,20 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             else:
                 cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
             match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
-        if s.insert and lay is None and 0 < it < iterations - 1:
-            grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
-            if len(chosen):  # the grown output searched again, the new elements from their predicted samples
-                arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
-                sarr = arr
-                turn = local_turn(flow, sarr.xy)
-                hoods = output_neighbourhoods(sarr.xy, sarr.kind, s.neighbours, samples.spacing, turn)
-                cand = coherent_candidates(samples, hoods, grown_match, lambda q: wrap(q, exemplar))
-                match, cost, slots = search(samples, hoods, sarr.kind, cand, s.alpha)
+        # renewal (the start only, before the first assignment; with one iteration there is no
+        # later one to settle what it inserts), then insertion: each searched again
+        renewing = s.renew > 0 and lay is None and it == 0 and iterations > 1
+        for _ in range(RENEW_ROUNDS if renewing else 1):
+            if renewing:
+                drop = renewed(cost, hoods.index, sarr.xy, s.renew, WINDOW * samples.spacing)
+                if drop.any():
+                    arr, known, lax, match = _kept(arr, ~drop, known, lax, match)
+                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, match, samples, exemplar, flow, s)
+            if renewing or (s.insert and lay is None and 0 < it < iterations - 1):
+                grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
+                if len(chosen):  # the new elements searched from their predicted samples
+                    arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
+                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, grown_match, samples, exemplar, flow, s)
         extra = np.zeros(len(sarr))
         if domain is not None:
             match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
@@ -185,6 +213,65 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
             new = _motifs(lay, arr, new, owner)
         arr, known = settle(arr, new.quantized(DECIMALS), exemplar, stats, region, boundary, known, lax)
     return arr, energies
+
+
+def _searched(arr: Arrangement, match: np.ndarray, samples: Samples, exemplar: Exemplar, flow: FlowField | None,
+              s: Settings):  # fmt: skip
+    """The search of §4.2 on ``arr`` (one sample per motif) from the k-coherence candidates of
+    ``match`` (n,): ``arr`` (the searched arrangement, as the loop names it), its local turn,
+    neighbourhoods, candidates, and the search's match, cost and slots."""
+    turn = local_turn(flow, arr.xy)
+    hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
+    cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
+    match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
+    return arr, turn, hoods, cand, match, cost, slots
+
+
+def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, side: float) -> np.ndarray:
+    """The elements the renewal step removes (``Settings.renew``).
+
+    Parameters
+    ----------
+    cost : (n,) float, each element's eq. (1) cost, squared spacings
+    index : (n, k) int, each element's neighbours (−1 absent)
+    xy : (n, 2) float, positions, user units
+    factor : how many times its window's median cost an element's must exceed
+    side : side of the world-anchored windows, user units (a median over the whole texture would
+        let an edit anywhere change the removals everywhere: the engine contract's edit stability)
+
+    Returns
+    -------
+    (n,) bool: over ``factor`` times its window's median (floored at 10⁻⁶ squared spacings) and
+    above every one of its neighbours by ``(cost, index)``, so that of two elements in each
+    other's neighbourhood at most one leaves (the other's neighbourhood still predicts where it
+    stood).  Neighbourhoods are not symmetric: a pair where only one is the other's neighbour may
+    both leave (2–5 pairs a round on gravel, renew14).
+    """
+    cells = np.floor(xy / side).astype(np.int64)
+    _, window = np.unique(cells, axis=0, return_inverse=True)
+    window = window.ravel()
+    order = np.lexsort((cost, window))
+    w = window[order]
+    start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
+    size = np.diff(np.r_[start, len(w)])
+    lo, hi = cost[order[start + (size - 1) // 2]], cost[order[start + size // 2]]
+    median = np.maximum(0.5 * (lo + hi), 1e-6)
+    j = np.maximum(index, 0)
+    i = np.arange(len(cost))[:, None]
+    above = (index < 0) | (cost[:, None] > cost[j]) | ((cost[:, None] == cost[j]) & (i > j))
+    return (cost > factor * median[window]) & above.all(axis=1)
+
+
+def _kept(arr: Arrangement, keep: np.ndarray, known: np.ndarray, lax: np.ndarray, match: np.ndarray):
+    """``arr``'s elements in ``keep`` (n,) bool, in their order (reading order stays), with the
+    conflict codes ``known`` among them renumbered and ``lax`` (n,) and ``match`` (n,) carried along."""
+    n = len(arr)
+    where = np.cumsum(keep) - 1
+    i, j = known // n, known % n
+    ok = keep[i] & keep[j]
+    m = int(keep.sum())
+    codes = np.sort(where[i[ok]] * m + where[j[ok]])
+    return arr.take(np.flatnonzero(keep)), codes, lax[keep], match[keep]
 
 
 def _reading_order(grown: Arrangement, n: int, known: np.ndarray, lax: np.ndarray, match: np.ndarray):
