@@ -77,6 +77,22 @@ def test_holes_are_filled_up_to_rho_the_best_ranked_first():
     assert got == list(lack) and taken.sum() == len(holes)
 
 
+def test_by_count_each_motif_counts_one_whatever_its_footprint():
+    """Renewal's insertion on a drawn exemplar caps by count (its start is thinned by count): two
+    windows each lacking one dot take a dot twice the size by count, and refuse it by area (its
+    footprint is four dots', the room one dot's)."""
+    ex, stats, full = lattice()
+    holes = np.array([3 * N + 3, 8 * N + 9])  # windows (1, 1) and (3, 2)
+    arr = dots(np.delete(full, holes, axis=0))
+    big = Arrangement(np.zeros(2, int), full[holes], np.zeros(2), np.full(2, 2.0)).quantized(DECIMALS)
+    region = Region.rectangle(N * STEP, N * STEP)
+    rank = np.arange(2, dtype=float)
+    assert not capped(arr, big, rank, ex, stats, region, window=WINDOW).any()
+    assert capped(arr, big, rank, ex, stats, region, window=WINDOW, by_count=True).all()
+    # and a full window takes nothing by count either
+    assert not capped(dots(full), big, rank, ex, stats, region, window=WINDOW, by_count=True).any()
+
+
 def test_the_cap_at_a_place_does_not_depend_on_how_far_the_region_extends():
     """World-anchored windows: growing the region leaves the decisions inside the old one as
     they were (the engine contract's edit stability)."""

@@ -53,7 +53,7 @@ _TIE = 75  # hash stream: ties between equally voted bins
 
 def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.ndarray, slots: np.ndarray,
            exemplar: Exemplar, stats: Stats, region: Region, boundary: str, *,
-           key: int) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
+           key: int, by_count: bool = False) -> tuple[Arrangement, np.ndarray]:  # fmt: skip
     """``arr`` with elements added where its neighbourhoods predict one and none stands.
 
     Parameters
@@ -63,6 +63,8 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
     hoods, match, slots : the search of ``arr``'s positions: its neighbourhoods, (n,) each
         element's exemplar sample and (n, k) the exemplar slot each neighbour is paired with
     key : the run's key
+    by_count : cap each window at the exemplar's motifs per unit area, not ρ (:func:`capped`;
+        renewal's insertion on a drawn exemplar, whose start is thinned by count)
 
     Returns
     -------
@@ -135,13 +137,15 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
     # one element a bin: its best kept candidate
     add = add[np.lexsort((priority[m:][add], bin_of[add]))]
     add = add[np.r_[True, bin_of[add][1:] != bin_of[add][:-1]]] if len(add) else add
-    add = add[capped(arr, new.take(add), -priority[m:][add], exemplar, stats, region, window=WINDOW * spacing)]
+    add = add[capped(arr, new.take(add), -priority[m:][add], exemplar, stats, region, window=WINDOW * spacing,
+                     by_count=by_count)]  # fmt: skip
     return Arrangement.concat([arr, new.take(add)]), chosen[add]
 
 
 def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region,
-           *, window: float) -> np.ndarray:  # fmt: skip
-    """(m,) bool: the elements of ``new`` added so that no window is filled past ρ.
+           *, window: float, by_count: bool = False) -> np.ndarray:  # fmt: skip
+    """(m,) bool: the elements of ``new`` added so that no window is filled past ρ (``by_count``:
+    holds no more than the exemplar's motifs per unit area, each motif counting 1).
 
     The plane is cut into world-anchored square windows of side ``window``; a window's room is
     ``ρ · area(window ∩ region)`` less the footprint area of the motifs of ``arr`` whose centroid
@@ -156,6 +160,8 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     new : (m motifs) the candidates, no conflict with ``arr`` nor among themselves
     rank : (m,) float, the higher the sooner a candidate is taken (unique)
     window : side of the windows, user units
+    by_count : the room in motifs (``area(window ∩ region)`` times the exemplar's motifs per unit
+        area, less the motifs there), each candidate taking 1
 
     Returns
     -------
@@ -167,7 +173,8 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     ids, which = np.unique(np.floor(new.xy / window).astype(np.int64), axis=0, return_inverse=True)
     which = which.ravel()
     boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
-    room = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
+    inside = shapely.area(shapely.intersection(boxes, region.shape))
+    room = inside * (len(exemplar.motifs) / exemplar.region.area if by_count else stats.density)
     # the output's cover of those windows: its motifs' windows looked up among ``ids``; a motif
     # whose centroid lies outside the region (kept by the boundary mode) covers no window's
     # ``window ∩ region``, as the density figure counts
@@ -175,9 +182,9 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     pos = np.searchsorted(_keys(ids), _keys(cell))
     hit = (pos < len(ids)) & (_keys(ids)[np.minimum(pos, len(ids) - 1)] == _keys(cell))
     hit &= shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
-    room -= np.bincount(pos[hit], weights=footprint_areas(arr.take(np.flatnonzero(hit)), exemplar.prototypes),
-                        minlength=len(ids))  # fmt: skip
-    area = footprint_areas(new, exemplar.prototypes)
+    covers = np.ones(int(hit.sum())) if by_count else footprint_areas(arr.take(np.flatnonzero(hit)), exemplar.prototypes)
+    room -= np.bincount(pos[hit], weights=covers, minlength=len(ids))
+    area = np.ones(m) if by_count else footprint_areas(new, exemplar.prototypes)
     order = np.lexsort((-rank, which))  # by window, best first
     w, a = which[order], area[order]
     start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]

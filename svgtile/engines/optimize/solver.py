@@ -47,9 +47,12 @@ from svgtile.engines.optimize.search import (
 #: (the engine contract's edit stability on gravel: 0.54 of the far motifs unchanged, 0.95 asked).
 #: On the start only, 2 rounds: 0.98 (0.97 without renewal); the ten bundled exemplars, seeds
 #: 1–3, mean L 0.867 → 0.906 (every iteration: 0.923; 1 round 0.893, 3 and 5 rounds 0.906 and
-#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).  What it costs:
-#: density where insertion puts back fewer than left (scrub 1.01 → 0.90–0.91 of ρ) and gravel's
-#: kind mix on two seeds of three (TV 0.094, 0.059).
+#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).  Renewal's insertion
+#: is capped by count, as a drawn exemplar's start is thinned (:func:`.init.thin`): capped by area
+#: it refilled 16 of scrub's 136 removals in the first round (the start's kinds, before the
+#: assignments bring the mix back, cover more than ρ), and the texture ended at 0.90 of ρ; by
+#: count 172 of 136 + 131, density / ρ 1.04, and the bundled exemplars' mean L 0.911, issue 14's
+#: bounds on 24 of 30 runs (renew14c).
 RENEW_ROUNDS = 2
 
 
@@ -81,8 +84,9 @@ class Settings:
     renew : the first search is followed by :data:`RENEW_ROUNDS` rounds of renewal: the elements
         whose cost (eq. (1), their best match's) is over ``renew`` times the median cost of
         their world-anchored window (:data:`.insert.WINDOW` spacings) and the highest of their
-        neighbourhood (:func:`renewed`) are removed, and insertion (:mod:`.insert`) puts back
-        what the remaining neighbourhoods predict (0: off; one sample per motif only).  Not in
+        neighbourhood (:func:`renewed`) are removed, and insertion (:mod:`.insert`, capped by
+        count) puts back what the remaining neighbourhoods predict (0: off; one sample per
+        motif only).  Not in
         the paper, whose element count is its start's: search and assignment move an element
         but never re-seat it, and at the seams of the start's patches the descent stops in
         configurations no exemplar neighbourhood has (benchmarks/README.md, seams14, renew14).
@@ -183,7 +187,8 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
                     arr, known, lax, match = _kept(arr, ~drop, known, lax, match)
                     sarr, turn, hoods, cand, match, cost, slots = _searched(arr, match, samples, exemplar, flow, s)
             if renewing or (s.insert and lay is None and 0 < it < iterations - 1):
-                grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key)
+                grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key,
+                                       by_count=renewing)  # fmt: skip
                 if len(chosen):  # the new elements searched from their predicted samples
                     arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
                     sarr, turn, hoods, cand, match, cost, slots = _searched(arr, grown_match, samples, exemplar, flow, s)
