@@ -108,8 +108,8 @@ def test_far_motifs_survive_an_edit_of_the_region(name):
 
 
 @pytest.mark.xfail(strict=True, reason="optimize: 0.498 of the far motifs unchanged (0.606 without renewal; the figure "
-                   "swings with any change of the engine); the contract's case above (gravel, seed 3) is one of 3 in 18 where "
-                   "it holds (benchmarks/README.md, renew14)")
+                   "swings with any change of the engine); the contract's case above (gravel, seed 3) is one of 2 in the 9 "
+                   "cases of benchmarks/README.md renew14c where it holds")
 def test_optimize_keeps_far_motifs_beyond_the_one_case():
     """The contract's edit on another drawn exemplar and seed: a known miss of the optimize engine."""
     stable, far = edit_stability(REPO / "exemplars" / "breccia-plain.svg", radius_widths=4.0, engine="optimize", seed=1)

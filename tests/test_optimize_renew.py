@@ -108,19 +108,24 @@ def test_renewal_raises_the_likeness_of_a_drawn_exemplar(name):
 
 
 def test_renewal_runs_on_the_start_only_and_only_where_it_can(monkeypatch):
-    """RENEW_ROUNDS rounds before the first assignment; none with one iteration (nothing would
-    settle what it inserts), with two samples per motif, or with ``renew`` 0."""
+    """RENEW_ROUNDS rounds before the first assignment, each inserting capped by count; none with
+    one iteration (nothing would settle what it inserts), with two samples per motif, or with
+    ``renew`` 0."""
     import svgtile.engines.optimize.solver as solver
 
-    calls = []
-    real = solver.renewed
+    calls, capped_by = [], []
+    real, real_insert = solver.renewed, solver.insert
     monkeypatch.setattr(solver, "renewed", lambda *a, **k: calls.append(len(a[0])) or real(*a, **k))
+    monkeypatch.setattr(solver, "insert", lambda *a, **k: capped_by.append(k.get("by_count", False)) or real_insert(*a, **k))
     ex, stats, region = _square("scrub")
     for params, rounds in (({}, solver.RENEW_ROUNDS), ({"passes": 1}, 0), ({"renew": 0.0}, 0),
                            ({"elongated": 1.0}, 0)):  # fmt: skip
         calls.clear()
+        capped_by.clear()
         synthesize(ex, region, "optimize", seed=1, stats=stats, params=params)
         assert len(calls) == rounds, params
+        # renewal's insertion caps by count (the start is thinned by count), no other insertion runs
+        assert capped_by == [True] * rounds, params
 
 
 def test_the_default_renews_and_a_repeating_tile_is_not_renewed():

@@ -16,7 +16,8 @@ position, its sample) is tried in its place, one element a bin at most (FGDC 601
 
 Insertion is capped at the exemplar's density ρ (:func:`capped`): in world-anchored windows of
 :data:`WINDOW` spacings, the best-voted elements are added only while the window's covered
-fraction stays below ρ.  Uncapped, every predicted hole was filled, and where the exemplar's
+fraction stays below ρ (renewal's insertion on a drawn exemplar, whose start is thinned by count:
+while the window holds fewer motifs than the exemplar's per unit area).  Uncapped, every predicted hole was filled, and where the exemplar's
 neighbourhoods predict more neighbours than its density holds — rows whose spacing along the row
 is tighter than across, a drawn exemplar's dense clusters — the texture overfilled (FGDC 610:
 density / ρ 1.44; bundled exemplars 1.06–1.31).  The cap is the count the paper's §4.1 start
@@ -145,7 +146,7 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
 def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemplar, stats: Stats, region: Region,
            *, window: float, by_count: bool = False) -> np.ndarray:  # fmt: skip
     """(m,) bool: the elements of ``new`` added so that no window is filled past ρ (``by_count``:
-    holds no more than the exemplar's motifs per unit area, each motif counting 1).
+    holds the exemplar's motifs per unit area, to the nearest motif, each motif counting 1).
 
     The plane is cut into world-anchored square windows of side ``window``; a window's room is
     ``ρ · area(window ∩ region)`` less the footprint area of the motifs of ``arr`` whose centroid

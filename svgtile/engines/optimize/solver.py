@@ -45,14 +45,15 @@ from svgtile.engines.optimize.search import (
 #: reach of an edit of the region grows with the rounds; and renewing in every iteration (its
 #: insertions then follow the moves of each assignment) spread an edit over six exemplar widths
 #: (the engine contract's edit stability on gravel: 0.54 of the far motifs unchanged, 0.95 asked).
-#: On the start only, 2 rounds: 0.98 (0.97 without renewal); the ten bundled exemplars, seeds
-#: 1–3, mean L 0.867 → 0.906 (every iteration: 0.923; 1 round 0.893, 3 and 5 rounds 0.906 and
-#: 0.909, the edit's reach growing with them: benchmarks/README.md, renew14).  Renewal's insertion
-#: is capped by count, as a drawn exemplar's start is thinned (:func:`.init.thin`): capped by area
-#: it refilled 16 of scrub's 136 removals in the first round (the start's kinds, before the
-#: assignments bring the mix back, cover more than ρ), and the texture ended at 0.90 of ρ; by
-#: count 172 of 136 + 131, density / ρ 1.04, and the bundled exemplars' mean L 0.911, issue 14's
-#: bounds on 24 of 30 runs (renew14c).
+#: On the start only, 2 rounds (insertion capped by area): 0.98 (0.97 without renewal); the ten
+#: bundled exemplars, seeds 1–3, mean L 0.867 → 0.906 (every iteration: 0.923; 1 round 0.893, 3
+#: and 5 rounds 0.906 and 0.909, the edit's reach growing with them: benchmarks/README.md,
+#: renew14).  Renewal's insertion is capped by count, as a drawn exemplar's start is thinned
+#: (:func:`.init.thin`): capped by area it put back 16 for scrub's 136 removals in the first round
+#: and 120 for 151 in the second (the start's kinds, before the assignments bring the mix back,
+#: cover more than ρ), and the texture ended at 0.90 of ρ; by count 172 for 136 and 158 for 161,
+#: density / ρ 1.04, the bundled exemplars' mean L 0.911, issue 14's bounds on 24 of 30 runs, and
+#: the contract's edit case 0.967 (renew14c).
 RENEW_ROUNDS = 2
 
 
