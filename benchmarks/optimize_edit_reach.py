@@ -22,22 +22,11 @@ import shapely
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
-from test_region import _lines  # noqa: E402
+from test_region import _lines, edited_polygons  # noqa: E402
 
 from svgtile import analyze, read_exemplar  # noqa: E402
 from svgtile.core.region import Region  # noqa: E402
 from svgtile.engines import synthesize  # noqa: E402
-
-
-def polygons(w: float, radius_widths: float = 4.0) -> tuple[shapely.Polygon, shapely.Polygon]:
-    """The contract's polygon and its edit, ``w`` the exemplar's width (user units)."""
-    a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
-    r = radius_widths * w * (1 + 0.15 * np.sin(3 * a) + 0.08 * np.cos(7 * a))
-    centre = np.array([13.7, 9.1]) * w
-    pts = np.c_[r * np.cos(a), r * np.sin(a)] + centre
-    moved = pts.copy()
-    moved[5] += (pts[5] - centre) / np.linalg.norm(pts[5] - centre) * w
-    return shapely.Polygon(pts), shapely.Polygon(moved)
 
 
 def main() -> None:
@@ -51,7 +40,7 @@ def main() -> None:
         stats = analyze(ex)
         x0, y0, x1, y1 = ex.region.bounds
         w = max(x1 - x0, y1 - y0)
-        before, after = polygons(w)
+        before, after = edited_polygons(w, 4.0)
         edit = shapely.symmetric_difference(before, after)
         for seed in map(int, args.seeds.split(",")):
             for v in args.variants:

@@ -281,6 +281,18 @@ def _lines(arr) -> list[str]:
     return [" ".join(row) for row in zip(map(str, arr.kind.tolist()), *cols, strict=True)]
 
 
+def edited_polygons(w: float, radius_widths: float) -> tuple[shapely.Polygon, shapely.Polygon]:
+    """The edit of :func:`edit_stability`: a wavy polygon of radius ``radius_widths`` exemplar
+    widths ``w`` (user units), and the same with one vertex moved one width out."""
+    a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    r = radius_widths * w * (1 + 0.15 * np.sin(3 * a) + 0.08 * np.cos(7 * a))
+    centre = np.array([13.7, 9.1]) * w
+    pts = np.c_[r * np.cos(a), r * np.sin(a)] + centre
+    moved = pts.copy()
+    moved[5] += (pts[5] - centre) / np.linalg.norm(pts[5] - centre) * w  # one vertex, one width out
+    return shapely.Polygon(pts), shapely.Polygon(moved)
+
+
 def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int = 3, mode: str = "clip",
                    engine: str = "patch"):
     """Fraction of motifs farther than two exemplar widths from a one-vertex edit of a large
@@ -289,13 +301,7 @@ def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int
     stats = analyze(ex)
     x0, y0, x1, y1 = ex.region.bounds
     w = max(x1 - x0, y1 - y0)
-    a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
-    r = radius_widths * w * (1 + 0.15 * np.sin(3 * a) + 0.08 * np.cos(7 * a))
-    centre = np.array([13.7, 9.1]) * w
-    pts = np.c_[r * np.cos(a), r * np.sin(a)] + centre
-    moved = pts.copy()
-    moved[5] += (pts[5] - centre) / np.linalg.norm(pts[5] - centre) * w  # one vertex, one width out
-    before, after = shapely.Polygon(pts), shapely.Polygon(moved)
+    before, after = edited_polygons(w, radius_widths)
     arr_a = arrange(engine, ex, Region(before), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
     arr_b = arrange(engine, ex, Region(after), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
     edit = shapely.symmetric_difference(before, after)

@@ -27,7 +27,7 @@ from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
-from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
+from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions, window_index
 from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
 from svgtile.engines.optimize.elements import Layout, layout
 from svgtile.engines.optimize.insert import WINDOW, insert, shrinking
@@ -186,13 +186,15 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
                 drop = renewed(cost, hoods.index, sarr.xy, s.renew, WINDOW * samples.spacing)
                 if drop.any():
                     arr, known, lax, match = _kept(arr, ~drop, known, lax, match)
-                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, match, samples, exemplar, flow, s)
+                    sarr = arr
+                    turn, hoods, cand, match, cost, slots = _searched(arr, match, samples, exemplar, flow, s)
             if renewing or (s.insert and lay is None and 0 < it < iterations - 1):
                 grown, chosen = insert(arr, samples, hoods, match, slots, exemplar, stats, region, boundary, key=key,
                                        by_count=renewing)  # fmt: skip
                 if len(chosen):  # the new elements searched from their predicted samples
                     arr, known, lax, grown_match = _reading_order(grown, len(arr), known, lax, np.r_[match, chosen])
-                    sarr, turn, hoods, cand, match, cost, slots = _searched(arr, grown_match, samples, exemplar, flow, s)
+                    sarr = arr
+                    turn, hoods, cand, match, cost, slots = _searched(arr, grown_match, samples, exemplar, flow, s)
         extra = np.zeros(len(sarr))
         if domain is not None:
             match, cost, slots, extra = _domain_search(domain, s, samples, hoods, sarr, cand, match, cost, slots)
@@ -224,13 +226,13 @@ def refine(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, b
 def _searched(arr: Arrangement, match: np.ndarray, samples: Samples, exemplar: Exemplar, flow: FlowField | None,
               s: Settings):  # fmt: skip
     """The search of §4.2 on ``arr`` (one sample per motif) from the k-coherence candidates of
-    ``match`` (n,): ``arr`` (the searched arrangement, as the loop names it), its local turn,
-    neighbourhoods, candidates, and the search's match, cost and slots."""
+    ``match`` (n,): its local turn, neighbourhoods, candidates, and the search's match, cost and
+    slots."""
     turn = local_turn(flow, arr.xy)
     hoods = output_neighbourhoods(arr.xy, arr.kind, s.neighbours, samples.spacing, turn)
     cand = coherent_candidates(samples, hoods, match, lambda q: wrap(q, exemplar))
     match, cost, slots = search(samples, hoods, arr.kind, cand, s.alpha)
-    return arr, turn, hoods, cand, match, cost, slots
+    return turn, hoods, cand, match, cost, slots
 
 
 def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, side: float) -> np.ndarray:
@@ -253,9 +255,7 @@ def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, 
     stood).  Neighbourhoods are not symmetric: a pair where only one is the other's neighbour may
     both leave (2–5 pairs a round on gravel, renew14).
     """
-    cells = np.floor(xy / side).astype(np.int64)
-    _, window = np.unique(cells, axis=0, return_inverse=True)
-    window = window.ravel()
+    window = window_index(xy, side)
     order = np.lexsort((cost, window))
     w = window[order]
     start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
