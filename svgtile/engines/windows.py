@@ -4,6 +4,10 @@ patch and optimize (:mod:`svgtile.engines.holes`) measure the covered area again
 
 A window is the exemplar region's bounding box, tiled from the world origin shifted by one of
 :data:`WINDOW_OFFSETS` (so decisions at a place do not depend on how far the region extends).
+
+The optimize engine's windows are squares of a few exemplar spacings, tiled from the world
+origin (:func:`square_windows`, :func:`square_area`): where its start is thinned, its insertion
+capped, its kinds held to the exemplar's mix and its renewal's costs compared.
 """
 
 from __future__ import annotations
@@ -60,6 +64,21 @@ def region_windows(region: Region, size: np.ndarray, offset: np.ndarray):
     if not full.any():
         return None
     return offset, np.stack([IA, IB], -1)[full], area[full]
+
+
+def square_windows(xy: np.ndarray, side: float) -> tuple[np.ndarray, np.ndarray]:
+    """The world-anchored square windows of side ``side`` (user units) that hold the points ``xy``
+    (n, 2): their integer coordinates, (w, 2) int64 in lexicographic order, and each point's
+    window, (n,) int64, an index into them."""
+    ids, which = np.unique(np.floor(xy / side).astype(np.int64), axis=0, return_inverse=True)
+    return ids, which.ravel().astype(np.int64)
+
+
+def square_area(ids: np.ndarray, side: float, region: Region) -> np.ndarray:
+    """(w,) float, square user units: the area inside ``region`` of each square window ``ids``
+    (w, 2) of side ``side`` (:func:`square_windows`)."""
+    boxes = shapely.box(ids[:, 0] * side, ids[:, 1] * side, (ids[:, 0] + 1) * side, (ids[:, 1] + 1) * side)
+    return shapely.area(shapely.intersection(boxes, region.shape))
 
 
 def window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.ndarray) -> np.ndarray:
