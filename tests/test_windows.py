@@ -9,7 +9,7 @@ import shapely
 
 from svgtile.core.region import Region
 from svgtile.engines.optimize.assign import window_index
-from svgtile.engines.windows import square_area, square_windows
+from svgtile.engines.windows import square_area, square_cells, square_windows
 
 
 def test_points_fall_in_windows_counted_from_the_world_origin():
@@ -36,3 +36,10 @@ def test_window_areas_are_their_part_inside_the_region():
     ids = np.array([[-1, 0], [0, 0], [1, 2], [0, 2]])
     assert square_area(ids, 1.0, region) == pytest.approx([0.0, 1.0, 0.5, 1.0])
     assert square_area(np.array([[0, 0]]), 2.0, region) == pytest.approx([3.0])
+
+
+def test_cells_are_the_windows_coordinates():
+    xy = np.array([[2.99, -0.01], [3.0, 0.0], [-6.5, 7.2]])
+    assert square_cells(xy, 3.0).tolist() == [[0, -1], [1, 0], [-3, 2]]
+    ids, which = square_windows(xy, 3.0)
+    assert np.array_equal(ids[which], square_cells(xy, 3.0))

@@ -184,7 +184,8 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, xy: np.ndarray, kind: 
 
 def window_index(xy: np.ndarray, side: float) -> np.ndarray:
     """(n,) int64: each point's world-anchored square window of side ``side`` (user units),
-    numbered 0 … nw − 1 in the order of the windows' integer coordinates (:func:`svgtile.engines.windows.square_windows`)."""
+    numbered 0 … nw − 1 in the order of the windows' integer coordinates
+    (:func:`svgtile.engines.windows.square_windows`)."""
     return square_windows(xy, side)[1]
 
 

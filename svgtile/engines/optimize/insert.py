@@ -39,7 +39,7 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.optimize.samples import Samples
 from svgtile.engines.optimize.search import Neighbourhoods
-from svgtile.engines.windows import square_area, square_windows
+from svgtile.engines.windows import square_area, square_cells, square_windows
 
 #: Predictions a bin needs before an element is inserted there.
 VOTES = 2
@@ -177,7 +177,7 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     # the output's cover of those windows: its motifs' windows looked up among ``ids``; a motif
     # whose centroid lies outside the region (kept by the boundary mode) covers no window's
     # ``window ∩ region``, as the density figure counts
-    cell = np.floor(arr.xy / window).astype(np.int64)
+    cell = square_cells(arr.xy, window)
     pos = np.searchsorted(_keys(ids), _keys(cell))
     hit = (pos < len(ids)) & (_keys(ids)[np.minimum(pos, len(ids) - 1)] == _keys(cell))
     hit &= shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
