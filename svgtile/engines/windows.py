@@ -1,9 +1,18 @@
-"""Windows the size of the exemplar's region, world-anchored: where the patch engine's density
-repair (almeraj2013 §3.4, :mod:`svgtile.engines.patch.density`) and the hole filling that follows
-patch and optimize (:mod:`svgtile.engines.holes`) measure the covered area against ρ.
+"""World-anchored windows, where engines measure cover, counts and mix against the exemplar's
+(so decisions at a place do not depend on how far the region extends).
 
-A window is the exemplar region's bounding box, tiled from the world origin shifted by one of
-:data:`WINDOW_OFFSETS` (so decisions at a place do not depend on how far the region extends).
+Windows the size of the exemplar's region: where the patch engine's density repair (almeraj2013
+§3.4, :mod:`svgtile.engines.patch.density`) and the hole filling that follows patch and optimize
+(:mod:`svgtile.engines.holes`) measure the covered area against ρ.  A window is the exemplar
+region's bounding box, tiled from the world origin shifted by one of :data:`WINDOW_OFFSETS`.
+
+Square windows of a given side, tiled from the world origin (:func:`square_cells`,
+:func:`square_windows`, :func:`square_area`): the optimize engine's, of 8–12 exemplar spacings,
+where its start is thinned (:func:`.optimize.init.thin`), its insertion capped and its vote
+kept from shrinking a short window's cover (:mod:`.optimize.insert`), its kinds held to the
+exemplar's mix (:mod:`.optimize.assign`) and its renewal's costs compared
+(:func:`.optimize.solver.renewed`); and its insertion's bins of half a spacing, where
+predictions are counted.
 """
 
 from __future__ import annotations
@@ -60,6 +69,27 @@ def region_windows(region: Region, size: np.ndarray, offset: np.ndarray):
     if not full.any():
         return None
     return offset, np.stack([IA, IB], -1)[full], area[full]
+
+
+def square_cells(xy: np.ndarray, side: float) -> np.ndarray:
+    """(n, 2) int64: the integer coordinates of the world-anchored square window of side ``side``
+    (user units) that holds each point ``xy`` (n, 2)."""
+    return np.floor(xy / side).astype(np.int64)
+
+
+def square_windows(xy: np.ndarray, side: float) -> tuple[np.ndarray, np.ndarray]:
+    """The world-anchored square windows of side ``side`` (user units) that hold the points ``xy``
+    (n, 2): their integer coordinates (:func:`square_cells`), (w, 2) int64 in lexicographic
+    order, and each point's window, (n,) int64, an index into them."""
+    ids, which = np.unique(square_cells(xy, side), axis=0, return_inverse=True)
+    return ids, which.ravel().astype(np.int64)
+
+
+def square_area(ids: np.ndarray, side: float, region: Region) -> np.ndarray:
+    """(w,) float, square user units: the area inside ``region`` of each square window ``ids``
+    (w, 2) of side ``side`` (:func:`square_windows`)."""
+    boxes = shapely.box(ids[:, 0] * side, ids[:, 1] * side, (ids[:, 0] + 1) * side, (ids[:, 1] + 1) * side)
+    return shapely.area(shapely.intersection(boxes, region.shape))
 
 
 def window_of(xy: np.ndarray, origin: np.ndarray, size: np.ndarray, ids: np.ndarray) -> np.ndarray:

@@ -28,6 +28,7 @@ from svgtile.core.footprint import rotation
 from svgtile.engines.optimize.match import descend_kinds, rebalance_kinds
 from svgtile.engines.optimize.samples import Samples
 from svgtile.engines.optimize.search import Neighbourhoods
+from svgtile.engines.windows import square_windows
 
 
 def predictions(samples: Samples, hoods: Neighbourhoods, match: np.ndarray, slots: np.ndarray):
@@ -183,9 +184,9 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, xy: np.ndarray, kind: 
 
 def window_index(xy: np.ndarray, side: float) -> np.ndarray:
     """(n,) int64: each point's world-anchored square window of side ``side`` (user units),
-    numbered 0 … nw − 1 in the order of the windows' integer coordinates."""
-    _, window = np.unique(np.floor(xy / side).astype(np.int64), axis=0, return_inverse=True)
-    return window.ravel().astype(np.int64)
+    numbered 0 … nw − 1 in the order of the windows' integer coordinates
+    (:func:`svgtile.engines.windows.square_windows`)."""
+    return square_windows(xy, side)[1]
 
 
 def _window_counts(xy: np.ndarray, kind: np.ndarray, nk: int, side: float) -> tuple[np.ndarray, np.ndarray]:

@@ -36,7 +36,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import shapely
 
 from svgtile.analysis.order import EXACT_STEP, SUPPORT, exact_support, is_period, read_order
 from svgtile.analysis.stats import Stats, footprint_areas
@@ -47,6 +46,7 @@ from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
+from svgtile.engines.windows import square_area, square_windows
 
 #: Weight of a motif's footprint area (over the largest) against its distance from its cell's
 #: centre (over the cell side, ≤ ~0.6) in which of two conflicting start motifs leaves, when
@@ -316,11 +316,8 @@ def thin(arr: Arrangement, exemplar: Exemplar, stats: Stats, region: Region, *, 
     n = len(arr)
     if n == 0:
         return np.zeros(0, dtype=bool)
-    cell = np.floor(arr.xy / window).astype(np.int64)
-    ids, which = np.unique(cell, axis=0, return_inverse=True)
-    which = which.ravel()
-    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
-    inside = shapely.area(shapely.intersection(boxes, region.shape))
+    ids, which = square_windows(arr.xy, window)
+    inside = square_area(ids, window, region)
     if by_count:
         target, area = inside * len(exemplar.motifs) / exemplar.region.area, np.ones(n)
     else:

@@ -39,6 +39,7 @@ from svgtile.core.footprint import motif_radius, rotation
 from svgtile.core.region import Region
 from svgtile.engines.optimize.samples import Samples
 from svgtile.engines.optimize.search import Neighbourhoods
+from svgtile.engines.windows import square_area, square_cells, square_windows
 
 #: Predictions a bin needs before an element is inserted there.
 VOTES = 2
@@ -95,9 +96,8 @@ def insert(arr: Arrangement, samples: Samples, hoods: Neighbourhoods, match: np.
     if len(at) == 0:
         return none
     # world-anchored bins of half a spacing; a bin's votes, mean position and first sample
-    cell = np.floor(at / (TAKEN * spacing)).astype(np.int64)
-    ids, which, votes = np.unique(cell, axis=0, return_inverse=True, return_counts=True)
-    which = which.ravel()
+    ids, which = square_windows(at, TAKEN * spacing)
+    votes = np.bincount(which, minlength=len(ids))
     order = np.lexsort((sample, src, which))  # within a bin: by the predicting element, then sample
     first = order[np.r_[0, np.flatnonzero(np.diff(which[order])) + 1]]
     xy = np.stack([np.bincount(which, weights=at[:, d]) for d in (0, 1)], -1) / votes[:, None]
@@ -171,15 +171,13 @@ def capped(arr: Arrangement, new: Arrangement, rank: np.ndarray, exemplar: Exemp
     m = len(new)
     if m == 0:
         return np.zeros(0, dtype=bool)
-    ids, which = np.unique(np.floor(new.xy / window).astype(np.int64), axis=0, return_inverse=True)
-    which = which.ravel()
-    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
-    inside = shapely.area(shapely.intersection(boxes, region.shape))
+    ids, which = square_windows(new.xy, window)
+    inside = square_area(ids, window, region)
     room = inside * (len(exemplar.motifs) / exemplar.region.area if by_count else stats.density)
     # the output's cover of those windows: its motifs' windows looked up among ``ids``; a motif
     # whose centroid lies outside the region (kept by the boundary mode) covers no window's
     # ``window ∩ region``, as the density figure counts
-    cell = np.floor(arr.xy / window).astype(np.int64)
+    cell = square_cells(arr.xy, window)
     pos = np.searchsorted(_keys(ids), _keys(cell))
     hit = (pos < len(ids)) & (_keys(ids)[np.minimum(pos, len(ids) - 1)] == _keys(cell))
     hit &= shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
@@ -224,11 +222,8 @@ def shrinking(arr: Arrangement, kind: np.ndarray, exemplar: Exemplar, stats: Sta
     down = footprint_areas(Arrangement(kind, arr.xy, arr.angle, arr.scale), exemplar.prototypes) < area * (1 - 1e-9)
     if not down.any():
         return down
-    cell = np.floor(arr.xy / window).astype(np.int64)
-    ids, which = np.unique(cell, axis=0, return_inverse=True)
-    which = which.ravel()
-    boxes = shapely.box(ids[:, 0] * window, ids[:, 1] * window, (ids[:, 0] + 1) * window, (ids[:, 1] + 1) * window)
-    room = stats.density * shapely.area(shapely.intersection(boxes, region.shape))
+    ids, which = square_windows(arr.xy, window)
+    room = stats.density * square_area(ids, window, region)
     inside = shapely.contains_xy(region.shape, arr.xy[:, 0], arr.xy[:, 1])
     cover = np.bincount(which[inside], weights=area[inside], minlength=len(ids))
     return down & (cover < room)[which]
