@@ -71,7 +71,7 @@ def main() -> None:
         noise()
         return
     over: dict[str, list[int]] = {}
-    for name, stem, ex, region in cases_all(args.sets.split(","), 0):
+    for name, stem, ex, region in cases_all(args.sets.split(","), 0, cells=True):
         stats = analyze(ex)
         if args.gate and ex.period is not None:
             from test_wholeset import gate_region
