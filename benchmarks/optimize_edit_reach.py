@@ -17,16 +17,11 @@ import json
 import sys
 from pathlib import Path
 
-import numpy as np
-import shapely
-
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests"))
-from test_region import _lines, edited_polygons  # noqa: E402
+from test_region import edit_comparison  # noqa: E402
 
 from svgtile import analyze, read_exemplar  # noqa: E402
-from svgtile.core.region import Region  # noqa: E402
-from svgtile.engines import synthesize  # noqa: E402
 
 
 def main() -> None:
@@ -38,18 +33,13 @@ def main() -> None:
     for name in args.exemplars.split(","):
         ex = read_exemplar(REPO / "exemplars" / f"{name}.svg")
         stats = analyze(ex)
-        x0, y0, x1, y1 = ex.region.bounds
-        w = max(x1 - x0, y1 - y0)
-        before, after = edited_polygons(w, 4.0)
-        edit = shapely.symmetric_difference(before, after)
         for seed in map(int, args.seeds.split(",")):
             for v in args.variants:
-                arr = [synthesize(ex, Region(p), "optimize", rng=np.random.default_rng(seed), stats=stats, boundary="clip",
-                                  params=json.loads(v)).arrangement for p in (before, after)]  # fmt: skip
-                same = np.isin(_lines(arr[0]), _lines(arr[1]))
-                d = shapely.distance(edit, shapely.points(arr[0].xy)) / w
+                same, distance, w = edit_comparison(ex, stats, radius_widths=4.0, seed=seed, engine="optimize",
+                                                    **json.loads(v))  # fmt: skip
+                d = distance / w
                 bands = " ".join(f"{lo}–{lo + 1}: {same[(d >= lo) & (d < lo + 1)].mean():.2f}" for lo in range(5))
-                print(f"{name} seed {seed} {v}: contract {same[d > 2].mean():.3f}   by widths from the edit  {bands}",
+                print(f"{name} seed {seed} {v}: contract {same[distance > 2 * w].mean():.3f}   by widths from the edit  {bands}",
                       flush=True)  # fmt: skip
 
 

@@ -293,20 +293,28 @@ def edited_polygons(w: float, radius_widths: float) -> tuple[shapely.Polygon, sh
     return shapely.Polygon(pts), shapely.Polygon(moved)
 
 
+def edit_comparison(ex, stats, *, radius_widths: float, seed: int, mode: str = "clip", engine: str = "patch",
+                    **params):  # fmt: skip
+    """The texture of ``ex`` (analysed as ``stats``) over the polygon of :func:`edited_polygons`
+    and over its edited copy, the same seed: (n,) bool, whether each motif of the first is in the
+    second byte for byte as written; (n,) float, its distance from the edit, user units; and the
+    exemplar width, user units."""
+    x0, y0, x1, y1 = ex.region.bounds
+    w = max(x1 - x0, y1 - y0)
+    before, after = edited_polygons(w, radius_widths)
+    arr_a = arrange(engine, ex, Region(before), rng=np.random.default_rng(seed), stats=stats, boundary=mode, **params)
+    arr_b = arrange(engine, ex, Region(after), rng=np.random.default_rng(seed), stats=stats, boundary=mode, **params)
+    edit = shapely.symmetric_difference(before, after)
+    return np.isin(_lines(arr_a), _lines(arr_b)), shapely.distance(edit, shapely.points(arr_a.xy)), w
+
+
 def edit_stability(exemplar_path: Path, *, radius_widths: float = 6.0, seed: int = 3, mode: str = "clip",
                    engine: str = "patch"):
     """Fraction of motifs farther than two exemplar widths from a one-vertex edit of a large
     polygon that stay byte-identical (as written), and how many such motifs there are."""
     ex = read_exemplar(exemplar_path)
-    stats = analyze(ex)
-    x0, y0, x1, y1 = ex.region.bounds
-    w = max(x1 - x0, y1 - y0)
-    before, after = edited_polygons(w, radius_widths)
-    arr_a = arrange(engine, ex, Region(before), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
-    arr_b = arrange(engine, ex, Region(after), rng=np.random.default_rng(seed), stats=stats, boundary=mode)
-    edit = shapely.symmetric_difference(before, after)
-    far = shapely.distance(edit, shapely.points(arr_a.xy)) > 2 * w
-    same = np.isin(_lines(arr_a), _lines(arr_b))
+    same, distance, w = edit_comparison(ex, analyze(ex), radius_widths=radius_widths, seed=seed, mode=mode, engine=engine)
+    far = distance > 2 * w
     return float(same[far].mean()), int(far.sum())
 
 
