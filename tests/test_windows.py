@@ -8,7 +8,6 @@ import pytest
 import shapely
 
 from svgtile.core.region import Region
-from svgtile.engines.optimize.assign import window_index
 from svgtile.engines.windows import square_area, square_cells, square_windows
 
 
@@ -18,7 +17,6 @@ def test_points_fall_in_windows_counted_from_the_world_origin():
     assert ids.tolist() == [[-1, -3], [-1, 0], [0, 0], [1, 2]]  # lexicographic, negative windows too
     assert which.tolist() == [3, 1, 2, 2, 0]
     assert which.dtype == np.int64 and ids.dtype == np.int64
-    assert np.array_equal(window_index(xy, 1.0), which)
 
 
 def test_a_window_does_not_depend_on_the_other_points():

@@ -182,17 +182,11 @@ def assign_kinds(samples: Samples, hoods: Neighbourhoods, xy: np.ndarray, kind: 
     return new, match, cost, take
 
 
-def window_index(xy: np.ndarray, side: float) -> np.ndarray:
-    """(n,) int64: each point's world-anchored square window of side ``side`` (user units),
-    numbered 0 … nw − 1 in the order of the windows' integer coordinates
-    (:func:`svgtile.engines.windows.square_windows`)."""
-    return square_windows(xy, side)[1]
-
-
 def _window_counts(xy: np.ndarray, kind: np.ndarray, nk: int, side: float) -> tuple[np.ndarray, np.ndarray]:
     """Each element's world-anchored window of side ``side`` (user units), (n,) int64
-    (:func:`window_index`), and each window's count of every kind, (nw, nk) int64."""
-    window = window_index(xy, side)
+    (:func:`svgtile.engines.windows.square_windows`), and each window's count of every kind,
+    (nw, nk) int64."""
+    window = square_windows(xy, side)[1]
     count = np.zeros((int(window.max()) + 1, nk), dtype=np.int64)
     np.add.at(count, (window, kind), 1)
     return window, count

@@ -27,7 +27,7 @@ from svgtile.core.arrangement import DECIMALS, Arrangement
 from svgtile.core.exemplar import Exemplar
 from svgtile.core.flow import FlowField
 from svgtile.core.region import Region
-from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions, window_index
+from svgtile.engines.optimize.assign import assign_kinds, predictions, solve_positions
 from svgtile.engines.optimize.controls import DomainTerm, conflict_codes, flawed, local_turn, settle
 from svgtile.engines.optimize.elements import Layout, layout
 from svgtile.engines.optimize.insert import WINDOW, insert, shrinking
@@ -39,6 +39,7 @@ from svgtile.engines.optimize.search import (
     output_neighbourhoods,
     search,
 )
+from svgtile.engines.windows import square_windows
 
 #: Rounds of renewal (``Settings.renew``) on the start, before the first assignment.  Each
 #: round's removals and insertions depend on the neighbourhoods the round before left, so the
@@ -255,7 +256,7 @@ def renewed(cost: np.ndarray, index: np.ndarray, xy: np.ndarray, factor: float, 
     stood).  Neighbourhoods are not symmetric: a pair where only one is the other's neighbour may
     both leave (2–5 pairs a round on gravel, renew14).
     """
-    window = window_index(xy, side)
+    window = square_windows(xy, side)[1]
     order = np.lexsort((cost, window))
     w = window[order]
     start = np.r_[0, np.flatnonzero(np.diff(w)) + 1]
